@@ -1,0 +1,27 @@
+#!/usr/bin/env bash
+# moraine: install the Debian packages the build, the examples and the tests need.
+# Safe to run again; does nothing when everything is present. Needs root (or sudo).
+set -euo pipefail
+
+packages=(
+  build-essential cmake pkg-config git
+  liblua5.4-dev lua5.4            # the embedded Lua 5.4 (C API) and a stand-alone interpreter
+  libhdf5-dev hdf5-tools          # HDF5 (checkpoints, time series) and h5dump
+  python3 python3-numpy python3-vtk9 python3-h5py   # the tests read outputs with the real VTK reader
+  gnuplot-nox                     # plots of the examples
+)
+
+missing=()
+for p in "${packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if [ ${#missing[@]} -eq 0 ]; then
+  echo "install-deps: all packages present"
+  exit 0
+fi
+
+SUDO=""
+if [ "$(id -u)" -ne 0 ]; then SUDO="sudo"; fi
+echo "install-deps: installing ${missing[*]}"
+$SUDO apt-get update -qq
+DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}"

@@ -1,0 +1,8 @@
+#!/usr/bin/env bash
+# moraine: set up, build and run the default example deck (the README's main job).
+set -euo pipefail
+cd "$(dirname "$0")/.."
+scripts/install-deps.sh
+cmake -S . -B build -DCMAKE_BUILD_TYPE=Release
+cmake --build build -j "$(nproc 2>/dev/null || echo 2)"
+build/moraine examples/column_drop/deck.lua -o out/column_drop "$@"

@@ -1,0 +1,23 @@
+#!/usr/bin/env bash
+# moraine: set up, build and run the whole test suite (the README's test command).
+#   scripts/test.sh            release build in build/, then ctest
+#   scripts/test.sh --sanitize also an AddressSanitizer + UBSan build in build-asan/
+set -euo pipefail
+cd "$(dirname "$0")/.."
+sanitize=0
+[ "${1:-}" = "--sanitize" ] && sanitize=1
+
+scripts/install-deps.sh
+jobs=$(nproc 2>/dev/null || echo 2)
+
+cmake -S . -B build -DCMAKE_BUILD_TYPE=Release
+cmake --build build -j "$jobs"
+(cd build && ctest --output-on-failure -j "$jobs")
+
+if [ "$sanitize" = 1 ]; then
+  cmake -S . -B build-asan -DCMAKE_BUILD_TYPE=Debug -DMORAINE_SANITIZE=ON -DMORAINE_OPENMP=OFF
+  cmake --build build-asan -j "$jobs"
+  # the sanitised build runs the quick tests (the long physics runs are too slow under ASan)
+  (cd build-asan && ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 \
+     ctest --output-on-failure -j "$jobs" -LE slow)
+fi

@@ -1,0 +1,27 @@
+/* moraine: error reporting for the C engine.
+ *
+ * Engine functions that can fail return a non-zero status and leave a
+ * human-readable message here; the caller (the Lua layer, main.c or a C
+ * program using the engine directly) reads it with mrn_error_message().
+ * The message is per thread so OpenMP workers cannot clobber each other. */
+#ifndef MRN_CORE_ERROR_H
+#define MRN_CORE_ERROR_H
+
+#include <stddef.h>
+
+enum {
+  MRN_OK = 0,
+  MRN_ERR = 1,       /* generic failure, message set */
+  MRN_ERR_IO = 2,    /* a file could not be written or read */
+  MRN_ERR_STATE = 3, /* the simulation state became invalid (NaN, particle left grid) */
+  MRN_ERR_HOOK = 4   /* a user callback asked to stop with an error */
+};
+
+/* printf-style; always returns MRN_ERR so callers can `return mrn_error(...)` */
+int mrn_error(const char *fmt, ...) __attribute__((format(printf, 1, 2)));
+/* same as mrn_error but returns the given code */
+int mrn_error_code(int code, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
+const char *mrn_error_message(void);
+void mrn_error_clear(void);
+
+#endif

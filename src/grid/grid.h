@@ -1,0 +1,55 @@
+/* moraine: the Cartesian background grid.
+ *
+ * Nodes sit at origin + i*cell for i = 0..ncell along each axis, plus `pad`
+ * ghost layers beyond every face so that wide kernels (quadratic and cubic
+ * B-splines) keep the partition of unity for particles next to the boundary.
+ * Face boundary conditions act on the face nodes and on the ghost nodes
+ * beyond them. Nodal vectors always have 3 components (z = 0 in 2D). */
+#ifndef MRN_GRID_GRID_H
+#define MRN_GRID_GRID_H
+
+#include <stddef.h>
+
+#define MRN_GRID_PAD 1
+
+typedef struct mrn_grid {
+  int dim;
+  double origin[3];
+  double size[3];   /* extent of the domain (ncell * cell) */
+  double cell;      /* cell size h, the same along every axis */
+  double inv_cell;
+  int ncell[3];     /* cells per axis; 0 along unused axes */
+  int pad;          /* ghost node layers beyond each face */
+  int nnode[3];     /* nodes per axis including ghosts; 1 along unused axes */
+  long stride[3];   /* x fastest */
+  size_t n;         /* total number of nodes */
+
+  double *mass;     /* n */
+  double *mom;      /* 3n momentum from P2G */
+  double *vel;      /* 3n velocity V^i (after boundary conditions) */
+  double *vel_new;  /* 3n updated velocity V~^i (000, Eq. 28) */
+  double *force;    /* 3n total nodal force */
+  double *acc;      /* 3n acceleration actually applied, (V~ - V)/dt after BCs */
+} mrn_grid;
+
+/* size[d] is rounded to a whole number of cells (error if the rounding is off
+ * by more than 1e-6 of a cell). Returns 0 or an error code with message. */
+int mrn_grid_init(mrn_grid *g, int dim, const double origin[3], const double size[3], double cell);
+void mrn_grid_free(mrn_grid *g);
+void mrn_grid_clear(mrn_grid *g);
+
+/* linear index of node (i, j, k), each counted from the domain's first node
+ * (ghost nodes have negative indices or indices above ncell) */
+static inline size_t mrn_grid_index(const mrn_grid *g, int i, int j, int k) {
+  return (size_t)((i + g->pad) * g->stride[0] + (j + g->pad) * g->stride[1] +
+                  (g->dim == 3 ? (k + g->pad) * g->stride[2] : 0));
+}
+
+/* node coordinates of a linear index */
+void mrn_grid_node_position(const mrn_grid *g, size_t idx, double x[3]);
+/* integer node indices (domain numbering) of a linear index */
+void mrn_grid_node_ijk(const mrn_grid *g, size_t idx, int ijk[3]);
+/* 1 when the point lies inside the domain [origin, origin + size] */
+int mrn_grid_contains(const mrn_grid *g, const double x[3]);
+
+#endif

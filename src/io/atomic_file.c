@@ -1,0 +1,166 @@
+#include "io/atomic_file.h"
+
+#include <errno.h>
+#include <fcntl.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <sys/types.h>
+#include <unistd.h>
+
+#include "core/error.h"
+
+/* ---- temporary name ---------------------------------------------------- */
+
+/* `.<basename>.tmp.<pid>` next to the final path: the same directory means
+ * the same file system, so the final rename is atomic; the leading dot keeps
+ * it out of ParaView's file dialogs and of `*.vtp` globs; the pid keeps two
+ * moraine processes writing into one directory apart. */
+static char *temp_name_for(const char *path) {
+  const char *slash = strrchr(path, '/');
+  size_t dir_len = slash ? (size_t)(slash - path) + 1 : 0;
+  const char *base = path + dir_len;
+  size_t len = dir_len + 1 + strlen(base) + 32;
+  char *temp = malloc(len);
+  if (!temp) return NULL;
+  snprintf(temp, len, "%.*s.%s.tmp.%ld", (int)dir_len, path, base, (long)getpid());
+  return temp;
+}
+
+static void release(mrn_atomic_file *f) {
+  free(f->final_path);
+  free(f->temp_path);
+  f->fp = NULL;
+  f->final_path = NULL;
+  f->temp_path = NULL;
+}
+
+/* ---- open / commit / abort --------------------------------------------- */
+
+int mrn_atomic_open(mrn_atomic_file *f, const char *path) {
+  f->fp = NULL;
+  f->final_path = NULL;
+  f->temp_path = NULL;
+  if (!path || !*path || path[strlen(path) - 1] == '/')
+    return mrn_error_code(MRN_ERR_IO, "cannot write '%s': not a file name", path ? path : "");
+  f->final_path = strdup(path);
+  f->temp_path = temp_name_for(path);
+  if (!f->final_path || !f->temp_path) {
+    release(f);
+    return mrn_error_code(MRN_ERR_IO, "cannot write '%s': out of memory", path);
+  }
+  f->fp = fopen(f->temp_path, "wb");
+  if (!f->fp) {
+    int rc = mrn_error_code(MRN_ERR_IO, "cannot write '%s': %s", path, strerror(errno));
+    release(f);
+    return rc;
+  }
+  return MRN_OK;
+}
+
+/* Push everything the stream holds to the disk. A stream error flag set by an
+ * earlier write has lost its errno by now, so it is reported as EIO unless
+ * errno still says something more precise. */
+static int flush_to_disk(FILE *fp) {
+  if (ferror(fp)) return errno ? errno : EIO;
+  if (fflush(fp) != 0) return errno ? errno : EIO;
+  /* some file systems cannot sync (EINVAL); the data is still complete */
+  if (fsync(fileno(fp)) != 0 && errno != EINVAL && errno != ENOTSUP) return errno;
+  return 0;
+}
+
+/* Best effort: make the rename itself durable. A failure here does not make
+ * the file wrong, only possibly older after a power cut, so it is ignored. */
+static void sync_parent_dir(const char *path) {
+  const char *slash = strrchr(path, '/');
+  char *dir = slash ? strndup(path, (size_t)(slash - path) + 1) : strdup(".");
+  if (!dir) return;
+  int fd = open(dir, O_RDONLY | O_DIRECTORY);
+  if (fd >= 0) {
+    (void)fsync(fd);
+    close(fd);
+  }
+  free(dir);
+}
+
+int mrn_atomic_commit(mrn_atomic_file *f) {
+  if (!f->fp) return mrn_error_code(MRN_ERR_IO, "cannot write '%s': file is not open",
+                                    f->final_path ? f->final_path : "");
+  errno = 0;
+  int err = flush_to_disk(f->fp);
+  /* fclose must run in every case to release the stream; its own failure
+   * (a delayed write error on some file systems) counts as well */
+  if (fclose(f->fp) != 0 && !err) err = errno ? errno : EIO;
+  f->fp = NULL;
+  if (err) {
+    int rc = mrn_error_code(MRN_ERR_IO, "cannot write '%s': %s", f->final_path, strerror(err));
+    unlink(f->temp_path);
+    release(f);
+    return rc;
+  }
+  if (rename(f->temp_path, f->final_path) != 0) {
+    int rc = mrn_error_code(MRN_ERR_IO, "cannot write '%s': rename from '%s' failed: %s", f->final_path,
+                            f->temp_path, strerror(errno));
+    unlink(f->temp_path);
+    release(f);
+    return rc;
+  }
+  sync_parent_dir(f->final_path);
+  release(f);
+  return MRN_OK;
+}
+
+void mrn_atomic_abort(mrn_atomic_file *f) {
+  if (f->fp) fclose(f->fp);
+  if (f->temp_path) unlink(f->temp_path);
+  release(f);
+}
+
+/* ---- directories ------------------------------------------------------- */
+
+/* make one directory, accepting one that already exists */
+static int make_one_dir(const char *dir, const char *whole) {
+  if (mkdir(dir, 0755) == 0) return MRN_OK;
+  int err = errno;
+  struct stat st;
+  /* EEXIST is the usual answer for an existing entry, but a read-only or
+   * unwritable parent may answer EROFS/EACCES first: look before failing */
+  if (stat(dir, &st) == 0) {
+    if (S_ISDIR(st.st_mode)) return MRN_OK;
+    err = ENOTDIR;
+  }
+  if (strcmp(dir, whole) == 0)
+    return mrn_error_code(MRN_ERR_IO, "cannot create directory '%s': %s", whole, strerror(err));
+  return mrn_error_code(MRN_ERR_IO, "cannot create directory '%s': '%s': %s", whole, dir, strerror(err));
+}
+
+int mrn_mkdir_p(const char *path) {
+  if (!path || !*path) return MRN_OK;
+  char *buf = strdup(path);
+  if (!buf) return mrn_error_code(MRN_ERR_IO, "cannot create directory '%s': out of memory", path);
+  /* create each prefix ending before a '/', then the whole path; repeated
+   * and trailing slashes only produce prefixes that already exist */
+  int rc = MRN_OK;
+  for (char *p = buf + 1; *p && rc == MRN_OK; p++) {
+    if (*p != '/' || p[-1] == '/') continue;
+    *p = '\0';
+    rc = make_one_dir(buf, path);
+    *p = '/';
+  }
+  if (rc == MRN_OK) rc = make_one_dir(buf, path);
+  free(buf);
+  return rc;
+}
+
+char *mrn_path_join(const char *dir, const char *name) {
+  if (!name) name = "";
+  if (!dir || !*dir || name[0] == '/') return strdup(name);
+  size_t dlen = strlen(dir), nlen = strlen(name);
+  int need_slash = dir[dlen - 1] != '/';
+  char *out = malloc(dlen + (size_t)need_slash + nlen + 1);
+  if (!out) return NULL;
+  memcpy(out, dir, dlen);
+  if (need_slash) out[dlen] = '/';
+  memcpy(out + dlen + need_slash, name, nlen + 1);
+  return out;
+}

@@ -1,0 +1,173 @@
+#include "io/output.h"
+
+#include <errno.h>
+#include <math.h>
+#include <stdint.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "core/error.h"
+#include "io/atomic_file.h"
+#include "io/particle_fields.h"
+#include "solver/simulation.h"
+
+static char *dup_or_null(const char *s) { return s ? strdup(s) : NULL; }
+
+void mrn_output_init(mrn_output *o, const char *dir) {
+  memset(o, 0, sizeof *o);
+  o->dir = strdup(dir ? dir : ".");
+  o->vtk_last_step = -1;
+  o->csv_every = 10;
+  o->csv_last_step = -1;
+  o->encoding = MRN_VTK_BINARY;
+}
+
+void mrn_output_free(mrn_output *o) {
+  free(o->dir);
+  free(o->vtk_name);
+  free(o->csv_name);
+  if (o->csv) fclose(o->csv);
+  if (o->pvd.path) mrn_pvd_free(&o->pvd);
+  memset(o, 0, sizeof *o);
+}
+
+int mrn_output_set_vtk(mrn_output *o, const char *name, double every_time, long every_steps) {
+  int renamed = !name || !o->vtk_name || strcmp(name, o->vtk_name) != 0;
+  if (renamed) {
+    free(o->vtk_name);
+    o->vtk_name = dup_or_null(name);
+    if (o->pvd.path) mrn_pvd_free(&o->pvd);
+    memset(&o->pvd, 0, sizeof o->pvd);
+    o->vtk_count = 0;
+    o->vtk_last_step = -1;
+  }
+  o->vtk_every_time = every_time;
+  o->vtk_every_steps = every_steps;
+  o->vtk_next_time = -HUGE_VAL; /* the first check writes the current state */
+  return MRN_OK;
+}
+
+int mrn_output_set_csv(mrn_output *o, const char *name, long every) {
+  if (o->csv && (!name || !o->csv_name || strcmp(name, o->csv_name) != 0)) {
+    fclose(o->csv);
+    o->csv = NULL;
+  }
+  free(o->csv_name);
+  o->csv_name = dup_or_null(name);
+  if (every > 0) o->csv_every = every;
+  return MRN_OK;
+}
+
+int mrn_output_write_vtk(mrn_output *o, const mrn_sim *sim) {
+  if (!o->vtk_name) return MRN_OK;
+  if (mrn_mkdir_p(o->dir) != MRN_OK) return MRN_ERR_IO;
+  char *base = mrn_path_join(o->dir, o->vtk_name);
+  /* a series name may contain directories: make them too */
+  char *slash = strrchr(base, '/');
+  if (slash) {
+    *slash = '\0';
+    int rc = mrn_mkdir_p(base);
+    *slash = '/';
+    if (rc != MRN_OK) {
+      free(base);
+      return MRN_ERR_IO;
+    }
+  }
+  if (!o->pvd.path) {
+    size_t len = strlen(base) + 8;
+    char *pvd_path = malloc(len);
+    snprintf(pvd_path, len, "%s.pvd", base);
+    mrn_pvd_init(&o->pvd, pvd_path);
+    free(pvd_path);
+  }
+  size_t len = strlen(base) + 32;
+  char *path = malloc(len);
+  snprintf(path, len, "%s_%06d.vtp", base, o->vtk_count);
+  const char *file_part = strrchr(path, '/');
+  file_part = file_part ? file_part + 1 : path;
+
+  /* gather the requested arrays */
+  const size_t n = sim->particles.n;
+  int nf = 0;
+  mrn_vtk_array arrays[MRN_OUTPUT_MAX_FIELDS];
+  void *buffers[MRN_OUTPUT_MAX_FIELDS];
+  int count = o->nfields ? o->nfields : mrn_output_field_count();
+  int rc = MRN_OK;
+  for (int i = 0; i < count && nf < MRN_OUTPUT_MAX_FIELDS; i++) {
+    const mrn_output_field *f = o->nfields ? mrn_output_field_find(o->fields[i]) : mrn_output_field_at(i);
+    if (!f) continue;
+    size_t elem = f->type == MRN_VTK_INT32 ? sizeof(int32_t) : 8;
+    buffers[nf] = malloc(elem * f->ncomp * (n ? n : 1));
+    if (!buffers[nf]) {
+      rc = mrn_error_code(MRN_ERR_IO, "out of memory preparing '%s'", path);
+      break;
+    }
+    f->compute(sim, buffers[nf]);
+    arrays[nf] = (mrn_vtk_array){f->name, f->ncomp, f->type, buffers[nf]};
+    nf++;
+  }
+  if (rc == MRN_OK) rc = mrn_vtp_write(path, n, sim->particles.x, arrays, nf, o->encoding);
+  for (int i = 0; i < nf; i++) free(buffers[i]);
+  if (rc == MRN_OK) rc = mrn_pvd_add(&o->pvd, sim->time, file_part);
+  if (rc == MRN_OK) {
+    o->vtk_count++;
+    o->vtk_last_step = sim->step;
+  }
+  free(path);
+  free(base);
+  return rc;
+}
+
+int mrn_output_maybe_vtk(mrn_output *o, const mrn_sim *sim) {
+  if (!o->vtk_name || o->vtk_last_step == sim->step) return MRN_OK;
+  int due = 0;
+  if (o->vtk_every_steps > 0 && (o->vtk_last_step < 0 || sim->step - o->vtk_last_step >= o->vtk_every_steps)) due = 1;
+  if (o->vtk_every_time > 0) {
+    /* a small tolerance so round-off in the accumulated time does not skip a frame */
+    double tol = 1e-9 * o->vtk_every_time;
+    if (sim->time >= o->vtk_next_time - tol) {
+      due = 1;
+      if (o->vtk_next_time == -HUGE_VAL) o->vtk_next_time = sim->time;
+      while (o->vtk_next_time <= sim->time + tol) o->vtk_next_time += o->vtk_every_time;
+    }
+  }
+  if (o->vtk_every_time <= 0 && o->vtk_every_steps <= 0 && o->vtk_last_step < 0) due = 1;
+  return due ? mrn_output_write_vtk(o, sim) : MRN_OK;
+}
+
+static int open_csv(mrn_output *o) {
+  if (mrn_mkdir_p(o->dir) != MRN_OK) return MRN_ERR_IO;
+  char *path = mrn_path_join(o->dir, o->csv_name);
+  o->csv = fopen(path, "w");
+  if (!o->csv) {
+    int rc = mrn_error_code(MRN_ERR_IO, "cannot write '%s': %s", path, strerror(errno));
+    free(path);
+    return rc;
+  }
+  fprintf(o->csv, "step,time,dt");
+  for (int i = 0; i < mrn_diagnostics_column_count(); i++) fprintf(o->csv, ",%s", mrn_diagnostics_column_name(i));
+  fputc('\n', o->csv);
+  free(path);
+  return MRN_OK;
+}
+
+int mrn_output_maybe_csv(mrn_output *o, const mrn_sim *sim, const mrn_diagnostics *d, int force) {
+  if (!o->csv_name) return MRN_OK;
+  if (!force && (o->csv_every <= 0 || sim->step % o->csv_every != 0)) return MRN_OK;
+  if (o->csv && sim->step == o->csv_last_step) return MRN_OK; /* a run continuing from here */
+  if (!o->csv && open_csv(o) != MRN_OK) return MRN_ERR_IO;
+  double values[64];
+  mrn_diagnostics_values(d, values);
+  fprintf(o->csv, "%ld,%.17g,%.17g", sim->step, sim->time, sim->dt);
+  for (int i = 0; i < mrn_diagnostics_column_count(); i++) fprintf(o->csv, ",%.17g", values[i]);
+  fputc('\n', o->csv);
+  o->csv_last_step = sim->step;
+  /* every row reaches the file whole, so a crash loses at most the rows not yet written */
+  if (fflush(o->csv) != 0 || ferror(o->csv)) {
+    char *path = mrn_path_join(o->dir, o->csv_name);
+    int rc = mrn_error_code(MRN_ERR_IO, "cannot write '%s': %s", path, strerror(errno));
+    free(path);
+    return rc;
+  }
+  return MRN_OK;
+}

@@ -1,0 +1,53 @@
+/* moraine: what a simulation writes while it runs.
+ *
+ *   OUTDIR/<vtk>_NNNNNN.vtp + OUTDIR/<vtk>.pvd   particle snapshots (ParaView)
+ *   OUTDIR/<diagnostics>                          CSV of the diagnostics
+ * Every path is relative to the output directory (the -o option). */
+#ifndef MRN_IO_OUTPUT_H
+#define MRN_IO_OUTPUT_H
+
+#include <stdio.h>
+
+#include "io/vtk.h"
+#include "solver/diagnostics.h"
+
+struct mrn_sim;
+
+#define MRN_OUTPUT_MAX_FIELDS 32
+
+typedef struct mrn_output {
+  char *dir;
+
+  /* VTK series; disabled when vtk_name is NULL */
+  char *vtk_name;
+  double vtk_every_time;   /* > 0: write every this much model time */
+  long vtk_every_steps;    /* > 0: write every this many steps */
+  double vtk_next_time;
+  long vtk_last_step;      /* step of the last snapshot (-1: none yet) */
+  int vtk_count;
+  mrn_vtk_encoding encoding;
+  int nfields;
+  const char *fields[MRN_OUTPUT_MAX_FIELDS];
+  mrn_pvd pvd;
+
+  /* diagnostics CSV; disabled when csv_name is NULL */
+  char *csv_name;
+  long csv_every;
+  long csv_last_step;      /* step of the last row (-1: none yet) */
+  FILE *csv;
+} mrn_output;
+
+void mrn_output_init(mrn_output *o, const char *dir);
+void mrn_output_free(mrn_output *o);
+/* (re)configure the VTK series; name NULL disables it. A new name starts a new .pvd */
+int mrn_output_set_vtk(mrn_output *o, const char *name, double every_time, long every_steps);
+int mrn_output_set_csv(mrn_output *o, const char *name, long every);
+
+/* write a snapshot now (0 or MRN_ERR_IO) */
+int mrn_output_write_vtk(mrn_output *o, const struct mrn_sim *sim);
+/* write a snapshot if one is due at the current time/step */
+int mrn_output_maybe_vtk(mrn_output *o, const struct mrn_sim *sim);
+/* append a CSV row if one is due (always when force is set) */
+int mrn_output_maybe_csv(mrn_output *o, const struct mrn_sim *sim, const mrn_diagnostics *d, int force);
+
+#endif

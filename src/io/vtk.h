@@ -1,0 +1,44 @@
+/* moraine: VTK XML writers for ParaView.
+ *
+ *  - particles as PolyData (.vtp): points plus one vertex cell per point,
+ *    point-data arrays in raw-binary appended form (header_type UInt64, so
+ *    arrays larger than 4 GiB are fine) or ASCII for debugging;
+ *  - collections (.pvd) listing each file with its model time, rewritten
+ *    atomically after every new file so ParaView can open a running series.
+ * All files are written through mrn_atomic_file (temporary name + rename). */
+#ifndef MRN_IO_VTK_H
+#define MRN_IO_VTK_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+typedef enum { MRN_VTK_FLOAT64 = 0, MRN_VTK_INT32, MRN_VTK_INT64 } mrn_vtk_type;
+
+/* one point-data array: `ncomp` values per point, interleaved */
+typedef struct mrn_vtk_array {
+  const char *name;
+  int ncomp;
+  mrn_vtk_type type;
+  const void *data;
+} mrn_vtk_array;
+
+typedef enum { MRN_VTK_BINARY = 0, MRN_VTK_ASCII } mrn_vtk_encoding;
+
+/* points: 3 doubles per point (z = 0 in 2D). Returns 0 or MRN_ERR_IO. */
+int mrn_vtp_write(const char *path, size_t npoints, const double *points, const mrn_vtk_array *arrays,
+                  int narrays, mrn_vtk_encoding encoding);
+
+/* a .pvd collection kept in memory and rewritten on each addition */
+typedef struct mrn_pvd {
+  char *path;
+  int count, cap;
+  double *times;
+  char **files; /* relative to the .pvd's directory */
+} mrn_pvd;
+
+void mrn_pvd_init(mrn_pvd *pvd, const char *path);
+void mrn_pvd_free(mrn_pvd *pvd);
+/* append (time, file) and rewrite the collection atomically; 0 or MRN_ERR_IO */
+int mrn_pvd_add(mrn_pvd *pvd, double time, const char *relative_file);
+
+#endif

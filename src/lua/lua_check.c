@@ -1,0 +1,166 @@
+#include "lua/lua_check.h"
+
+#include <lauxlib.h>
+#include <math.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <string.h>
+
+int mrn_lua_error(lua_State *L, const char *where, const char *fmt, ...) {
+  char buf[1024];
+  va_list ap;
+  va_start(ap, fmt);
+  vsnprintf(buf, sizeof buf, fmt, ap);
+  va_end(ap);
+  return luaL_error(L, "%s: %s", where, buf);
+}
+
+static void list_choices(const char *const *choices, char *buf, size_t len) {
+  buf[0] = '\0';
+  for (int i = 0; choices[i]; i++) {
+    size_t used = strlen(buf);
+    snprintf(buf + used, len - used, "%s'%s'", i ? ", " : "", choices[i]);
+  }
+}
+
+void mrn_lua_check_choice(lua_State *L, const char *where, const char *key, const char *value,
+                          const char *const *choices) {
+  for (int i = 0; choices[i]; i++)
+    if (strcmp(choices[i], value) == 0) return;
+  char valid[512];
+  list_choices(choices, valid, sizeof valid);
+  const char *hint = mrn_suggest_from(choices, value);
+  if (hint)
+    mrn_lua_error(L, where, "%s = '%s' is not valid (did you mean '%s'?); valid: %s", key, value, hint, valid);
+  mrn_lua_error(L, where, "%s = '%s' is not valid; valid: %s", key, value, valid);
+}
+
+static int type_matches(lua_State *L, int idx, mrn_spec_type t) {
+  switch (t) {
+  case MRN_SPEC_NUMBER: return lua_type(L, idx) == LUA_TNUMBER;
+  case MRN_SPEC_INTEGER: return lua_isinteger(L, idx) || (lua_type(L, idx) == LUA_TNUMBER && floor(lua_tonumber(L, idx)) == lua_tonumber(L, idx));
+  case MRN_SPEC_BOOLEAN: return lua_type(L, idx) == LUA_TBOOLEAN;
+  case MRN_SPEC_STRING: return lua_type(L, idx) == LUA_TSTRING;
+  case MRN_SPEC_VECTOR: return lua_type(L, idx) == LUA_TTABLE;
+  case MRN_SPEC_TABLE: return lua_type(L, idx) == LUA_TTABLE;
+  case MRN_SPEC_FUNCTION: return lua_type(L, idx) == LUA_TFUNCTION;
+  case MRN_SPEC_ANY: return 1;
+  }
+  return 1;
+}
+
+void mrn_lua_check_table(lua_State *L, int idx, const char *where, const mrn_spec *specs, int count) {
+  idx = lua_absindex(L, idx);
+  if (!lua_istable(L, idx))
+    mrn_lua_error(L, where, "expected a table of options, got %s", luaL_typename(L, idx));
+  lua_pushnil(L);
+  while (lua_next(L, idx)) {
+    if (lua_type(L, -2) != LUA_TSTRING) {
+      lua_pop(L, 2);
+      mrn_lua_error(L, where, "options must be named (key = value); found a positional value");
+    }
+    const char *key = lua_tostring(L, -2);
+    const mrn_spec *s = mrn_spec_find(specs, count, key);
+    if (!s) {
+      const char *hint = mrn_spec_suggest(specs, count, key);
+      if (hint) mrn_lua_error(L, where, "unknown key '%s' (did you mean '%s'?)", key, hint);
+      char valid[1024] = "";
+      for (int i = 0; i < count; i++) {
+        size_t used = strlen(valid);
+        snprintf(valid + used, sizeof valid - used, "%s%s", i ? ", " : "", specs[i].key);
+      }
+      mrn_lua_error(L, where, "unknown key '%s' (valid keys: %s)", key, valid);
+    }
+    if (!type_matches(L, -1, s->type))
+      mrn_lua_error(L, where, "%s must be %s %s, got %s", key,
+                    s->type == MRN_SPEC_INTEGER ? "an" : "a", mrn_spec_type_name(s->type), luaL_typename(L, -1));
+    lua_pop(L, 1);
+  }
+  for (int i = 0; i < count; i++) {
+    if (!specs[i].required) continue;
+    lua_getfield(L, idx, specs[i].key);
+    int missing = lua_isnil(L, -1);
+    lua_pop(L, 1);
+    if (missing) mrn_lua_error(L, where, "missing required key '%s' (%s)", specs[i].key, specs[i].doc);
+  }
+}
+
+int mrn_lua_has(lua_State *L, int idx, const char *key) {
+  lua_getfield(L, idx, key);
+  int present = !lua_isnil(L, -1);
+  lua_pop(L, 1);
+  return present;
+}
+
+static const mrn_spec *spec_or_die(lua_State *L, const char *where, const mrn_spec *specs, int count, const char *key) {
+  const mrn_spec *s = mrn_spec_find(specs, count, key);
+  if (!s) luaL_error(L, "internal error: %s has no spec for '%s'", where, key);
+  return s;
+}
+
+static void check_range(lua_State *L, const char *where, const mrn_spec *s, double v) {
+  char expected[160];
+  if (mrn_spec_check_range(s, v, expected, sizeof expected))
+    mrn_lua_error(L, where, "%s = %g is out of range (expected %s%s%s)", s->key, v, expected,
+                  s->unit && s->unit[0] ? ", in " : "", s->unit && s->unit[0] ? s->unit : "");
+}
+
+double mrn_lua_get_number(lua_State *L, int idx, const char *where, const mrn_spec *specs, int count, const char *key) {
+  const mrn_spec *s = spec_or_die(L, where, specs, count, key);
+  lua_getfield(L, idx, key);
+  double v = lua_isnil(L, -1) ? s->def : lua_tonumber(L, -1);
+  lua_pop(L, 1);
+  check_range(L, where, s, v);
+  return v;
+}
+
+long mrn_lua_get_integer(lua_State *L, int idx, const char *where, const mrn_spec *specs, int count, const char *key) {
+  const mrn_spec *s = spec_or_die(L, where, specs, count, key);
+  lua_getfield(L, idx, key);
+  double v = lua_isnil(L, -1) ? s->def : lua_tonumber(L, -1);
+  lua_pop(L, 1);
+  check_range(L, where, s, v);
+  return (long)v;
+}
+
+int mrn_lua_get_boolean(lua_State *L, int idx, const char *where, const mrn_spec *specs, int count, const char *key,
+                        int def) {
+  (void)spec_or_die(L, where, specs, count, key);
+  lua_getfield(L, idx, key);
+  int v = lua_isnil(L, -1) ? def : lua_toboolean(L, -1);
+  lua_pop(L, 1);
+  return v;
+}
+
+const char *mrn_lua_get_string(lua_State *L, int idx, const char *where, const mrn_spec *specs, int count,
+                               const char *key) {
+  const mrn_spec *s = spec_or_die(L, where, specs, count, key);
+  lua_getfield(L, idx, key);
+  /* the string stays alive: it is referenced by the argument table */
+  const char *v = lua_isnil(L, -1) ? NULL : lua_tostring(L, -1);
+  lua_pop(L, 1);
+  if (v && s->choices) mrn_lua_check_choice(L, where, key, v, s->choices);
+  return v;
+}
+
+int mrn_lua_get_vector(lua_State *L, int idx, const char *where, const char *key, int dim, double *out, int required) {
+  lua_getfield(L, idx, key);
+  if (lua_isnil(L, -1)) {
+    lua_pop(L, 1);
+    if (required) mrn_lua_error(L, where, "missing required key '%s' (a table of %d numbers)", key, dim);
+    return 0;
+  }
+  if (!lua_istable(L, -1)) mrn_lua_error(L, where, "%s must be a table of %d numbers, got %s", key, dim, luaL_typename(L, -1));
+  lua_Integer len = luaL_len(L, -1);
+  if (len != dim) mrn_lua_error(L, where, "%s must have %d components (the simulation is %dD), got %lld", key, dim, dim, (long long)len);
+  for (int d = 0; d < dim; d++) {
+    lua_geti(L, -1, d + 1);
+    if (lua_type(L, -1) != LUA_TNUMBER)
+      mrn_lua_error(L, where, "%s[%d] must be a number, got %s", key, d + 1, luaL_typename(L, -1));
+    out[d] = lua_tonumber(L, -1);
+    if (!isfinite(out[d])) mrn_lua_error(L, where, "%s[%d] must be finite, got %g", key, d + 1, out[d]);
+    lua_pop(L, 1);
+  }
+  lua_pop(L, 1);
+  return 1;
+}

@@ -1,0 +1,42 @@
+/* moraine: checking the argument tables a deck passes to the Lua API.
+ *
+ * Every table argument is described by an array of mrn_spec. Before a
+ * function reads a table it calls mrn_lua_check_table(), which rejects
+ * unknown keys (suggesting the closest valid one) and values of the wrong
+ * type. The getters then read each key with its default and range check.
+ * Every error is raised with luaL_error at level 1, so the message starts
+ * with the deck file and line of the call: "deck.lua:12: simulation{}: ...". */
+#ifndef MRN_LUA_CHECK_H
+#define MRN_LUA_CHECK_H
+
+#include <lua.h>
+
+#include "core/spec.h"
+
+#define MRN_COUNT(a) ((int)(sizeof(a) / sizeof((a)[0])))
+
+/* raise "where: message" with the caller's file and line */
+int mrn_lua_error(lua_State *L, const char *where, const char *fmt, ...) __attribute__((format(printf, 3, 4)));
+
+/* check that idx is a table whose keys are all in specs and whose values have
+ * the declared types; `where` names the function for messages ("simulation{}") */
+void mrn_lua_check_table(lua_State *L, int idx, const char *where, const mrn_spec *specs, int count);
+
+/* getters: each looks the key up in specs for its default and range */
+double mrn_lua_get_number(lua_State *L, int idx, const char *where, const mrn_spec *specs, int count, const char *key);
+long mrn_lua_get_integer(lua_State *L, int idx, const char *where, const mrn_spec *specs, int count, const char *key);
+int mrn_lua_get_boolean(lua_State *L, int idx, const char *where, const mrn_spec *specs, int count, const char *key,
+                        int def);
+/* string value or NULL when absent and not required; checks `choices` with did-you-mean */
+const char *mrn_lua_get_string(lua_State *L, int idx, const char *where, const mrn_spec *specs, int count,
+                               const char *key);
+/* reads a vector of exactly `dim` numbers into out (untouched when absent); returns 1 if present */
+int mrn_lua_get_vector(lua_State *L, int idx, const char *where, const char *key, int dim, double *out, int required);
+/* 1 when the key is present (not nil) */
+int mrn_lua_has(lua_State *L, int idx, const char *key);
+
+/* check a string against a NULL-terminated list, raising with did-you-mean and the valid names */
+void mrn_lua_check_choice(lua_State *L, const char *where, const char *key, const char *value,
+                          const char *const *choices);
+
+#endif

@@ -1,0 +1,45 @@
+/* moraine: shared pieces of the Lua binding. */
+#ifndef MRN_LUA_INTERNAL_H
+#define MRN_LUA_INTERNAL_H
+
+#include <lauxlib.h>
+#include <lua.h>
+
+#include "material/material.h"
+#include "particles/region.h"
+
+#define MRN_LUA_SIM "moraine.simulation"
+#define MRN_LUA_MATERIAL "moraine.material"
+#define MRN_LUA_REGION "moraine.region"
+
+/* Engine callbacks into Lua (region predicates, hooks, dt functions) run on
+ * the Lua thread that called into the engine; the binding records it here
+ * before every such call. */
+extern lua_State *mrn_lua_active;
+
+/* A Lua function kept alive in the registry, called from the engine */
+typedef struct mrn_lua_callback {
+  int ref;
+  char where[64]; /* what the function is for, for messages */
+} mrn_lua_callback;
+
+/* reference the function at idx; returns a malloc'd callback (free with mrn_lua_callback_release) */
+mrn_lua_callback *mrn_lua_callback_new(lua_State *L, int idx, const char *where);
+void mrn_lua_callback_release(void *cb);
+/* push the function onto the active thread's stack */
+void mrn_lua_callback_push(lua_State *L, const mrn_lua_callback *cb);
+/* protected call with nargs arguments already pushed after the function;
+ * on error the engine error message is set to the Lua message and MRN_ERR_HOOK returned */
+int mrn_lua_callback_pcall(lua_State *L, int nargs, int nresults);
+
+void mrn_lua_open_regions(lua_State *L, int module);
+void mrn_lua_open_materials(lua_State *L, int module);
+void mrn_lua_open_simulation(lua_State *L, int module);
+
+mrn_region *mrn_lua_check_region(lua_State *L, int idx, const char *where);
+mrn_material *mrn_lua_check_material(lua_State *L, int idx, const char *where);
+
+/* read a vector of the simulation's dimension from a function's results or a table at idx */
+int mrn_lua_read_numbers(lua_State *L, int idx, int count, double *out);
+
+#endif

@@ -1,0 +1,169 @@
+/* moraine: the `moraine` Lua module and the deck runner. */
+#include <lauxlib.h>
+#include <lualib.h>
+#include <limits.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include "core/error.h"
+#include "core/spec.h"
+#include "lua/lua_internal.h"
+#include "lua/moraine_lua.h"
+
+static char library_dir[PATH_MAX];
+
+static int is_dir(const char *path) {
+  struct stat st;
+  return stat(path, &st) == 0 && S_ISDIR(st.st_mode);
+}
+
+/* The pure-Lua library is looked for next to the executable first
+ * (<prefix>/bin/moraine -> <prefix>/share/moraine/lua), then in the source
+ * tree the binary was built from; no environment variable is needed. */
+const char *mrn_lua_library_dir(void) {
+  if (library_dir[0]) return library_dir;
+  char exe[PATH_MAX];
+  ssize_t len = readlink("/proc/self/exe", exe, sizeof exe - 1);
+  if (len > 0) {
+    exe[len] = '\0';
+    char *slash = strrchr(exe, '/');
+    if (slash) {
+      *slash = '\0';
+      char candidate[PATH_MAX + 64];
+      snprintf(candidate, sizeof candidate, "%s/../%s/moraine", exe, MORAINE_LUA_INSTALL_REL);
+      if (is_dir(candidate)) {
+        snprintf(library_dir, sizeof library_dir, "%s/../%s", exe, MORAINE_LUA_INSTALL_REL);
+        return library_dir;
+      }
+    }
+  }
+  snprintf(library_dir, sizeof library_dir, "%s", MORAINE_LUA_SOURCE_DIR);
+  return library_dir;
+}
+
+static int l_param(lua_State *L) {
+  const char *name = luaL_checkstring(L, 1);
+  lua_getfield(L, LUA_REGISTRYINDEX, "moraine.args");
+  lua_getfield(L, -1, name);
+  if (lua_isnil(L, -1)) {
+    lua_settop(L, 2);
+    if (lua_isnone(L, 2)) return luaL_error(L, "param('%s'): not given with --set and no default", name);
+    return 1;
+  }
+  /* convert to the default's type when it is a number or boolean */
+  if (lua_type(L, 2) == LUA_TNUMBER) {
+    if (!lua_isnumber(L, -1))
+      return luaL_error(L, "param('%s'): --set %s=%s is not a number", name, name, lua_tostring(L, -1));
+    lua_pushnumber(L, lua_tonumber(L, -1));
+  } else if (lua_type(L, 2) == LUA_TBOOLEAN) {
+    const char *s = lua_tostring(L, -1);
+    lua_pushboolean(L, strcmp(s, "true") == 0 || strcmp(s, "1") == 0 || strcmp(s, "yes") == 0);
+  }
+  return 1;
+}
+
+int luaopen_moraine(lua_State *L) {
+  lua_getfield(L, LUA_REGISTRYINDEX, "moraine.module");
+  if (!lua_isnil(L, -1)) return 1;
+  lua_pop(L, 1);
+  lua_newtable(L);
+  int module = lua_gettop(L);
+  mrn_lua_open_regions(L, module);
+  mrn_lua_open_materials(L, module);
+  mrn_lua_open_simulation(L, module);
+  lua_pushstring(L, MORAINE_VERSION);
+  lua_setfield(L, module, "version");
+  lua_pushcfunction(L, l_param);
+  lua_setfield(L, module, "param");
+  lua_getfield(L, LUA_REGISTRYINDEX, "moraine.args");
+  lua_setfield(L, module, "args");
+  lua_getfield(L, LUA_REGISTRYINDEX, "moraine.outdir");
+  lua_setfield(L, module, "outdir");
+  lua_pushvalue(L, module);
+  lua_setfield(L, LUA_REGISTRYINDEX, "moraine.module");
+
+  /* the pure-Lua part: lua/moraine/init.lua extends the module table */
+  lua_getglobal(L, "require");
+  lua_pushstring(L, "moraine.init");
+  if (lua_pcall(L, 1, 1, 0) != LUA_OK) return lua_error(L);
+  if (lua_isfunction(L, -1)) {
+    lua_pushvalue(L, module);
+    lua_call(L, 1, 0);
+  } else {
+    lua_pop(L, 1);
+  }
+  return 1;
+}
+
+void mrn_lua_open(lua_State *L, const mrn_deck_options *opt) {
+  mrn_lua_active = L;
+  lua_pushstring(L, opt && opt->outdir ? opt->outdir : "out");
+  lua_setfield(L, LUA_REGISTRYINDEX, "moraine.outdir");
+  lua_newtable(L);
+  for (int i = 0; opt && i < opt->nsets; i++) {
+    const char *eq = strchr(opt->sets[i], '=');
+    if (!eq) continue;
+    lua_pushlstring(L, opt->sets[i], (size_t)(eq - opt->sets[i]));
+    lua_pushstring(L, eq + 1);
+    lua_settable(L, -3);
+  }
+  lua_setfield(L, LUA_REGISTRYINDEX, "moraine.args");
+
+  /* package.path: the library directory first */
+  lua_getglobal(L, "package");
+  lua_getfield(L, -1, "path");
+  const char *old = lua_tostring(L, -1);
+  const char *dir = mrn_lua_library_dir();
+  lua_pushfstring(L, "%s/?.lua;%s/?/init.lua;%s", dir, dir, old ? old : "");
+  lua_setfield(L, -3, "path");
+  lua_pop(L, 1);
+  lua_getfield(L, -1, "preload");
+  lua_pushcfunction(L, luaopen_moraine);
+  lua_setfield(L, -2, "moraine");
+  lua_pop(L, 2);
+
+  luaL_requiref(L, "moraine", luaopen_moraine, 0);
+  lua_setglobal(L, "mpm");
+}
+
+static int traceback_handler(lua_State *L) {
+  const char *msg = lua_tostring(L, 1);
+  if (!msg) msg = luaL_tolstring(L, 1, NULL);
+  lua_pushstring(L, msg);
+  return 1;
+}
+
+static int open_protected(lua_State *L) {
+  mrn_lua_open(L, lua_touserdata(L, 1));
+  return 0;
+}
+
+int mrn_lua_run_deck(const char *path, const mrn_deck_options *opt) {
+  lua_State *L = luaL_newstate();
+  if (!L) {
+    fprintf(stderr, "moraine: cannot create a Lua state (out of memory)\n");
+    return 1;
+  }
+  luaL_openlibs(L);
+  lua_pushcfunction(L, traceback_handler);
+  int handler = lua_gettop(L);
+  lua_pushcfunction(L, open_protected);
+  lua_pushlightuserdata(L, (void *)opt);
+  int status = lua_pcall(L, 1, 0, handler);
+  if (status == LUA_OK) status = luaL_loadfile(L, path);
+  if (status == LUA_OK) {
+    lua_pushstring(L, path);
+    lua_setglobal(L, "DECK");
+    status = lua_pcall(L, 0, 0, handler);
+  }
+  int rc = 0;
+  if (status != LUA_OK) {
+    fprintf(stderr, "moraine: %s\n", lua_tostring(L, -1));
+    rc = 1;
+  }
+  lua_close(L);
+  return rc;
+}

@@ -1,0 +1,792 @@
+/* moraine: the simulation object of a deck — mpm.simulation{...} and its
+ * methods. A thin, checked skin over solver/simulation.h and solver/run.h. */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#include "core/error.h"
+#include "core/log.h"
+#include "core/tensor.h"
+#include "io/particle_fields.h"
+#include "lua/lua_check.h"
+#include "lua/lua_internal.h"
+#include "solver/run.h"
+#include "solver/simulation.h"
+
+#define MAX_HOOKS 32
+
+typedef struct sim_box {
+  mrn_sim *sim;
+  mrn_output out;
+  int out_ready;
+  mrn_hook hooks[MAX_HOOKS];
+  mrn_lua_callback *hook_cb[MAX_HOOKS];
+  int nhooks;
+  long thermo_every;
+  int progress;
+  char name[64];
+} sim_box;
+
+static sim_box *check_sim(lua_State *L, int idx) {
+  sim_box *b = luaL_checkudata(L, idx, MRN_LUA_SIM);
+  if (!b->sim) luaL_error(L, "simulation has been freed");
+  return b;
+}
+
+/* ---------------------------------------------------------------- specs */
+
+static const char *const dim_doc = "2 (plane strain) or 3";
+
+static const mrn_spec sim_specs[] = {
+    {"dim", MRN_SPEC_INTEGER, 1, 2, 2, 3, 0, 0, "", "dimension: 2 (plane strain) or 3", NULL},
+    {"grid", MRN_SPEC_TABLE, 1, 0, 0, 0, 0, 0, NULL, "background grid {origin, size, cell}", NULL},
+    {"shape", MRN_SPEC_STRING, 0, 0, 0, 0, 0, 0, NULL, "shape function (default quadratic_bspline)", NULL},
+    {"scheme", MRN_SPEC_ANY, 0, 0, 0, 0, 0, 0, NULL, "strategy preset string or {transfer, stress_update}", NULL},
+    {"gravity", MRN_SPEC_VECTOR, 0, 0, -HUGE_VAL, HUGE_VAL, 0, 0, "m/s^2", "body acceleration (default 0)", NULL},
+    {"boundary", MRN_SPEC_TABLE, 0, 0, 0, 0, 0, 0, NULL, "face conditions (default slip on every face)", NULL},
+    {"dt", MRN_SPEC_ANY, 0, 0, 0, 0, 0, 0, "s", "time-step policy (default {a_tau = 0.05})", NULL},
+    {"thermo", MRN_SPEC_INTEGER, 0, 100, 0, 1e12, 0, 0, "steps", "thermo line every N steps (0: none)", NULL},
+    {"diagnostics", MRN_SPEC_ANY, 0, 0, 0, 0, 0, 0, NULL, "CSV file name in the output directory, or false", NULL},
+    {"diagnostics_every", MRN_SPEC_INTEGER, 0, 10, 1, 1e12, 0, 0, "steps", "CSV row every N steps", NULL},
+    {"output", MRN_SPEC_TABLE, 0, 0, 0, 0, 0, 0, NULL, "VTK output {vtk, every, every_steps, fields, format}", NULL},
+    {"name", MRN_SPEC_STRING, 0, 0, 0, 0, 0, 0, NULL, "label shown in messages", NULL},
+    {"progress", MRN_SPEC_BOOLEAN, 0, 0, 0, 0, 0, 0, NULL, "progress bar on a terminal (default true)", NULL},
+};
+
+static const mrn_spec grid_specs[] = {
+    {"origin", MRN_SPEC_VECTOR, 0, 0, -HUGE_VAL, HUGE_VAL, 0, 0, "m", "lower corner (default 0)", NULL},
+    {"size", MRN_SPEC_VECTOR, 1, 0, 0, HUGE_VAL, 1, 0, "m", "extent along each axis (whole cells)", NULL},
+    {"cell", MRN_SPEC_NUMBER, 1, 0, 0, HUGE_VAL, 1, 0, "m", "cell size (square/cubic cells)", NULL},
+};
+
+static const mrn_spec scheme_specs[] = {
+    {"transfer", MRN_SPEC_STRING, 0, 0, 0, 0, 0, 0, NULL, "strategy preset (default FLIP)", NULL},
+    {"stress_update", MRN_SPEC_STRING, 0, 0, 0, 0, 0, 0, NULL, "USF, USL or MUSL (default USF)", NULL},
+};
+
+static const char *const format_choices[] = {"binary", "ascii", NULL};
+static const mrn_spec output_specs[] = {
+    {"vtk", MRN_SPEC_ANY, 0, 0, 0, 0, 0, 0, NULL, "series name (files <vtk>_NNNNNN.vtp and <vtk>.pvd), or false", NULL},
+    {"every", MRN_SPEC_NUMBER, 0, 0, 0, HUGE_VAL, 1, 0, "s", "write every this much model time", NULL},
+    {"every_steps", MRN_SPEC_INTEGER, 0, 0, 1, 1e12, 0, 0, "steps", "write every N steps", NULL},
+    {"fields", MRN_SPEC_TABLE, 0, 0, 0, 0, 0, 0, NULL, "list of particle fields (default all)", NULL},
+    {"format", MRN_SPEC_STRING, 0, 0, 0, 0, 0, 0, NULL, "binary (default) or ascii", format_choices},
+};
+
+static const mrn_spec boundary_specs[] = {
+    {"xmin", MRN_SPEC_ANY, 0, 0, 0, 0, 0, 0, NULL, "face x = origin", NULL},
+    {"xmax", MRN_SPEC_ANY, 0, 0, 0, 0, 0, 0, NULL, "face x = origin + size", NULL},
+    {"ymin", MRN_SPEC_ANY, 0, 0, 0, 0, 0, 0, NULL, "face y = origin", NULL},
+    {"ymax", MRN_SPEC_ANY, 0, 0, 0, 0, 0, 0, NULL, "face y = origin + size", NULL},
+    {"zmin", MRN_SPEC_ANY, 0, 0, 0, 0, 0, 0, NULL, "face z = origin (3D)", NULL},
+    {"zmax", MRN_SPEC_ANY, 0, 0, 0, 0, 0, 0, NULL, "face z = origin + size (3D)", NULL},
+    {"left", MRN_SPEC_ANY, 0, 0, 0, 0, 0, 0, NULL, "alias of xmin", NULL},
+    {"right", MRN_SPEC_ANY, 0, 0, 0, 0, 0, 0, NULL, "alias of xmax", NULL},
+    {"bottom", MRN_SPEC_ANY, 0, 0, 0, 0, 0, 0, NULL, "alias of ymin in 2D, zmin in 3D", NULL},
+    {"top", MRN_SPEC_ANY, 0, 0, 0, 0, 0, 0, NULL, "alias of ymax in 2D, zmax in 3D", NULL},
+    {"front", MRN_SPEC_ANY, 0, 0, 0, 0, 0, 0, NULL, "alias of ymin in 3D", NULL},
+    {"back", MRN_SPEC_ANY, 0, 0, 0, 0, 0, 0, NULL, "alias of ymax in 3D", NULL},
+    {"all", MRN_SPEC_ANY, 0, 0, 0, 0, 0, 0, NULL, "every face not named otherwise", NULL},
+};
+
+static const mrn_spec face_specs[] = {
+    {"kind", MRN_SPEC_STRING, 0, 0, 0, 0, 0, 0, NULL, "free, fixed, slip or friction", NULL},
+    {"mu", MRN_SPEC_NUMBER, 0, 0, 0, HUGE_VAL, 0, 0, "", "Coulomb friction coefficient (friction faces)", NULL},
+};
+
+static const mrn_spec dt_specs[] = {
+    {"fixed", MRN_SPEC_NUMBER, 0, 0, 0, HUGE_VAL, 1, 0, "s", "constant time step", NULL},
+    {"a_tau", MRN_SPEC_NUMBER, 0, 0.05, 0, HUGE_VAL, 1, 0, "", "dt = a_tau l_cell sqrt(rho/E) (000, Eq. 29)", NULL},
+    {"fn", MRN_SPEC_FUNCTION, 0, 0, 0, 0, 0, 0, NULL, "function(sim) returning dt", NULL},
+    {"min", MRN_SPEC_NUMBER, 0, 0, 0, HUGE_VAL, 0, 0, "s", "stop the run if dt falls below this", NULL},
+    {"max", MRN_SPEC_NUMBER, 0, 0, 0, HUGE_VAL, 0, 0, "s", "upper bound on dt", NULL},
+};
+
+static const mrn_spec run_specs[] = {
+    {"time", MRN_SPEC_NUMBER, 0, 0, 0, HUGE_VAL, 1, 0, "s", "model time to advance", NULL},
+    {"steps", MRN_SPEC_INTEGER, 0, 0, 1, 1e15, 0, 0, "steps", "number of steps", NULL},
+    {"thermo", MRN_SPEC_INTEGER, 0, 0, 0, 1e12, 0, 0, "steps", "thermo interval for this run", NULL},
+    {"stop_when", MRN_SPEC_FUNCTION, 0, 0, 0, 0, 0, 0, NULL, "function(sim) -> true to stop", NULL},
+    {"progress", MRN_SPEC_BOOLEAN, 0, 0, 0, 0, 0, 0, NULL, "progress bar for this run", NULL},
+    {"output", MRN_SPEC_TABLE, 0, 0, 0, 0, 0, 0, NULL, "VTK output settings from now on (as in simulation{})", NULL},
+};
+
+static const mrn_spec hook_specs[] = {
+    {"every_steps", MRN_SPEC_INTEGER, 0, 0, 1, 1e15, 0, 0, "steps", "call every N steps", NULL},
+    {"every_time", MRN_SPEC_NUMBER, 0, 0, 0, HUGE_VAL, 1, 0, "s", "call every T of model time", NULL},
+    {"fn", MRN_SPEC_FUNCTION, 1, 0, 0, 0, 0, 0, NULL, "function(sim)", NULL},
+};
+
+static const char *const placement_choices[] = {"gauss", "regular", NULL};
+static const mrn_spec particle_specs[] = {
+    {"material", MRN_SPEC_ANY, 1, 0, 0, 0, 0, 0, NULL, "a material from mpm.material.<model>{...}", NULL},
+    {"per_axis", MRN_SPEC_INTEGER, 0, 2, 1, 8, 0, 0, "", "particles per cell along each axis (default 2)", NULL},
+    {"per_cell", MRN_SPEC_INTEGER, 0, 4, 1, 512, 0, 0, "", "particles per cell, a square (2D) or cube (3D) number", NULL},
+    {"placement", MRN_SPEC_STRING, 0, 0, 0, 0, 0, 0, NULL, "gauss (default) or regular", placement_choices},
+    {"velocity", MRN_SPEC_ANY, 0, 0, 0, 0, 0, 0, "m/s", "initial velocity: vector or function(x, y, z)", NULL},
+    {"stress", MRN_SPEC_ANY, 0, 0, 0, 0, 0, 0, "Pa", "initial stress: 6 values (xx,yy,zz,xy,yz,xz) or function(x, y, z)", NULL},
+};
+
+/* ------------------------------------------------------- configuration */
+
+static void read_face(lua_State *L, int value_idx, const char *where, const char *key, mrn_face_bc *f) {
+  value_idx = lua_absindex(L, value_idx);
+  const char *kind = NULL;
+  f->mu = 0.0;
+  if (lua_type(L, value_idx) == LUA_TSTRING) {
+    kind = lua_tostring(L, value_idx);
+  } else if (lua_istable(L, value_idx)) {
+    lua_geti(L, value_idx, 1);
+    const char *positional = lua_type(L, -1) == LUA_TSTRING ? lua_tostring(L, -1) : NULL;
+    lua_pop(L, 1);
+    /* { "friction", mu = 0.3 } or { kind = "friction", mu = 0.3 } */
+    lua_pushnil(L);
+    while (lua_next(L, value_idx)) {
+      lua_pop(L, 1);
+      if (lua_type(L, -1) == LUA_TSTRING) {
+        const char *k = lua_tostring(L, -1);
+        if (!mrn_spec_find(face_specs, MRN_COUNT(face_specs), k)) {
+          const char *hint = mrn_spec_suggest(face_specs, MRN_COUNT(face_specs), k);
+          lua_pop(L, 1);
+          mrn_lua_error(L, where, "%s: unknown key '%s'%s%s%s", key, k, hint ? " (did you mean '" : "",
+                        hint ? hint : "", hint ? "'?)" : "");
+        }
+      }
+    }
+    kind = mrn_lua_get_string(L, value_idx, where, face_specs, MRN_COUNT(face_specs), "kind");
+    if (!kind) kind = positional;
+    if (mrn_lua_has(L, value_idx, "mu")) {
+      lua_getfield(L, value_idx, "mu");
+      if (lua_type(L, -1) != LUA_TNUMBER) mrn_lua_error(L, where, "%s.mu must be a number", key);
+      lua_pop(L, 1);
+      f->mu = mrn_lua_get_number(L, value_idx, where, face_specs, MRN_COUNT(face_specs), "mu");
+    }
+  } else {
+    mrn_lua_error(L, where, "%s must be a condition name or a table like {\"friction\", mu = 0.3}, got %s", key,
+                  luaL_typename(L, value_idx));
+  }
+  if (!kind) mrn_lua_error(L, where, "%s: no condition kind given (free, fixed, slip or friction)", key);
+  mrn_lua_check_choice(L, where, key, kind, mrn_bc_kind_names());
+  mrn_bc_kind_from_name(kind, &f->kind);
+  if (f->kind == MRN_BC_FRICTION && !mrn_lua_has(L, value_idx, "mu") && lua_istable(L, value_idx) == 0)
+    mrn_lua_error(L, where, "%s: a friction face needs a coefficient, e.g. {\"friction\", mu = 0.3}", key);
+}
+
+static int face_of_key(const char *key, int dim) {
+  static const char *direct[] = {"xmin", "xmax", "ymin", "ymax", "zmin", "zmax"};
+  for (int i = 0; i < 6; i++)
+    if (strcmp(key, direct[i]) == 0) return i;
+  if (strcmp(key, "left") == 0) return MRN_FACE_XMIN;
+  if (strcmp(key, "right") == 0) return MRN_FACE_XMAX;
+  if (strcmp(key, "bottom") == 0) return dim == 2 ? MRN_FACE_YMIN : MRN_FACE_ZMIN;
+  if (strcmp(key, "top") == 0) return dim == 2 ? MRN_FACE_YMAX : MRN_FACE_ZMAX;
+  if (strcmp(key, "front") == 0) return dim == 3 ? MRN_FACE_YMIN : -2;
+  if (strcmp(key, "back") == 0) return dim == 3 ? MRN_FACE_YMAX : -2;
+  return -1; /* "all" */
+}
+
+/* apply a boundary table on top of the current conditions */
+static void read_boundary(lua_State *L, int idx, const char *where, mrn_sim *sim) {
+  idx = lua_absindex(L, idx);
+  mrn_lua_check_table(L, idx, where, boundary_specs, MRN_COUNT(boundary_specs));
+  char sub[96];
+  snprintf(sub, sizeof sub, "%s boundary", where);
+  if (mrn_lua_has(L, idx, "all")) {
+    mrn_face_bc f;
+    lua_getfield(L, idx, "all");
+    read_face(L, -1, sub, "all", &f);
+    lua_pop(L, 1);
+    for (int i = 0; i < 2 * sim->dim; i++) sim->boundary.face[i] = f;
+  }
+  for (int i = 0; i < MRN_COUNT(boundary_specs); i++) {
+    const char *key = boundary_specs[i].key;
+    if (strcmp(key, "all") == 0 || !mrn_lua_has(L, idx, key)) continue;
+    int face = face_of_key(key, sim->dim);
+    if (face == -2 || face >= 2 * sim->dim)
+      mrn_lua_error(L, sub, "face '%s' does not exist in %dD", key, sim->dim);
+    lua_getfield(L, idx, key);
+    read_face(L, -1, sub, key, &sim->boundary.face[face]);
+    lua_pop(L, 1);
+  }
+}
+
+static void read_scheme(lua_State *L, int idx, const char *where, mrn_sim *sim) {
+  idx = lua_absindex(L, idx);
+  mrn_scheme s = sim->scheme;
+  if (lua_type(L, idx) == LUA_TSTRING) {
+    if (mrn_scheme_from_preset(lua_tostring(L, idx), &s) != MRN_OK) mrn_lua_error(L, where, "%s", mrn_error_message());
+  } else if (lua_istable(L, idx)) {
+    mrn_lua_check_table(L, idx, where, scheme_specs, MRN_COUNT(scheme_specs));
+    const char *su = mrn_lua_get_string(L, idx, where, scheme_specs, MRN_COUNT(scheme_specs), "stress_update");
+    if (su) {
+      mrn_lua_check_choice(L, where, "stress_update", su, mrn_stress_update_names());
+      mrn_stress_update_from_name(su, &s.stress_update);
+    }
+    const char *tr = mrn_lua_get_string(L, idx, where, scheme_specs, MRN_COUNT(scheme_specs), "transfer");
+    if (tr && mrn_scheme_from_preset(tr, &s) != MRN_OK) mrn_lua_error(L, where, "transfer: %s", mrn_error_message());
+  } else {
+    mrn_lua_error(L, where, "scheme must be a preset name or a table {transfer = ..., stress_update = ...}, got %s",
+                  luaL_typename(L, idx));
+  }
+  sim->scheme = s;
+}
+
+static int call_dt_function(void *ctx, mrn_sim *sim, double *dt) {
+  lua_State *L = mrn_lua_active;
+  (void)sim;
+  mrn_lua_callback_push(L, ctx);
+  lua_pushvalue(L, 1); /* the simulation userdata is argument 1 of sim:run */
+  if (mrn_lua_callback_pcall(L, 1, 1) != MRN_OK) return MRN_ERR_HOOK;
+  int isnum = 0;
+  *dt = lua_tonumberx(L, -1, &isnum);
+  lua_pop(L, 1);
+  if (!isnum) return mrn_error_code(MRN_ERR_HOOK, "dt function: expected a number, got a non-number");
+  return MRN_OK;
+}
+
+static void read_dt(lua_State *L, int idx, const char *where, mrn_sim *sim) {
+  idx = lua_absindex(L, idx);
+  mrn_dt_policy *p = &sim->dt_policy;
+  double min = p->min, max = p->max;
+  if (lua_type(L, idx) == LUA_TNUMBER) {
+    double dt = lua_tonumber(L, idx);
+    if (!(dt > 0) || !isfinite(dt)) mrn_lua_error(L, where, "dt = %g is out of range (expected a value > 0, in s)", dt);
+    mrn_dt_policy_fixed(p, dt);
+  } else if (lua_type(L, idx) == LUA_TFUNCTION) {
+    mrn_dt_policy_release(p);
+    p->kind = MRN_DT_CALLBACK;
+    p->callback = call_dt_function;
+    p->ctx = mrn_lua_callback_new(L, idx, "dt function");
+    p->release = mrn_lua_callback_release;
+  } else if (lua_istable(L, idx)) {
+    char sub[96];
+    snprintf(sub, sizeof sub, "%s dt", where);
+    mrn_lua_check_table(L, idx, sub, dt_specs, MRN_COUNT(dt_specs));
+    int kinds = mrn_lua_has(L, idx, "fixed") + mrn_lua_has(L, idx, "a_tau") + mrn_lua_has(L, idx, "fn");
+    if (kinds != 1) mrn_lua_error(L, sub, "give exactly one of fixed, a_tau or fn (got %d)", kinds);
+    min = mrn_lua_get_number(L, idx, sub, dt_specs, MRN_COUNT(dt_specs), "min");
+    max = mrn_lua_get_number(L, idx, sub, dt_specs, MRN_COUNT(dt_specs), "max");
+    if (mrn_lua_has(L, idx, "fixed")) {
+      mrn_dt_policy_fixed(p, mrn_lua_get_number(L, idx, sub, dt_specs, MRN_COUNT(dt_specs), "fixed"));
+    } else if (mrn_lua_has(L, idx, "a_tau")) {
+      mrn_dt_policy_a_tau(p, mrn_lua_get_number(L, idx, sub, dt_specs, MRN_COUNT(dt_specs), "a_tau"));
+    } else {
+      lua_getfield(L, idx, "fn");
+      read_dt(L, -1, where, sim);
+      lua_pop(L, 1);
+    }
+    if (max > 0 && min > max) mrn_lua_error(L, sub, "min = %g is above max = %g", min, max);
+  } else {
+    mrn_lua_error(L, where, "dt must be a number, a table {fixed|a_tau|fn, min, max} or a function, got %s",
+                  luaL_typename(L, idx));
+  }
+  p->min = min;
+  p->max = max;
+}
+
+static void read_output(lua_State *L, int idx, const char *where, sim_box *b) {
+  idx = lua_absindex(L, idx);
+  char sub[96];
+  snprintf(sub, sizeof sub, "%s output", where);
+  mrn_lua_check_table(L, idx, sub, output_specs, MRN_COUNT(output_specs));
+  mrn_output *o = &b->out;
+  lua_getfield(L, idx, "vtk");
+  int vtk_type = lua_type(L, -1);
+  const char *name = vtk_type == LUA_TSTRING ? lua_tostring(L, -1) : NULL;
+  if (vtk_type != LUA_TNIL && vtk_type != LUA_TSTRING && !(vtk_type == LUA_TBOOLEAN && !lua_toboolean(L, -1)))
+    mrn_lua_error(L, sub, "vtk must be a series name or false, got %s", luaL_typename(L, -1));
+  if (name && (!name[0] || strstr(name, "..")))
+    mrn_lua_error(L, sub, "vtk = '%s' must be a non-empty name inside the output directory", name);
+  double every = mrn_lua_get_number(L, idx, sub, output_specs, MRN_COUNT(output_specs), "every");
+  long every_steps = mrn_lua_has(L, idx, "every_steps")
+                         ? mrn_lua_get_integer(L, idx, sub, output_specs, MRN_COUNT(output_specs), "every_steps")
+                         : 0;
+  if (vtk_type != LUA_TNIL) mrn_output_set_vtk(o, name, every, every_steps);
+  else if (o->vtk_name) mrn_output_set_vtk(o, o->vtk_name, every > 0 ? every : o->vtk_every_time,
+                                           every_steps > 0 ? every_steps : o->vtk_every_steps);
+  lua_pop(L, 1);
+  const char *format = mrn_lua_get_string(L, idx, sub, output_specs, MRN_COUNT(output_specs), "format");
+  if (format) o->encoding = strcmp(format, "ascii") == 0 ? MRN_VTK_ASCII : MRN_VTK_BINARY;
+  if (mrn_lua_has(L, idx, "fields")) {
+    lua_getfield(L, idx, "fields");
+    int n = (int)luaL_len(L, -1);
+    if (n > MRN_OUTPUT_MAX_FIELDS) mrn_lua_error(L, sub, "at most %d fields", MRN_OUTPUT_MAX_FIELDS);
+    o->nfields = 0;
+    for (int i = 0; i < n; i++) {
+      lua_geti(L, -1, i + 1);
+      if (lua_type(L, -1) != LUA_TSTRING) mrn_lua_error(L, sub, "fields[%d] must be a field name", i + 1);
+      const char *f = lua_tostring(L, -1);
+      mrn_lua_check_choice(L, sub, "fields", f, mrn_output_field_names());
+      o->fields[o->nfields++] = mrn_output_field_find(f)->name;
+      lua_pop(L, 1);
+    }
+    lua_pop(L, 1);
+  }
+}
+
+static const char *output_dir(lua_State *L) {
+  lua_getfield(L, LUA_REGISTRYINDEX, "moraine.outdir");
+  const char *dir = lua_tostring(L, -1);
+  lua_pop(L, 1);
+  return dir ? dir : "out";
+}
+
+/* ------------------------------------------------------- constructor */
+
+static int l_simulation(lua_State *L) {
+  const char *where = "simulation{}";
+  mrn_lua_check_table(L, 1, where, sim_specs, MRN_COUNT(sim_specs));
+  const int dim = (int)mrn_lua_get_integer(L, 1, where, sim_specs, MRN_COUNT(sim_specs), "dim");
+  (void)dim_doc;
+
+  mrn_sim_config cfg;
+  memset(&cfg, 0, sizeof cfg);
+  cfg.dim = dim;
+  lua_getfield(L, 1, "grid");
+  char gwhere[] = "simulation{} grid";
+  mrn_lua_check_table(L, -1, gwhere, grid_specs, MRN_COUNT(grid_specs));
+  mrn_lua_get_vector(L, -1, gwhere, "origin", dim, cfg.origin, 0);
+  mrn_lua_get_vector(L, -1, gwhere, "size", dim, cfg.size, 1);
+  cfg.cell = mrn_lua_get_number(L, -1, gwhere, grid_specs, MRN_COUNT(grid_specs), "cell");
+  for (int d = 0; d < dim; d++)
+    if (!(cfg.size[d] > 0)) mrn_lua_error(L, gwhere, "size[%d] = %g must be > 0", d + 1, cfg.size[d]);
+  lua_pop(L, 1);
+
+  cfg.shape = MRN_SHAPE_QUADRATIC_BSPLINE;
+  const char *shape = mrn_lua_get_string(L, 1, where, sim_specs, MRN_COUNT(sim_specs), "shape");
+  if (shape) {
+    mrn_lua_check_choice(L, where, "shape", shape, mrn_shape_names());
+    mrn_shape_from_name(shape, &cfg.shape);
+  }
+  mrn_lua_get_vector(L, 1, where, "gravity", dim, cfg.gravity, 0);
+
+  sim_box *b = lua_newuserdatauv(L, sizeof *b, 0);
+  memset(b, 0, sizeof *b);
+  luaL_setmetatable(L, MRN_LUA_SIM);
+  int self = lua_gettop(L);
+  b->sim = mrn_sim_new(&cfg);
+  if (!b->sim) mrn_lua_error(L, where, "%s", mrn_error_message());
+  mrn_output_init(&b->out, output_dir(L));
+  b->out_ready = 1;
+  b->thermo_every = 100;
+  b->progress = 1;
+  for (int i = 0; i < MRN_FACE_COUNT; i++) b->sim->boundary.face[i].kind = MRN_BC_SLIP;
+  const char *name = mrn_lua_get_string(L, 1, where, sim_specs, MRN_COUNT(sim_specs), "name");
+  snprintf(b->name, sizeof b->name, "%s", name ? name : "simulation");
+
+  if (mrn_lua_has(L, 1, "scheme")) {
+    lua_getfield(L, 1, "scheme");
+    read_scheme(L, -1, "simulation{} scheme", b->sim);
+    lua_pop(L, 1);
+  }
+  if (mrn_lua_has(L, 1, "boundary")) {
+    lua_getfield(L, 1, "boundary");
+    read_boundary(L, -1, where, b->sim);
+    lua_pop(L, 1);
+  }
+  if (mrn_lua_has(L, 1, "dt")) {
+    lua_getfield(L, 1, "dt");
+    read_dt(L, -1, where, b->sim);
+    lua_pop(L, 1);
+  }
+  b->thermo_every = mrn_lua_get_integer(L, 1, where, sim_specs, MRN_COUNT(sim_specs), "thermo");
+  b->progress = mrn_lua_get_boolean(L, 1, where, sim_specs, MRN_COUNT(sim_specs), "progress", 1);
+
+  long csv_every = mrn_lua_get_integer(L, 1, where, sim_specs, MRN_COUNT(sim_specs), "diagnostics_every");
+  lua_getfield(L, 1, "diagnostics");
+  if (lua_isnil(L, -1)) mrn_output_set_csv(&b->out, "diagnostics.csv", csv_every);
+  else if (lua_type(L, -1) == LUA_TSTRING) mrn_output_set_csv(&b->out, lua_tostring(L, -1), csv_every);
+  else if (lua_type(L, -1) == LUA_TBOOLEAN && !lua_toboolean(L, -1)) mrn_output_set_csv(&b->out, NULL, csv_every);
+  else mrn_lua_error(L, where, "diagnostics must be a file name or false, got %s", luaL_typename(L, -1));
+  lua_pop(L, 1);
+
+  if (mrn_lua_has(L, 1, "output")) {
+    lua_getfield(L, 1, "output");
+    read_output(L, -1, where, b);
+    lua_pop(L, 1);
+  }
+  lua_pushvalue(L, self);
+  return 1;
+}
+
+/* ------------------------------------------------------- particles */
+
+static void init_vector_field(lua_State *L, int idx, const char *where, const char *key, sim_box *b, size_t first,
+                              long count, double *field, int stride, int ncomp) {
+  idx = lua_absindex(L, idx);
+  mrn_particles *ps = &b->sim->particles;
+  if (lua_type(L, idx) == LUA_TTABLE) {
+    double v[6] = {0};
+    if ((int)luaL_len(L, idx) != ncomp || !mrn_lua_read_numbers(L, idx, ncomp, v))
+      mrn_lua_error(L, where, "%s must be a table of %d numbers", key, ncomp);
+    for (long i = 0; i < count; i++)
+      for (int k = 0; k < ncomp; k++) field[(first + i) * stride + k] = v[k];
+    return;
+  }
+  if (lua_type(L, idx) != LUA_TFUNCTION)
+    mrn_lua_error(L, where, "%s must be a table of %d numbers or a function(x, y, z), got %s", key, ncomp,
+                  luaL_typename(L, idx));
+  for (long i = 0; i < count; i++) {
+    size_t p = first + i;
+    int top = lua_gettop(L);
+    lua_pushvalue(L, idx);
+    for (int d = 0; d < 3; d++) lua_pushnumber(L, ps->x[3 * p + d]);
+    lua_call(L, 3, LUA_MULTRET); /* errors propagate with the deck's location */
+    double v[6] = {0};
+    if (!mrn_lua_read_numbers(L, top + 1, ncomp, v))
+      mrn_lua_error(L, where, "%s function must return %d numbers (or a table of them) at (%g, %g, %g)", key, ncomp,
+                    ps->x[3 * p], ps->x[3 * p + 1], ps->x[3 * p + 2]);
+    for (int k = 0; k < ncomp; k++) field[p * stride + k] = v[k];
+    lua_settop(L, top);
+  }
+}
+
+static int l_add_particles(lua_State *L) {
+  sim_box *b = check_sim(L, 1);
+  const char *where = "add_particles()";
+  mrn_region *region = mrn_lua_check_region(L, 2, where);
+  mrn_lua_check_table(L, 3, where, particle_specs, MRN_COUNT(particle_specs));
+  lua_getfield(L, 3, "material");
+  mrn_material *mat = mrn_lua_check_material(L, -1, where);
+  lua_pop(L, 1);
+  const int dim = b->sim->dim;
+  int per_axis = (int)mrn_lua_get_integer(L, 3, where, particle_specs, MRN_COUNT(particle_specs), "per_axis");
+  if (mrn_lua_has(L, 3, "per_cell")) {
+    if (mrn_lua_has(L, 3, "per_axis")) mrn_lua_error(L, where, "give per_axis or per_cell, not both");
+    long per_cell = mrn_lua_get_integer(L, 3, where, particle_specs, MRN_COUNT(particle_specs), "per_cell");
+    per_axis = (int)lround(pow((double)per_cell, 1.0 / dim));
+    long check = dim == 2 ? (long)per_axis * per_axis : (long)per_axis * per_axis * per_axis;
+    if (check != per_cell)
+      mrn_lua_error(L, where, "per_cell = %ld is not a %s number (use 1, 4, 9, 16, ... in 2D; 1, 8, 27, ... in 3D)",
+                    per_cell, dim == 2 ? "square" : "cube");
+  }
+  const char *placement = mrn_lua_get_string(L, 3, where, particle_specs, MRN_COUNT(particle_specs), "placement");
+  mrn_seed_placement pl = placement && strcmp(placement, "regular") == 0 ? MRN_SEED_REGULAR : MRN_SEED_GAUSS;
+  if (region->dim && region->dim != dim)
+    mrn_lua_error(L, where, "this region is %dD only, the simulation is %dD", region->dim, dim);
+
+  int mat_index = mrn_sim_add_material(b->sim, mat);
+  if (mat_index < 0) mrn_lua_error(L, where, "%s", mrn_error_message());
+  size_t first = 0;
+  long count = 0;
+  mrn_lua_active = L;
+  if (mrn_sim_seed(b->sim, region, mat_index, per_axis, pl, &first, &count) != MRN_OK)
+    mrn_lua_error(L, where, "%s", mrn_error_message());
+  if (count == 0) mrn_lua_error(L, where, "the region seeds no particle on this grid (is it inside the domain?)");
+
+  mrn_particles *ps = &b->sim->particles;
+  if (mrn_lua_has(L, 3, "velocity")) {
+    lua_getfield(L, 3, "velocity");
+    init_vector_field(L, -1, where, "velocity", b, first, count, ps->v, 3, dim);
+    lua_pop(L, 1);
+  }
+  if (mrn_lua_has(L, 3, "stress")) {
+    lua_getfield(L, 3, "stress");
+    init_vector_field(L, -1, where, "stress", b, first, count, ps->stress, 6, 6);
+    lua_pop(L, 1);
+  }
+  for (long i = 0; i < count; i++) {
+    const double *v = ps->v + 3 * (first + i), *s = ps->stress + 6 * (first + i);
+    for (int k = 0; k < 6; k++)
+      if (!isfinite(s[k]) || (k < 3 && !isfinite(v[k])))
+        mrn_lua_error(L, where, "initial velocity or stress is not finite at particle %lld", (long long)ps->id[first + i]);
+  }
+  lua_pushinteger(L, count);
+  return 1;
+}
+
+/* ------------------------------------------------------- running */
+
+static int call_hook(void *ctx, mrn_sim *sim) {
+  (void)sim;
+  lua_State *L = mrn_lua_active;
+  mrn_lua_callback_push(L, ctx);
+  lua_pushvalue(L, 1);
+  return mrn_lua_callback_pcall(L, 1, 0);
+}
+
+static int call_stop_when(void *ctx, mrn_sim *sim) {
+  (void)sim;
+  lua_State *L = mrn_lua_active;
+  mrn_lua_callback_push(L, ctx);
+  lua_pushvalue(L, 1);
+  int rc = mrn_lua_callback_pcall(L, 1, 1);
+  if (rc != MRN_OK) return rc;
+  int stop = lua_toboolean(L, -1);
+  lua_pop(L, 1);
+  return stop ? MRN_STOP : MRN_OK;
+}
+
+/* raise the engine's message; a hook's own error already carries its location */
+static int raise_engine_error(lua_State *L, int rc, const char *where) {
+  if (rc == MRN_ERR_HOOK) {
+    lua_pushstring(L, mrn_error_message());
+    return lua_error(L);
+  }
+  return mrn_lua_error(L, where, "%s", mrn_error_message());
+}
+
+static int l_run(lua_State *L) {
+  sim_box *b = check_sim(L, 1);
+  const char *where = "run{}";
+  mrn_lua_check_table(L, 2, where, run_specs, MRN_COUNT(run_specs));
+  if (!mrn_lua_has(L, 2, "time") && !mrn_lua_has(L, 2, "steps"))
+    mrn_lua_error(L, where, "give time = <seconds> and/or steps = <count>");
+  if (b->sim->particles.n == 0) mrn_lua_error(L, where, "the simulation has no particles (add_particles first)");
+  if (mrn_lua_has(L, 2, "output")) {
+    lua_getfield(L, 2, "output");
+    read_output(L, -1, where, b);
+    lua_pop(L, 1);
+  }
+  mrn_run_options opt;
+  memset(&opt, 0, sizeof opt);
+  opt.time = mrn_lua_get_number(L, 2, where, run_specs, MRN_COUNT(run_specs), "time");
+  opt.steps = mrn_lua_has(L, 2, "steps") ? mrn_lua_get_integer(L, 2, where, run_specs, MRN_COUNT(run_specs), "steps") : 0;
+  opt.thermo_every = mrn_lua_has(L, 2, "thermo") ? mrn_lua_get_integer(L, 2, where, run_specs, MRN_COUNT(run_specs), "thermo")
+                                                 : b->thermo_every;
+  int progress = mrn_lua_get_boolean(L, 2, where, run_specs, MRN_COUNT(run_specs), "progress", b->progress);
+  opt.progress = progress && !mrn_log_quiet() && isatty(2);
+  opt.hooks = b->hooks;
+  opt.nhooks = b->nhooks;
+  mrn_lua_callback *stop_cb = NULL;
+  if (mrn_lua_has(L, 2, "stop_when")) {
+    lua_getfield(L, 2, "stop_when");
+    stop_cb = mrn_lua_callback_new(L, -1, "stop_when");
+    lua_pop(L, 1);
+    opt.stop_when = call_stop_when;
+    opt.stop_ctx = stop_cb;
+  }
+  lua_settop(L, 2); /* callbacks find the simulation at index 1 */
+  mrn_lua_active = L;
+  int rc = mrn_run(b->sim, &b->out, &opt);
+  mrn_lua_callback_release(stop_cb);
+  if (rc != MRN_OK) return raise_engine_error(L, rc, where);
+  return 0;
+}
+
+static int l_hook(lua_State *L) {
+  sim_box *b = check_sim(L, 1);
+  const char *where = "hook{}";
+  mrn_lua_check_table(L, 2, where, hook_specs, MRN_COUNT(hook_specs));
+  int has_steps = mrn_lua_has(L, 2, "every_steps"), has_time = mrn_lua_has(L, 2, "every_time");
+  if (has_steps == has_time) mrn_lua_error(L, where, "give exactly one of every_steps or every_time");
+  if (b->nhooks == MAX_HOOKS) mrn_lua_error(L, where, "at most %d hooks per simulation", MAX_HOOKS);
+  mrn_hook *h = &b->hooks[b->nhooks];
+  memset(h, 0, sizeof *h);
+  if (has_steps) h->every_steps = mrn_lua_get_integer(L, 2, where, hook_specs, MRN_COUNT(hook_specs), "every_steps");
+  if (has_time) h->every_time = mrn_lua_get_number(L, 2, where, hook_specs, MRN_COUNT(hook_specs), "every_time");
+  lua_getfield(L, 2, "fn");
+  b->hook_cb[b->nhooks] = mrn_lua_callback_new(L, -1, "hook");
+  lua_pop(L, 1);
+  h->fn = call_hook;
+  h->ctx = b->hook_cb[b->nhooks];
+  b->nhooks++;
+  lua_pushinteger(L, b->nhooks);
+  return 1;
+}
+
+/* ------------------------------------------------------- changing a simulation */
+
+static int l_set_gravity(lua_State *L) {
+  sim_box *b = check_sim(L, 1);
+  luaL_checktype(L, 2, LUA_TTABLE);
+  double g[3] = {0, 0, 0};
+  if ((int)luaL_len(L, 2) != b->sim->dim || !mrn_lua_read_numbers(L, 2, b->sim->dim, g))
+    mrn_lua_error(L, "set_gravity()", "expected a table of %d numbers", b->sim->dim);
+  memcpy(b->sim->gravity, g, sizeof g);
+  return 0;
+}
+
+static int l_set_boundary(lua_State *L) {
+  sim_box *b = check_sim(L, 1);
+  read_boundary(L, 2, "set_boundary()", b->sim);
+  return 0;
+}
+
+static int l_set_scheme(lua_State *L) {
+  sim_box *b = check_sim(L, 1);
+  read_scheme(L, 2, "set_scheme()", b->sim);
+  return 0;
+}
+
+static int l_set_dt(lua_State *L) {
+  sim_box *b = check_sim(L, 1);
+  read_dt(L, 2, "set_dt()", b->sim);
+  return 0;
+}
+
+static int l_set_output(lua_State *L) {
+  sim_box *b = check_sim(L, 1);
+  read_output(L, 2, "output()", b);
+  return 0;
+}
+
+static int l_write_vtk(lua_State *L) {
+  sim_box *b = check_sim(L, 1);
+  if (!b->out.vtk_name) mrn_lua_error(L, "write_vtk()", "no VTK series configured (output{vtk = name})");
+  if (mrn_output_write_vtk(&b->out, b->sim) != MRN_OK) mrn_lua_error(L, "write_vtk()", "%s", mrn_error_message());
+  return 0;
+}
+
+/* ------------------------------------------------------- reading state */
+
+static int l_time(lua_State *L) { lua_pushnumber(L, check_sim(L, 1)->sim->time); return 1; }
+static int l_step(lua_State *L) { lua_pushinteger(L, check_sim(L, 1)->sim->step); return 1; }
+static int l_dt(lua_State *L) { lua_pushnumber(L, check_sim(L, 1)->sim->dt); return 1; }
+static int l_count(lua_State *L) { lua_pushinteger(L, (lua_Integer)check_sim(L, 1)->sim->particles.n); return 1; }
+static int l_dim(lua_State *L) { lua_pushinteger(L, check_sim(L, 1)->sim->dim); return 1; }
+
+static void push_vec(lua_State *L, const double *v, int n) {
+  lua_createtable(L, n, 0);
+  for (int i = 0; i < n; i++) {
+    lua_pushnumber(L, v[i]);
+    lua_rawseti(L, -2, i + 1);
+  }
+}
+
+static int l_energy(lua_State *L) {
+  sim_box *b = check_sim(L, 1);
+  mrn_diagnostics d;
+  mrn_sim_diagnostics(b->sim, &d);
+  lua_createtable(L, 0, 6);
+  lua_pushnumber(L, d.kinetic); lua_setfield(L, -2, "kinetic");
+  lua_pushnumber(L, d.gravity); lua_setfield(L, -2, "gravity");
+  lua_pushnumber(L, d.elastic); lua_setfield(L, -2, "elastic");
+  lua_pushnumber(L, d.total); lua_setfield(L, -2, "total");
+  lua_pushnumber(L, d.plastic); lua_setfield(L, -2, "plastic");
+  lua_pushnumber(L, d.friction); lua_setfield(L, -2, "friction");
+  return 1;
+}
+
+static int l_diagnostics(lua_State *L) {
+  sim_box *b = check_sim(L, 1);
+  mrn_diagnostics d;
+  mrn_sim_diagnostics(b->sim, &d);
+  double values[64];
+  mrn_diagnostics_values(&d, values);
+  lua_createtable(L, 0, mrn_diagnostics_column_count() + 8);
+  for (int i = 0; i < mrn_diagnostics_column_count(); i++) {
+    lua_pushnumber(L, values[i]);
+    lua_setfield(L, -2, mrn_diagnostics_column_name(i));
+  }
+  int dim = b->sim->dim;
+  push_vec(L, d.momentum, dim); lua_setfield(L, -2, "momentum");
+  push_vec(L, d.angular, 3); lua_setfield(L, -2, "angular_momentum");
+  push_vec(L, d.com, dim); lua_setfield(L, -2, "center_of_mass");
+  push_vec(L, d.com_velocity, dim); lua_setfield(L, -2, "com_velocity");
+  lua_pushnumber(L, b->sim->time); lua_setfield(L, -2, "time");
+  lua_pushinteger(L, b->sim->step); lua_setfield(L, -2, "step");
+  lua_pushnumber(L, b->sim->dt); lua_setfield(L, -2, "dt");
+  return 1;
+}
+
+/* sim:field(name) -> flat array of n * ncomp values */
+static int l_field(lua_State *L) {
+  sim_box *b = check_sim(L, 1);
+  const char *name = luaL_checkstring(L, 2);
+  mrn_lua_check_choice(L, "field()", "name", name, mrn_output_field_names());
+  const mrn_output_field *f = mrn_output_field_find(name);
+  size_t n = b->sim->particles.n;
+  size_t total = n * f->ncomp;
+  void *buf = lua_newuserdatauv(L, (total ? total : 1) * 8, 0);
+  f->compute(b->sim, buf);
+  lua_createtable(L, (int)total, 0);
+  for (size_t i = 0; i < total; i++) {
+    if (f->type == MRN_VTK_FLOAT64) lua_pushnumber(L, ((double *)buf)[i]);
+    else if (f->type == MRN_VTK_INT32) lua_pushinteger(L, ((int32_t *)buf)[i]);
+    else lua_pushinteger(L, ((int64_t *)buf)[i]);
+    lua_rawseti(L, -2, (lua_Integer)i + 1);
+  }
+  lua_pushinteger(L, f->ncomp);
+  return 2;
+}
+
+/* sim:particle(i) -> table of one particle's state (1-based index) */
+static int l_particle(lua_State *L) {
+  sim_box *b = check_sim(L, 1);
+  lua_Integer i = luaL_checkinteger(L, 2);
+  mrn_particles *ps = &b->sim->particles;
+  if (i < 1 || (size_t)i > ps->n) return luaL_error(L, "particle(): index %lld outside 1..%zu", (long long)i, ps->n);
+  size_t p = (size_t)i - 1;
+  int dim = b->sim->dim;
+  lua_createtable(L, 0, 8);
+  push_vec(L, ps->x + 3 * p, dim); lua_setfield(L, -2, "x");
+  push_vec(L, ps->v + 3 * p, dim); lua_setfield(L, -2, "v");
+  push_vec(L, ps->stress + 6 * p, 6); lua_setfield(L, -2, "stress");
+  push_vec(L, ps->strain + 6 * p, 6); lua_setfield(L, -2, "strain");
+  lua_pushnumber(L, ps->mass[p]); lua_setfield(L, -2, "mass");
+  lua_pushnumber(L, ps->vol[p]); lua_setfield(L, -2, "volume");
+  lua_pushinteger(L, ps->id[p]); lua_setfield(L, -2, "id");
+  lua_pushinteger(L, ps->material[p] + 1); lua_setfield(L, -2, "material");
+  return 1;
+}
+
+static int l_info(lua_State *L) {
+  sim_box *b = check_sim(L, 1);
+  mrn_sim *s = b->sim;
+  lua_createtable(L, 0, 8);
+  lua_pushstring(L, mrn_shape_info_of(s->shape)->name); lua_setfield(L, -2, "shape");
+  lua_pushstring(L, s->scheme.name); lua_setfield(L, -2, "transfer");
+  lua_pushstring(L, mrn_stress_update_names()[s->scheme.stress_update]); lua_setfield(L, -2, "stress_update");
+  lua_pushnumber(L, s->grid.cell); lua_setfield(L, -2, "cell");
+  push_vec(L, s->grid.origin, s->dim); lua_setfield(L, -2, "origin");
+  push_vec(L, s->grid.size, s->dim); lua_setfield(L, -2, "size");
+  push_vec(L, s->gravity, s->dim); lua_setfield(L, -2, "gravity");
+  lua_pushstring(L, b->out.dir); lua_setfield(L, -2, "output_dir");
+  return 1;
+}
+
+static int l_gc(lua_State *L) {
+  sim_box *b = luaL_checkudata(L, 1, MRN_LUA_SIM);
+  for (int i = 0; i < b->nhooks; i++) mrn_lua_callback_release(b->hook_cb[i]);
+  b->nhooks = 0;
+  if (b->out_ready) mrn_output_free(&b->out);
+  b->out_ready = 0;
+  mrn_sim_free(b->sim);
+  b->sim = NULL;
+  return 0;
+}
+
+static int l_tostring(lua_State *L) {
+  sim_box *b = luaL_checkudata(L, 1, MRN_LUA_SIM);
+  if (!b->sim) {
+    lua_pushstring(L, "moraine simulation (freed)");
+    return 1;
+  }
+  mrn_sim *s = b->sim;
+  lua_pushfstring(L, "moraine simulation '%s' (%dD, %d x %d%s cells of %f m, %d particles, %s + %s, step %d, t = %f s)",
+                  b->name, s->dim, s->grid.ncell[0], s->grid.ncell[1], s->dim == 3 ? " x more" : "", s->grid.cell,
+                  (int)s->particles.n, s->scheme.name, mrn_stress_update_names()[s->scheme.stress_update], (int)s->step,
+                  s->time);
+  return 1;
+}
+
+void mrn_lua_open_simulation(lua_State *L, int module) {
+  luaL_newmetatable(L, MRN_LUA_SIM);
+  static const luaL_Reg meta[] = {{"__gc", l_gc}, {"__close", l_gc}, {"__tostring", l_tostring}, {NULL, NULL}};
+  luaL_setfuncs(L, meta, 0);
+  static const luaL_Reg methods[] = {
+      {"add_particles", l_add_particles}, {"run", l_run}, {"hook", l_hook}, {"set_gravity", l_set_gravity},
+      {"set_boundary", l_set_boundary}, {"set_scheme", l_set_scheme}, {"set_dt", l_set_dt},
+      {"output", l_set_output}, {"write_vtk", l_write_vtk}, {"time", l_time}, {"step", l_step}, {"dt", l_dt},
+      {"particle_count", l_count}, {"dim", l_dim}, {"energy", l_energy}, {"diagnostics", l_diagnostics},
+      {"field", l_field}, {"particle", l_particle}, {"info", l_info}, {"free", l_gc}, {NULL, NULL}};
+  lua_newtable(L);
+  luaL_setfuncs(L, methods, 0);
+  lua_setfield(L, -2, "__index");
+  lua_pop(L, 1);
+  lua_pushcfunction(L, l_simulation);
+  lua_setfield(L, module, "simulation");
+
+  mrn_spec_register_group("simulation{}", sim_specs, MRN_COUNT(sim_specs));
+  mrn_spec_register_group("simulation{} grid", grid_specs, MRN_COUNT(grid_specs));
+  mrn_spec_register_group("simulation{} scheme", scheme_specs, MRN_COUNT(scheme_specs));
+  mrn_spec_register_group("simulation{} output", output_specs, MRN_COUNT(output_specs));
+  mrn_spec_register_group("simulation{} boundary", boundary_specs, MRN_COUNT(boundary_specs));
+  mrn_spec_register_group("boundary face", face_specs, MRN_COUNT(face_specs));
+  mrn_spec_register_group("simulation{} dt", dt_specs, MRN_COUNT(dt_specs));
+  mrn_spec_register_group("run{}", run_specs, MRN_COUNT(run_specs));
+  mrn_spec_register_group("hook{}", hook_specs, MRN_COUNT(hook_specs));
+  mrn_spec_register_group("add_particles()", particle_specs, MRN_COUNT(particle_specs));
+}

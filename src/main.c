@@ -1,0 +1,131 @@
+/* moraine: the command line.
+ *
+ *   moraine DECK.lua [-o OUTDIR] [--set NAME=VALUE ...] [--threads N] [--quiet]
+ *   moraine --help | --version | --list-options
+ */
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#ifdef _OPENMP
+#include <omp.h>
+#endif
+
+#include "core/log.h"
+#include "core/spec.h"
+#include "lua/moraine_lua.h"
+
+#include <lauxlib.h>
+#include <lualib.h>
+
+static void usage(FILE *f) {
+  fprintf(f,
+          "usage: moraine DECK.lua [options]\n"
+          "\n"
+          "Runs a Material Point Method simulation described by a Lua deck.\n"
+          "\n"
+          "options:\n"
+          "  -o, --output DIR     directory for every output file (default: out)\n"
+          "  --set NAME=VALUE     a parameter the deck reads with mpm.param(\"NAME\", default);\n"
+          "                       may be repeated\n"
+          "  --threads N          number of OpenMP threads (default: all cores)\n"
+          "  -q, --quiet          no thermo lines, progress bar or information messages\n"
+          "  --list-options       print every deck option with its type, default and unit\n"
+          "  -h, --help           this text\n"
+          "  -v, --version        the version\n"
+          "\n"
+          "Exit status: 0 on success, 1 on any error (the message names the deck file\n"
+          "and line), 2 on a command-line error.\n"
+          "Documentation: doc/getting-started.md and doc/lua-api.md in the source tree.\n");
+}
+
+static void list_options(void) {
+  /* the registry fills up as the Lua module opens */
+  lua_State *L = luaL_newstate();
+  luaL_openlibs(L);
+  mrn_deck_options opt = {0};
+  mrn_lua_open(L, &opt);
+  lua_close(L);
+  for (int g = 0; g < mrn_spec_group_count(); g++) {
+    const mrn_spec_group *grp = mrn_spec_group_at(g);
+    for (int i = 0; i < grp->count; i++) {
+      const mrn_spec *s = &grp->specs[i];
+      printf("%s\t%s\t%s\t%s\t%s\n", grp->name, s->key, mrn_spec_type_name(s->type), s->unit ? s->unit : "", s->doc);
+    }
+  }
+}
+
+int main(int argc, char **argv) {
+  const char *deck = NULL;
+  mrn_deck_options opt = {0};
+  opt.outdir = "out";
+  const char **sets = calloc((size_t)argc + 1, sizeof *sets);
+  int nsets = 0;
+  for (int i = 1; i < argc; i++) {
+    const char *a = argv[i];
+    if (!strcmp(a, "-h") || !strcmp(a, "--help")) {
+      usage(stdout);
+      free(sets);
+      return 0;
+    } else if (!strcmp(a, "-v") || !strcmp(a, "--version")) {
+      printf("moraine %s (commit %s)\n", MORAINE_VERSION, MORAINE_GIT_COMMIT);
+      free(sets);
+      return 0;
+    } else if (!strcmp(a, "--list-options")) {
+      list_options();
+      free(sets);
+      return 0;
+    } else if (!strcmp(a, "-q") || !strcmp(a, "--quiet")) {
+      mrn_log_set_quiet(1);
+    } else if (!strcmp(a, "-o") || !strcmp(a, "--output")) {
+      if (++i >= argc) goto missing;
+      opt.outdir = argv[i];
+    } else if (!strcmp(a, "--set")) {
+      if (++i >= argc) goto missing;
+      if (!strchr(argv[i], '=') || argv[i][0] == '=') {
+        fprintf(stderr, "moraine: --set expects NAME=VALUE, got '%s'\n", argv[i]);
+        free(sets);
+        return 2;
+      }
+      sets[nsets++] = argv[i];
+    } else if (!strcmp(a, "--threads")) {
+      if (++i >= argc) goto missing;
+      char *end;
+      long n = strtol(argv[i], &end, 10);
+      if (*end || n < 1 || n > 4096) {
+        fprintf(stderr, "moraine: --threads expects a positive whole number, got '%s'\n", argv[i]);
+        free(sets);
+        return 2;
+      }
+#ifdef _OPENMP
+      omp_set_num_threads((int)n);
+#endif
+    } else if (a[0] == '-' && a[1]) {
+      fprintf(stderr, "moraine: unknown option '%s' (see moraine --help)\n", a);
+      free(sets);
+      return 2;
+    } else if (!deck) {
+      deck = a;
+    } else {
+      fprintf(stderr, "moraine: more than one deck given ('%s' and '%s')\n", deck, a);
+      free(sets);
+      return 2;
+    }
+  }
+  if (!deck) {
+    usage(stderr);
+    free(sets);
+    return 2;
+  }
+  opt.sets = sets;
+  opt.nsets = nsets;
+  opt.argv = (const char *const *)argv;
+  opt.argc = argc;
+  int rc = mrn_lua_run_deck(deck, &opt);
+  free(sets);
+  return rc;
+
+missing:
+  fprintf(stderr, "moraine: option '%s' needs a value\n", argv[argc - 1]);
+  free(sets);
+  return 2;
+}

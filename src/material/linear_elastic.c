@@ -1,0 +1,57 @@
+/* moraine: isotropic linear elasticity in rate form.
+ *
+ * Small-strain incremental Hooke's law on the Jaumann-rotated stress
+ * (002, Eq. 28): sigma_new = R(sigma) + lambda tr(de) I + 2 G de. In plane
+ * strain de_zz = 0 and sigma_zz still evolves through lambda tr(de). */
+#include <math.h>
+
+#include "core/error.h"
+#include "core/tensor.h"
+#include "material/material.h"
+
+enum { P_DENSITY, P_E, P_NU, P_COUNT };
+enum { D_LAMBDA, D_SHEAR, D_BULK };
+
+static const mrn_spec params[P_COUNT] = {
+    [P_DENSITY] = {"density", MRN_SPEC_NUMBER, 1, 0, 0, HUGE_VAL, 1, 0, "kg/m^3", "mass density", NULL},
+    [P_E] = {"E", MRN_SPEC_NUMBER, 1, 0, 0, HUGE_VAL, 1, 0, "Pa", "Young's modulus", NULL},
+    [P_NU] = {"nu", MRN_SPEC_NUMBER, 0, 0.0, -1.0, 0.5, 1, 1, "", "Poisson's ratio", NULL},
+};
+
+static int prepare(mrn_material *m) {
+  double E = m->param[P_E], nu = m->param[P_NU];
+  m->derived[D_LAMBDA] = E * nu / ((1 + nu) * (1 - 2 * nu));
+  m->derived[D_SHEAR] = E / (2 * (1 + nu));
+  m->derived[D_BULK] = E / (3 * (1 - 2 * nu));
+  return MRN_OK;
+}
+
+static void update(const mrn_material *m, mrn_material_point *pt) {
+  double ds[6], old[6];
+  for (int k = 0; k < 6; k++) old[k] = pt->stress[k];
+  mrn_hooke_increment(m->derived[D_LAMBDA], m->derived[D_SHEAR], pt->dstrain, ds);
+  for (int k = 0; k < 6; k++) pt->stress[k] += ds[k];
+  /* (000, Eq. 64) with the stress averaged over the step (000 §5.1.4) */
+  double mid[6];
+  for (int k = 0; k < 6; k++) mid[k] = 0.5 * (old[k] + pt->stress[k]);
+  pt->de_elastic = sym_ddot(mid, pt->dstrain);
+  pt->dw_plastic = 0.0;
+}
+
+/* P-wave speed sqrt((lambda + 2G) / rho) */
+static double wave_speed(const mrn_material *m) {
+  return sqrt((m->derived[D_LAMBDA] + 2 * m->derived[D_SHEAR]) / m->param[P_DENSITY]);
+}
+
+const mrn_material_type mrn_material_linear_elastic = {
+    .name = "linear_elastic",
+    .summary = "isotropic linear elasticity, incremental with the Jaumann rate (002, Eq. 28)",
+    .params = params,
+    .nparams = P_COUNT,
+    .nstate = 0,
+    .state_names = NULL,
+    .rate_form = 1,
+    .prepare = prepare,
+    .update = update,
+    .wave_speed = wave_speed,
+};

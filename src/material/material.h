@@ -1,0 +1,87 @@
+/* moraine: constitutive models, registered by name.
+ *
+ * A model is an mrn_material_type: its parameters (mrn_spec, with units and
+ * ranges), the number of history variables it keeps per particle, and an
+ * update function called once per particle per step. A model is added by
+ * writing one file that defines its type and listing it in material.c's
+ * registry. A deck creates an mrn_material (a type plus parameter values)
+ * through mpm.material.<name>{...}. */
+#ifndef MRN_MATERIAL_MATERIAL_H
+#define MRN_MATERIAL_MATERIAL_H
+
+#include "core/spec.h"
+
+#define MRN_MATERIAL_MAX_PARAMS 24
+#define MRN_MATERIAL_MAX_DERIVED 16
+
+struct mrn_material;
+
+/* What the step hands to a model for one particle. Rate-form models
+ * (`rate_form` set) receive `stress` already co-rotated with the Jaumann
+ * spin (002, Eq. 28) and return the new stress; hyperelastic models compute
+ * the stress from F. */
+typedef struct mrn_material_point {
+  double stress[6];       /* in: start-of-step stress (rotated); out: new stress */
+  double dstrain[6];      /* strain increment sym(L) dt (002, Eq. 29) */
+  const double *F;        /* deformation gradient at the end of the step */
+  double J;               /* det F */
+  double dt;
+  double *state;          /* history variables (`nstate` values) */
+  double de_elastic;      /* out: elastic energy increment per unit volume (000, Eq. 64) */
+  double dw_plastic;      /* out: plastic work increment per unit volume, <= 0 (000, Eq. 65) */
+} mrn_material_point;
+
+typedef struct mrn_material_type {
+  const char *name;
+  const char *summary;
+  const mrn_spec *params;
+  int nparams;
+  int nstate;
+  const char *const *state_names;
+  int rate_form;
+  /* derive constants from the parameters and check their consistency;
+   * return 0 or an error (message set) */
+  int (*prepare)(struct mrn_material *m);
+  void (*update)(const struct mrn_material *m, mrn_material_point *pt);
+  /* speed of the fastest elastic wave (m/s), for time-step estimates */
+  double (*wave_speed)(const struct mrn_material *m);
+} mrn_material_type;
+
+typedef struct mrn_material {
+  const mrn_material_type *type;
+  char name[64];                               /* user label, defaults to the type name */
+  double param[MRN_MATERIAL_MAX_PARAMS];       /* in the order of type->params */
+  double derived[MRN_MATERIAL_MAX_DERIVED];    /* set by prepare() */
+  int refcount;
+} mrn_material;
+
+int mrn_material_type_count(void);
+const mrn_material_type *mrn_material_type_at(int i);
+const mrn_material_type *mrn_material_type_find(const char *name);
+
+/* a material with every parameter at its default; refcount 1 */
+mrn_material *mrn_material_new(const mrn_material_type *type);
+/* set a parameter by key with range checking; 0 or error (message set) */
+int mrn_material_set(mrn_material *m, const char *key, double value);
+/* check that required parameters were set and derive constants */
+int mrn_material_prepare(mrn_material *m);
+void mrn_material_ref(mrn_material *m);
+void mrn_material_unref(mrn_material *m);
+/* parameter value by key (NAN if unknown) */
+double mrn_material_get(const mrn_material *m, const char *key);
+double mrn_material_density(const mrn_material *m);
+/* Young's modulus used by the a_tau time step (000, Eq. 29) */
+double mrn_material_young(const mrn_material *m);
+
+/* the models */
+extern const mrn_material_type mrn_material_linear_elastic;
+
+/* Isotropic linear elasticity shared by every small-strain model:
+ * ds = lambda tr(de) I + 2 G de. */
+static inline void mrn_hooke_increment(double lambda, double shear, const double de[6], double ds[6]) {
+  double tr = de[0] + de[1] + de[2];
+  for (int k = 0; k < 3; k++) ds[k] = lambda * tr + 2.0 * shear * de[k];
+  for (int k = 3; k < 6; k++) ds[k] = 2.0 * shear * de[k];
+}
+
+#endif

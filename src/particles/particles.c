@@ -1,0 +1,112 @@
+#include "particles/particles.h"
+
+#include <stddef.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "core/error.h"
+
+static const mrn_particle_field_info field_table[] = {
+#define MRN_FIELD_INFO(name, ncomp, desc) {#name, ncomp, desc, offsetof(mrn_particles, name)},
+    MRN_PARTICLE_FIELDS(MRN_FIELD_INFO)
+#undef MRN_FIELD_INFO
+};
+enum { FIELD_COUNT = sizeof field_table / sizeof field_table[0] };
+
+int mrn_particle_field_count(void) { return FIELD_COUNT; }
+const mrn_particle_field_info *mrn_particle_field_at(int i) { return &field_table[i]; }
+const mrn_particle_field_info *mrn_particle_field_find(const char *name) {
+  for (int i = 0; i < FIELD_COUNT; i++)
+    if (strcmp(field_table[i].name, name) == 0) return &field_table[i];
+  return NULL;
+}
+
+static double **field_ptr(mrn_particles *p, int i) { return (double **)((char *)p + field_table[i].offset); }
+
+void mrn_particles_init(mrn_particles *p, int dim) {
+  memset(p, 0, sizeof *p);
+  p->dim = dim;
+  p->next_id = 1;
+}
+
+void mrn_particles_free(mrn_particles *p) {
+  for (int i = 0; i < FIELD_COUNT; i++) {
+    free(*field_ptr(p, i));
+    *field_ptr(p, i) = NULL;
+  }
+  free(p->material);
+  free(p->id);
+  free(p->state);
+  p->material = NULL;
+  p->id = NULL;
+  p->state = NULL;
+  p->n = p->cap = 0;
+}
+
+static int grow(void **ptr, size_t count, size_t elem) {
+  void *q = realloc(*ptr, count * elem);
+  if (!q && count) return 0;
+  *ptr = q;
+  return 1;
+}
+
+int mrn_particles_reserve(mrn_particles *p, size_t cap) {
+  if (cap <= p->cap) return MRN_OK;
+  for (int i = 0; i < FIELD_COUNT; i++)
+    if (!grow((void **)field_ptr(p, i), cap, sizeof(double) * field_table[i].ncomp))
+      return mrn_error("particles: out of memory for %zu particles", cap);
+  if (!grow((void **)&p->material, cap, sizeof(int32_t)) || !grow((void **)&p->id, cap, sizeof(int64_t)) ||
+      (p->state_stride > 0 && !grow((void **)&p->state, cap, sizeof(double) * p->state_stride)))
+    return mrn_error("particles: out of memory for %zu particles", cap);
+  p->cap = cap;
+  return MRN_OK;
+}
+
+int mrn_particles_set_state_stride(mrn_particles *p, int stride) {
+  if (stride <= p->state_stride) return MRN_OK;
+  double *s = calloc(p->cap ? p->cap : 1, sizeof(double) * stride);
+  if (!s) return mrn_error("particles: out of memory for history variables");
+  for (size_t i = 0; i < p->n; i++)
+    for (int k = 0; k < p->state_stride; k++) s[i * stride + k] = p->state[i * p->state_stride + k];
+  free(p->state);
+  p->state = s;
+  p->state_stride = stride;
+  return MRN_OK;
+}
+
+long mrn_particles_add(mrn_particles *p, const double x[3], double mass, double vol, int material) {
+  if (p->n == p->cap && mrn_particles_reserve(p, p->cap ? 2 * p->cap : 256) != MRN_OK) return -1;
+  size_t i = p->n++;
+  for (int f = 0; f < FIELD_COUNT; f++) {
+    double *data = *field_ptr(p, f);
+    memset(data + i * field_table[f].ncomp, 0, sizeof(double) * field_table[f].ncomp);
+  }
+  for (int d = 0; d < 3; d++) p->x[3 * i + d] = p->x0[3 * i + d] = x[d];
+  p->mass[i] = mass;
+  p->vol[i] = p->vol0[i] = vol;
+  p->F[9 * i + 0] = p->F[9 * i + 4] = p->F[9 * i + 8] = 1.0;
+  p->material[i] = material;
+  p->id[i] = p->next_id++;
+  for (int k = 0; k < p->state_stride; k++) p->state[i * p->state_stride + k] = 0.0;
+  return (long)i;
+}
+
+void mrn_particles_compact(mrn_particles *p, const unsigned char *keep) {
+  size_t out = 0;
+  for (size_t i = 0; i < p->n; i++) {
+    if (!keep[i]) continue;
+    if (out != i) {
+      for (int f = 0; f < FIELD_COUNT; f++) {
+        int nc = field_table[f].ncomp;
+        double *data = *field_ptr(p, f);
+        memcpy(data + out * nc, data + i * nc, sizeof(double) * nc);
+      }
+      p->material[out] = p->material[i];
+      p->id[out] = p->id[i];
+      if (p->state_stride)
+        memcpy(p->state + out * p->state_stride, p->state + i * p->state_stride, sizeof(double) * p->state_stride);
+    }
+    out++;
+  }
+  p->n = out;
+}

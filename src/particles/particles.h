@@ -1,0 +1,69 @@
+/* moraine: material point storage, structure of arrays.
+ *
+ * Each field is one contiguous array; vector fields hold 3 values per
+ * particle (z = 0 in 2D), full tensors 9 (row-major), symmetric tensors 6 in
+ * the order xx, yy, zz, xy, yz, xz. Adding a field means adding it to the
+ * MRN_PARTICLE_FIELDS list below: allocation, growth, removal and copying all
+ * follow from that one list. */
+#ifndef MRN_PARTICLES_PARTICLES_H
+#define MRN_PARTICLES_PARTICLES_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+/* X(name, components, description) -- every double-valued field */
+#define MRN_PARTICLE_FIELDS(X)                                                              \
+  X(x, 3, "position (m)")                                                                   \
+  X(x0, 3, "initial position (m), for the displacement")                                    \
+  X(v, 3, "velocity (m/s)")                                                                 \
+  X(mass, 1, "mass (kg; kg/m in 2D, per unit thickness)")                                   \
+  X(vol, 1, "current volume (m^3; m^2 in 2D)")                                              \
+  X(vol0, 1, "initial volume")                                                              \
+  X(F, 9, "deformation gradient")                                                           \
+  X(gradv, 9, "velocity gradient of the last step (1/s)")                                   \
+  X(stress, 6, "Cauchy stress (Pa), tension positive")                                      \
+  X(strain, 6, "accumulated small strain (sum of symmetric velocity-gradient increments)")   \
+  X(e_elastic, 1, "elastic energy stored (J; J/m in 2D)")                                   \
+  X(w_plastic, 1, "accumulated plastic work (J), negative while dissipating (000, Eq. 65)")
+
+typedef struct mrn_particles {
+  size_t n, cap;
+  int dim;
+#define MRN_DECLARE_FIELD(name, ncomp, desc) double *name;
+  MRN_PARTICLE_FIELDS(MRN_DECLARE_FIELD)
+#undef MRN_DECLARE_FIELD
+  int32_t *material; /* index into the simulation's material list */
+  int64_t *id;       /* stable identifier, unique in a simulation */
+  double *state;     /* material history variables, `state_stride` per particle */
+  int state_stride;
+  int64_t next_id;
+} mrn_particles;
+
+void mrn_particles_init(mrn_particles *p, int dim);
+void mrn_particles_free(mrn_particles *p);
+int mrn_particles_reserve(mrn_particles *p, size_t cap);
+/* widen the history-variable storage to at least `stride` values per particle */
+int mrn_particles_set_state_stride(mrn_particles *p, int stride);
+/* Append one particle at x with mass and volume; every other field starts at
+ * rest and unstrained (F = I, zero stress). Returns its index, or -1 on
+ * allocation failure (message set). */
+long mrn_particles_add(mrn_particles *p, const double x[3], double mass, double vol, int material);
+/* remove particles whose keep[i] == 0, preserving order */
+void mrn_particles_compact(mrn_particles *p, const unsigned char *keep);
+
+/* field table, for output and generic access */
+typedef struct mrn_particle_field_info {
+  const char *name;
+  int ncomp;
+  const char *doc;
+  size_t offset; /* offset of the pointer inside mrn_particles */
+} mrn_particle_field_info;
+
+int mrn_particle_field_count(void);
+const mrn_particle_field_info *mrn_particle_field_at(int i);
+const mrn_particle_field_info *mrn_particle_field_find(const char *name);
+static inline double *mrn_particle_field_data(const mrn_particles *p, const mrn_particle_field_info *f) {
+  return *(double *const *)((const char *)p + f->offset);
+}
+
+#endif

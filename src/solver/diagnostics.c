@@ -1,0 +1,34 @@
+#include "solver/diagnostics.h"
+
+typedef struct column {
+  const char *name;
+  const char *unit;
+} column;
+
+/* the CSV header and the thermo columns come from this one table */
+static const column columns[] = {
+    {"E_kinetic", "J"}, {"E_gravity", "J"},  {"E_elastic", "J"}, {"E_total", "J"},  {"W_plastic", "J"},
+    {"W_friction", "J"}, {"momentum_x", "kg m/s"}, {"momentum_y", "kg m/s"}, {"momentum_z", "kg m/s"},
+    {"angular_x", "kg m^2/s"}, {"angular_y", "kg m^2/s"}, {"angular_z", "kg m^2/s"},
+    {"com_x", "m"}, {"com_y", "m"}, {"com_z", "m"}, {"mass", "kg"}, {"particles", ""},
+};
+enum { COLUMN_COUNT = sizeof columns / sizeof columns[0] };
+
+int mrn_diagnostics_column_count(void) { return COLUMN_COUNT; }
+const char *mrn_diagnostics_column_name(int i) { return columns[i].name; }
+const char *mrn_diagnostics_column_unit(int i) { return columns[i].unit; }
+
+void mrn_diagnostics_values(const mrn_diagnostics *d, double *v) {
+  int k = 0;
+  v[k++] = d->kinetic;
+  v[k++] = d->gravity;
+  v[k++] = d->elastic;
+  v[k++] = d->total;
+  v[k++] = d->plastic;
+  v[k++] = d->friction;
+  for (int i = 0; i < 3; i++) v[k++] = d->momentum[i];
+  for (int i = 0; i < 3; i++) v[k++] = d->angular[i];
+  for (int i = 0; i < 3; i++) v[k++] = d->com[i];
+  v[k++] = d->mass;
+  v[k++] = (double)d->particles;
+}

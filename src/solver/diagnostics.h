@@ -1,0 +1,27 @@
+/* moraine: whole-system diagnostics (000, Eqs. 46-48, 64-68).
+ * Energies are in J (J/m per unit thickness in 2D). */
+#ifndef MRN_SOLVER_DIAGNOSTICS_H
+#define MRN_SOLVER_DIAGNOSTICS_H
+
+typedef struct mrn_diagnostics {
+  double kinetic;      /* E_k = sum 1/2 m |v|^2 (000, Eq. 47) */
+  double gravity;      /* E_g = -sum m g . x, zero at the origin's height (000, Eq. 48) */
+  double elastic;      /* E_el, accumulated increments (000, Eq. 64) */
+  double plastic;      /* W_pl, accumulated, <= 0 (000, Eq. 65) */
+  double friction;     /* W_frict, accumulated, <= 0 (000, Eq. 66) */
+  double total;        /* E_k + E_g + E_el */
+  double mass;
+  double momentum[3];  /* sum m v */
+  double angular[3];   /* sum m x cross v, about the origin */
+  double com[3];       /* centre of mass */
+  double com_velocity[3];
+  long particles;
+} mrn_diagnostics;
+
+/* one name per column, in the order mrn_diagnostics_values() fills them */
+int mrn_diagnostics_column_count(void);
+const char *mrn_diagnostics_column_name(int i);
+const char *mrn_diagnostics_column_unit(int i);
+void mrn_diagnostics_values(const mrn_diagnostics *d, double *values);
+
+#endif

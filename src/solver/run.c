@@ -1,0 +1,118 @@
+#include "solver/run.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <time.h>
+
+#include "core/error.h"
+#include "core/log.h"
+
+void mrn_thermo_header(FILE *f) {
+  fprintf(f, "%10s %13s %11s %13s %13s %13s %13s %13s\n", "step", "time", "dt", "E_kinetic", "E_gravity", "E_elastic",
+          "E_total", "W_friction");
+}
+
+void mrn_thermo_line(FILE *f, const mrn_sim *sim, const mrn_diagnostics *d) {
+  fprintf(f, "%10ld %13.6e %11.4e %13.6e %13.6e %13.6e %13.6e %13.6e\n", sim->step, sim->time, sim->dt, d->kinetic,
+          d->gravity, d->elastic, d->total, d->friction);
+  fflush(f);
+}
+
+static double wall_seconds(void) {
+  struct timespec ts;
+  clock_gettime(CLOCK_MONOTONIC, &ts);
+  return ts.tv_sec + 1e-9 * ts.tv_nsec;
+}
+
+static void draw_progress(double fraction, double elapsed) {
+  if (fraction < 0) fraction = 0;
+  if (fraction > 1) fraction = 1;
+  int width = 30, filled = (int)(fraction * width);
+  double eta = fraction > 1e-6 ? elapsed * (1 - fraction) / fraction : 0;
+  fprintf(stderr, "\r[");
+  for (int i = 0; i < width; i++) fputc(i < filled ? '#' : '.', stderr);
+  fprintf(stderr, "] %5.1f%%  ETA %6.0f s ", 100 * fraction, eta);
+  fflush(stderr);
+}
+
+static int due_hook(mrn_hook *h, const mrn_sim *sim) {
+  int due = 0;
+  if (h->every_steps > 0 && sim->step % h->every_steps == 0) due = 1;
+  if (h->every_time > 0) {
+    double tol = 1e-9 * h->every_time;
+    if (sim->time >= h->next_time - tol) {
+      due = 1;
+      while (h->next_time <= sim->time + tol) h->next_time += h->every_time;
+    }
+  }
+  return due;
+}
+
+/* hooks, outputs and thermo for the state just reached; returns 0, MRN_STOP or an error */
+static int after_step(mrn_sim *sim, mrn_output *out, mrn_run_options *opt, int first) {
+  int rc;
+  for (int i = 0; i < opt->nhooks; i++)
+    if (due_hook(&opt->hooks[i], sim) && (rc = opt->hooks[i].fn(opt->hooks[i].ctx, sim)) != 0) return rc;
+  if (out && (rc = mrn_output_maybe_vtk(out, sim)) != MRN_OK) return rc;
+  int thermo_due = opt->thermo_every > 0 && (first || sim->step % opt->thermo_every == 0);
+  int csv_due = out && out->csv_name && (first || (out->csv_every > 0 && sim->step % out->csv_every == 0));
+  if (thermo_due || csv_due) {
+    mrn_diagnostics d;
+    mrn_sim_diagnostics(sim, &d);
+    if (thermo_due && !mrn_log_quiet()) mrn_thermo_line(stdout, sim, &d);
+    if (csv_due && (rc = mrn_output_maybe_csv(out, sim, &d, 1)) != MRN_OK) return rc;
+  }
+  if (!first && opt->stop_when && (rc = opt->stop_when(opt->stop_ctx, sim)) != 0) return rc;
+  return MRN_OK;
+}
+
+int mrn_run(mrn_sim *sim, mrn_output *out, mrn_run_options *opt) {
+  if (!(opt->time > 0) && !(opt->steps > 0)) return mrn_error("run: give a positive time or number of steps");
+  const double t_end = opt->time > 0 ? sim->time + opt->time : HUGE_VAL;
+  const long step_end = opt->steps > 0 ? sim->step + opt->steps : -1;
+  const double t_start = sim->time;
+  const long step_start = sim->step;
+  const double wall_start = wall_seconds();
+  double last_draw = wall_start;
+  for (int i = 0; i < opt->nhooks; i++)
+    if (opt->hooks[i].every_time > 0) opt->hooks[i].next_time = sim->time;
+
+  if (opt->thermo_every > 0 && !mrn_log_quiet()) mrn_thermo_header(stdout);
+  int rc = after_step(sim, out, opt, 1);
+  while (rc == MRN_OK) {
+    if (step_end >= 0 && sim->step >= step_end) break;
+    double remaining = t_end - sim->time;
+    /* a sliver of time left over by round-off is not worth a step */
+    if (remaining <= 1e-12 * (fabs(t_end) + 1e-30)) break;
+    double dt;
+    if ((rc = mrn_dt_compute(sim, &dt)) != MRN_OK) break;
+    if (dt > remaining) dt = remaining;
+    if ((rc = mrn_sim_step_dt(sim, dt)) != MRN_OK) break;
+    rc = after_step(sim, out, opt, 0);
+    if (opt->progress) {
+      double now = wall_seconds();
+      if (now - last_draw > 0.25) {
+        double f_time = opt->time > 0 ? (sim->time - t_start) / opt->time : 0;
+        double f_steps = opt->steps > 0 ? (double)(sim->step - step_start) / opt->steps : 0;
+        draw_progress(f_time > f_steps ? f_time : f_steps, now - wall_start);
+        last_draw = now;
+      }
+    }
+  }
+  if (opt->progress) {
+    draw_progress(1.0, wall_seconds() - wall_start);
+    fputc('\n', stderr);
+  }
+  /* the final state always reaches the thermo output and the CSV */
+  if (rc == MRN_OK || rc == MRN_STOP) {
+    mrn_diagnostics d;
+    mrn_sim_diagnostics(sim, &d);
+    if (opt->thermo_every > 0 && sim->step % opt->thermo_every != 0 && !mrn_log_quiet()) mrn_thermo_line(stdout, sim, &d);
+    if (out && out->csv_name && out->csv_every > 0 && sim->step % out->csv_every != 0) {
+      int crc = mrn_output_maybe_csv(out, sim, &d, 1);
+      if (crc != MRN_OK) return crc;
+    }
+    return MRN_OK;
+  }
+  return rc;
+}

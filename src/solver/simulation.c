@@ -1,0 +1,170 @@
+#include "solver/simulation.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "core/error.h"
+
+mrn_sim *mrn_sim_new(const mrn_sim_config *cfg) {
+  mrn_sim *sim = calloc(1, sizeof *sim);
+  if (!sim) {
+    mrn_error("simulation: out of memory");
+    return NULL;
+  }
+  if (mrn_grid_init(&sim->grid, cfg->dim, cfg->origin, cfg->size, cfg->cell) != MRN_OK) {
+    free(sim);
+    return NULL;
+  }
+  sim->dim = cfg->dim;
+  mrn_particles_init(&sim->particles, cfg->dim);
+  sim->shape = cfg->shape;
+  mrn_scheme_default(&sim->scheme);
+  for (int d = 0; d < 3; d++) sim->gravity[d] = d < cfg->dim ? cfg->gravity[d] : 0.0;
+  mrn_dt_policy_a_tau(&sim->dt_policy, 0.05);
+  return sim;
+}
+
+void mrn_sim_free(mrn_sim *sim) {
+  if (!sim) return;
+  mrn_grid_free(&sim->grid);
+  mrn_particles_free(&sim->particles);
+  for (int i = 0; i < sim->nmaterials; i++) mrn_material_unref(sim->materials[i]);
+  mrn_dt_policy_release(&sim->dt_policy);
+  free(sim->scratch);
+  free(sim);
+}
+
+int mrn_sim_add_material(mrn_sim *sim, mrn_material *m) {
+  for (int i = 0; i < sim->nmaterials; i++)
+    if (sim->materials[i] == m) return i;
+  if (sim->nmaterials == MRN_MAX_MATERIALS) {
+    mrn_error("simulation: more than %d materials", MRN_MAX_MATERIALS);
+    return -1;
+  }
+  if (mrn_particles_set_state_stride(&sim->particles, m->type->nstate) != MRN_OK) return -1;
+  mrn_material_ref(m);
+  sim->materials[sim->nmaterials] = m;
+  return sim->nmaterials++;
+}
+
+void mrn_sim_diagnostics(const mrn_sim *sim, mrn_diagnostics *out) {
+  const mrn_particles *ps = &sim->particles;
+  double ek = 0, eg = 0, eel = 0, wpl = 0, mass = 0;
+  double mom0 = 0, mom1 = 0, mom2 = 0, ang0 = 0, ang1 = 0, ang2 = 0, mx0 = 0, mx1 = 0, mx2 = 0;
+  const double *g = sim->gravity;
+  const long n = (long)ps->n;
+#pragma omp parallel for schedule(static) reduction(+ : ek, eg, eel, wpl, mass, mom0, mom1, mom2, ang0, ang1, \
+                                                        ang2, mx0, mx1, mx2)
+  for (long p = 0; p < n; p++) {
+    const double m = ps->mass[p];
+    const double *x = ps->x + 3 * p, *v = ps->v + 3 * p;
+    ek += 0.5 * m * (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]); /* (000, Eq. 47) */
+    eg -= m * (g[0] * x[0] + g[1] * x[1] + g[2] * x[2]);      /* (000, Eq. 48) */
+    eel += ps->e_elastic[p];
+    wpl += ps->w_plastic[p];
+    mass += m;
+    mom0 += m * v[0];
+    mom1 += m * v[1];
+    mom2 += m * v[2];
+    ang0 += m * (x[1] * v[2] - x[2] * v[1]);
+    ang1 += m * (x[2] * v[0] - x[0] * v[2]);
+    ang2 += m * (x[0] * v[1] - x[1] * v[0]);
+    mx0 += m * x[0];
+    mx1 += m * x[1];
+    mx2 += m * x[2];
+  }
+  memset(out, 0, sizeof *out);
+  out->kinetic = ek;
+  out->gravity = eg;
+  out->elastic = eel;
+  out->plastic = wpl;
+  out->friction = sim->work_friction;
+  out->total = ek + eg + eel;
+  out->mass = mass;
+  out->momentum[0] = mom0;
+  out->momentum[1] = mom1;
+  out->momentum[2] = mom2;
+  out->angular[0] = ang0;
+  out->angular[1] = ang1;
+  out->angular[2] = ang2;
+  if (mass > 0) {
+    out->com[0] = mx0 / mass;
+    out->com[1] = mx1 / mass;
+    out->com[2] = mx2 / mass;
+    for (int d = 0; d < 3; d++) out->com_velocity[d] = out->momentum[d] / mass;
+  }
+  out->particles = n;
+}
+
+int mrn_sim_check_state(const mrn_sim *sim) {
+  const mrn_particles *ps = &sim->particles;
+  const mrn_grid *g = &sim->grid;
+  for (size_t p = 0; p < ps->n; p++) {
+    const double *x = ps->x + 3 * p, *v = ps->v + 3 * p;
+    int finite = 1;
+    for (int d = 0; d < 3; d++) finite &= isfinite(x[d]) && isfinite(v[d]);
+    for (int k = 0; k < 6; k++) finite &= isfinite(ps->stress[6 * p + k]);
+    if (!finite)
+      return mrn_error_code(MRN_ERR_STATE,
+                            "step %ld (t = %g s): particle %lld has a non-finite position, velocity or stress "
+                            "(x = (%g, %g, %g), v = (%g, %g, %g)); the time step %g s is probably above the "
+                            "stability limit",
+                            sim->step, sim->time, (long long)ps->id[p], x[0], x[1], x[2], v[0], v[1], v[2], sim->dt);
+    if (!mrn_grid_contains(g, x))
+      return mrn_error_code(MRN_ERR_STATE,
+                            "step %ld (t = %g s): particle %lld left the grid at (%g, %g, %g) with velocity "
+                            "(%g, %g, %g); the domain is [%g, %g] x [%g, %g]%s",
+                            sim->step, sim->time, (long long)ps->id[p], x[0], x[1], x[2], v[0], v[1], v[2],
+                            g->origin[0], g->origin[0] + g->size[0], g->origin[1], g->origin[1] + g->size[1],
+                            g->dim == 3 ? " x [z range]" : "");
+  }
+  return MRN_OK;
+}
+
+double mrn_sim_slowness(const mrn_sim *sim) {
+  double best = HUGE_VAL;
+  for (int i = 0; i < sim->nmaterials; i++) {
+    double s = sqrt(mrn_material_density(sim->materials[i]) / mrn_material_young(sim->materials[i]));
+    if (s < best) best = s;
+  }
+  return best;
+}
+
+typedef struct seed_ctx {
+  mrn_sim *sim;
+  int material;
+  double density;
+} seed_ctx;
+
+static int seed_one(void *user, const double x[3], double volume) {
+  seed_ctx *c = user;
+  return mrn_particles_add(&c->sim->particles, x, c->density * volume, volume, c->material) < 0 ? MRN_ERR : 0;
+}
+
+int mrn_sim_seed(mrn_sim *sim, const mrn_region *region, int material_index, int per_axis,
+                 mrn_seed_placement placement, size_t *first, long *count) {
+  if (material_index < 0 || material_index >= sim->nmaterials)
+    return mrn_error("seed: material index %d is not registered", material_index);
+  seed_ctx c = {sim, material_index, mrn_material_density(sim->materials[material_index])};
+  size_t start = sim->particles.n;
+  long seeded = 0;
+  int rc = mrn_seed(&sim->grid, region, per_axis, placement, seed_one, &c, &seeded);
+  if (rc != MRN_OK) {
+    sim->particles.n = start; /* nothing half-added */
+    return rc;
+  }
+  *first = start;
+  *count = (long)(sim->particles.n - start);
+  mrn_sim_particles_changed(sim);
+  return MRN_OK;
+}
+
+void mrn_sim_particles_changed(mrn_sim *sim) {
+  double lightest = HUGE_VAL;
+  for (size_t p = 0; p < sim->particles.n; p++)
+    if (sim->particles.mass[p] < lightest) lightest = sim->particles.mass[p];
+  /* a node touched only by the far tail of a kernel carries a mass many orders below a
+   * particle's; its velocity f/m is meaningless, so such nodes count as empty */
+  sim->mass_floor = isfinite(lightest) ? 1e-12 * lightest : 0.0;
+}

@@ -1,0 +1,176 @@
+/* moraine: the explicit MPM step (000 §3; 002 Fig. 1).
+ *
+ *   USF:  P2G mass & momentum -> V^i, BCs -> stress from V^i -> P2G force
+ *         -> V~^i, BCs -> G2P
+ *   USL:  P2G mass, momentum & force -> V^i, V~^i, BCs -> G2P
+ *         -> stress from V~^i
+ *   MUSL: as USL, then the new particle momenta are mapped back to the grid
+ *         (at the start-of-step positions), BCs, and the stress is updated
+ *         from that velocity before the particles move.
+ * 000 §3.4 describes MUSL as USL with V~ in Eq. (45); moraine follows the
+ * original definitions, in which USL already uses V~ and MUSL re-maps. */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "core/error.h"
+#include "core/tensor.h"
+#include "solver/simulation.h"
+#include "transfer/kernels.h"
+
+/* nodal velocity from momentum, for nodes above the mass floor */
+static void grid_velocity(mrn_sim *sim) {
+  mrn_grid *g = &sim->grid;
+  const double floor_mass = sim->mass_floor;
+  const long n = (long)g->n;
+#pragma omp parallel for schedule(static)
+  for (long i = 0; i < n; i++) {
+    double m = g->mass[i];
+    for (int d = 0; d < 3; d++) g->vel[3 * i + d] = m > floor_mass ? g->mom[3 * i + d] / m : 0.0;
+  }
+  mrn_boundary_apply(&sim->boundary, g, g->vel, 0);
+}
+
+/* V~ = V + dt (f / m + g) (000, Eq. 28), boundary conditions with friction,
+ * and the acceleration the particles will see, a = (V~ - V) / dt */
+static void grid_update(mrn_sim *sim, double dt) {
+  mrn_grid *g = &sim->grid;
+  const double floor_mass = sim->mass_floor;
+  const long n = (long)g->n;
+#pragma omp parallel for schedule(static)
+  for (long i = 0; i < n; i++) {
+    double m = g->mass[i];
+    for (int d = 0; d < 3; d++) {
+      double a = m > floor_mass ? g->force[3 * i + d] / m + sim->gravity[d] : 0.0;
+      g->vel_new[3 * i + d] = m > floor_mass ? g->vel[3 * i + d] + dt * a : 0.0;
+    }
+  }
+  sim->work_friction += mrn_boundary_apply(&sim->boundary, g, g->vel_new, 1);
+#pragma omp parallel for schedule(static)
+  for (long i = 0; i < n; i++)
+    for (int d = 0; d < 3; d++) g->acc[3 * i + d] = (g->vel_new[3 * i + d] - g->vel[3 * i + d]) / dt;
+}
+
+/* Kinematics and constitutive update of one particle from its velocity
+ * gradient (particles.gradv): F (002, Eq. 27), volume from J, Jaumann
+ * rotation and the material's stress increment (002, Eqs. 28-30), energies
+ * (000, Eqs. 64-65). Returns 0, or 1 when F inverted. */
+static int update_particle_stress(mrn_sim *sim, size_t p, double dt) {
+  mrn_particles *ps = &sim->particles;
+  const double *L = ps->gradv + 9 * p;
+  double *F = ps->F + 9 * p;
+  double inc[9], Fn[9];
+  for (int k = 0; k < 9; k++) inc[k] = (k % 4 == 0 ? 1.0 : 0.0) + dt * L[k];
+  mat_mul(inc, F, Fn);
+  double J = mat_det(Fn);
+  if (!(J > 0.0)) return 1;
+  memcpy(F, Fn, sizeof Fn);
+  double vol_old = ps->vol[p];
+  ps->vol[p] = ps->vol0[p] * J;
+
+  const mrn_material *mat = sim->materials[ps->material[p]];
+  mrn_material_point pt;
+  memcpy(pt.stress, ps->stress + 6 * p, sizeof pt.stress);
+  mat_sym_part(L, dt, pt.dstrain);
+  if (mat->type->rate_form) {
+    double W[9];
+    mat_skew_part(L, dt, W);
+    sym_jaumann_rotate(pt.stress, W);
+  }
+  pt.F = F;
+  pt.J = J;
+  pt.dt = dt;
+  pt.state = ps->state_stride ? ps->state + (size_t)ps->state_stride * p : NULL;
+  pt.de_elastic = pt.dw_plastic = 0.0;
+  mat->type->update(mat, &pt);
+  memcpy(ps->stress + 6 * p, pt.stress, sizeof pt.stress);
+  double *eps = ps->strain + 6 * p;
+  for (int k = 0; k < 6; k++) eps[k] += pt.dstrain[k];
+  double vol_mid = 0.5 * (vol_old + ps->vol[p]);
+  ps->e_elastic[p] += vol_mid * pt.de_elastic;
+  ps->w_plastic[p] += vol_mid * pt.dw_plastic;
+  return 0;
+}
+
+static int update_stresses(mrn_sim *sim, double dt) {
+  mrn_particles *ps = &sim->particles;
+  const long n = (long)ps->n;
+  long first_bad = -1;
+#pragma omp parallel for schedule(static)
+  for (long p = 0; p < n; p++) {
+    if (update_particle_stress(sim, (size_t)p, dt)) {
+#pragma omp critical(mrn_bad_particle)
+      if (first_bad < 0 || p < first_bad) first_bad = p;
+    }
+  }
+  if (first_bad >= 0) {
+    const double *x = ps->x + 3 * first_bad;
+    return mrn_error_code(MRN_ERR_STATE,
+                          "step %ld: particle %lld at (%g, %g, %g) would invert (det F <= 0); "
+                          "the time step %g s is probably too large",
+                          sim->step + 1, (long long)ps->id[first_bad], x[0], x[1], x[2], dt);
+  }
+  return MRN_OK;
+}
+
+static double *scratch(mrn_sim *sim, size_t count) {
+  if (count > sim->scratch_cap) {
+    double *s = realloc(sim->scratch, count * sizeof(double));
+    if (!s) return NULL;
+    sim->scratch = s;
+    sim->scratch_cap = count;
+  }
+  return sim->scratch;
+}
+
+int mrn_sim_step_dt(mrn_sim *sim, double dt) {
+  if (!(dt > 0.0) || !isfinite(dt)) return mrn_error("step %ld: invalid time step %g", sim->step + 1, dt);
+  const int dim = sim->dim;
+  int rc = MRN_OK;
+  sim->dt = dt;
+  switch (sim->scheme.stress_update) {
+  case MRN_STRESS_USF:
+    mrn_p2g(sim, dim, 1, 0);
+    grid_velocity(sim);
+    mrn_gradient(sim, dim, sim->grid.vel);
+    if ((rc = update_stresses(sim, dt))) return rc;
+    mrn_p2g(sim, dim, 0, 1);
+    grid_update(sim, dt);
+    mrn_g2p(sim, dim, dt, NULL);
+    break;
+  case MRN_STRESS_USL:
+    mrn_p2g(sim, dim, 1, 1);
+    grid_velocity(sim);
+    grid_update(sim, dt);
+    mrn_gradient(sim, dim, sim->grid.vel_new);
+    mrn_g2p(sim, dim, dt, NULL);
+    if ((rc = update_stresses(sim, dt))) return rc;
+    break;
+  case MRN_STRESS_MUSL: {
+    double *dx = scratch(sim, 3 * sim->particles.n);
+    if (!dx && sim->particles.n) return mrn_error("step: out of memory");
+    mrn_p2g(sim, dim, 1, 1);
+    grid_velocity(sim);
+    grid_update(sim, dt);
+    mrn_g2p(sim, dim, dt, dx);
+    /* re-map the updated particle momenta (start-of-step positions) */
+    mrn_p2g(sim, dim, 1, 0);
+    grid_velocity(sim);
+    mrn_gradient(sim, dim, sim->grid.vel);
+    if ((rc = update_stresses(sim, dt))) return rc;
+    mrn_particles *ps = &sim->particles;
+    for (size_t i = 0; i < 3 * ps->n; i++) ps->x[i] += dx[i];
+    break;
+  }
+  }
+  sim->time += dt;
+  sim->step++;
+  return mrn_sim_check_state(sim);
+}
+
+int mrn_sim_step(mrn_sim *sim) {
+  double dt;
+  int rc = mrn_dt_compute(sim, &dt);
+  if (rc) return rc;
+  return mrn_sim_step_dt(sim, dt);
+}

@@ -1,0 +1,34 @@
+/* moraine: time-step policies, asked for a new dt before every step.
+ *   fixed     dt = value
+ *   a_tau     dt = a_tau * l_cell * min over materials sqrt(rho / E) (000, Eq. 29)
+ *   callback  dt = a user function of the simulation (a Lua function in decks)
+ * Every policy is clamped to [min, max] when those are set (> 0); a policy
+ * that asks for a step below `min` stops the run with an error. */
+#ifndef MRN_SOLVER_TIMESTEP_H
+#define MRN_SOLVER_TIMESTEP_H
+
+struct mrn_sim;
+
+typedef enum { MRN_DT_FIXED = 0, MRN_DT_A_TAU, MRN_DT_CALLBACK } mrn_dt_kind;
+
+/* returns 0 and sets *dt, or an error code (message set) */
+typedef int (*mrn_dt_callback)(void *ctx, struct mrn_sim *sim, double *dt);
+
+typedef struct mrn_dt_policy {
+  mrn_dt_kind kind;
+  double value;   /* dt for fixed, a_tau for a_tau */
+  double min, max; /* 0 = no bound */
+  mrn_dt_callback callback;
+  void *ctx;
+  void (*release)(void *ctx);
+} mrn_dt_policy;
+
+void mrn_dt_policy_fixed(mrn_dt_policy *p, double dt);
+void mrn_dt_policy_a_tau(mrn_dt_policy *p, double a_tau);
+void mrn_dt_policy_release(mrn_dt_policy *p);
+const char *mrn_dt_kind_name(mrn_dt_kind k);
+
+/* evaluate the policy for the current state; 0 or error */
+int mrn_dt_compute(struct mrn_sim *sim, double *dt);
+
+#endif

@@ -1,0 +1,342 @@
+/* moraine: the VTK writers and the atomic file layer.
+ *
+ * Writes small .vtp/.pvd files into a fresh directory under /tmp and reads
+ * the binary ones back by parsing the appended section. With a directory as
+ * argv[1] it also leaves roundtrip files there for
+ * tests/python/test_vtk_roundtrip.py, which reads them with VTK itself. */
+#include <dirent.h>
+#include <inttypes.h>
+#include <stdint.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include "check.h"
+#include "core/error.h"
+#include "io/atomic_file.h"
+#include "io/vtk.h"
+
+/* ---- deterministic test data (mirrored in test_vtk_roundtrip.py) -------- */
+
+#define NPTS 37
+
+typedef struct sample {
+  double points[NPTS * 3];
+  double stress[NPTS * 6]; /* a symmetric tensor: 6 components */
+  double mass[NPTS];
+  int32_t material[NPTS];
+  int64_t id[NPTS];
+  mrn_vtk_array arrays[4];
+} sample;
+
+static void make_sample(sample *s) {
+  for (int i = 0; i < NPTS; i++) {
+    s->points[3 * i + 0] = i * 0.25;
+    s->points[3 * i + 1] = -i * 0.125;
+    s->points[3 * i + 2] = 1.0 / (i + 1); /* not exact in binary: tests %.17g */
+    for (int c = 0; c < 6; c++) s->stress[6 * i + c] = i * 0.5 + c;
+    s->mass[i] = 0.1 * i;
+    s->material[i] = -i;
+    s->id[i] = (int64_t)i * 4294967296LL + i; /* beyond 32 bits */
+  }
+  s->arrays[0] = (mrn_vtk_array){"stress", 6, MRN_VTK_FLOAT64, s->stress};
+  s->arrays[1] = (mrn_vtk_array){"mass", 1, MRN_VTK_FLOAT64, s->mass};
+  s->arrays[2] = (mrn_vtk_array){"material", 1, MRN_VTK_INT32, s->material};
+  s->arrays[3] = (mrn_vtk_array){"id", 1, MRN_VTK_INT64, s->id};
+}
+
+/* ---- small file helpers ------------------------------------------------ */
+
+static char *read_all(const char *path, size_t *len) {
+  FILE *fp = fopen(path, "rb");
+  if (!fp) return NULL;
+  fseek(fp, 0, SEEK_END);
+  long size = ftell(fp);
+  fseek(fp, 0, SEEK_SET);
+  char *buf = malloc((size_t)size + 1);
+  size_t got = fread(buf, 1, (size_t)size, fp);
+  fclose(fp);
+  buf[got] = '\0';
+  if (len) *len = got;
+  return buf;
+}
+
+static int exists(const char *path) {
+  struct stat st;
+  return stat(path, &st) == 0;
+}
+
+static int count_temp_files(const char *dir) {
+  DIR *d = opendir(dir);
+  if (!d) return -1;
+  int n = 0;
+  struct dirent *e;
+  while ((e = readdir(d)) != NULL)
+    if (strstr(e->d_name, ".tmp.")) n++;
+  closedir(d);
+  return n;
+}
+
+static int count_occurrences(const char *text, const char *needle) {
+  int n = 0;
+  for (const char *p = strstr(text, needle); p; p = strstr(p + 1, needle)) n++;
+  return n;
+}
+
+/* remove a directory tree made by this test (files and subdirectories only) */
+static void remove_tree(const char *path) {
+  DIR *d = opendir(path);
+  if (!d) {
+    unlink(path);
+    return;
+  }
+  struct dirent *e;
+  while ((e = readdir(d)) != NULL) {
+    if (!strcmp(e->d_name, ".") || !strcmp(e->d_name, "..")) continue;
+    char *child = mrn_path_join(path, e->d_name);
+    remove_tree(child);
+    free(child);
+  }
+  closedir(d);
+  rmdir(path);
+}
+
+/* ---- reading the appended section back --------------------------------- */
+
+/* The raw block of the DataArray named `name`: returns a pointer to its bytes
+ * and sets *nbytes from the UInt64 header, or NULL when it cannot be found. */
+static const unsigned char *appended_block(const char *file, size_t len, const char *name, uint64_t *nbytes) {
+  char key[128];
+  snprintf(key, sizeof key, "Name=\"%s\"", name);
+  const char *tag = strstr(file, key);
+  const char *data = strstr(file, "<AppendedData encoding=\"raw\">");
+  if (!tag || !data) return NULL;
+  const char *off = strstr(tag, "offset=\"");
+  const char *end = strchr(tag, '>');
+  if (!off || !end || off > end) return NULL;
+  uint64_t offset = strtoull(off + 8, NULL, 10);
+  const char *base = strchr(data, '_');
+  if (!base) return NULL;
+  base++;
+  if ((size_t)(base - file) + offset + 8 > len) return NULL;
+  memcpy(nbytes, base + offset, 8); /* the test host is little-endian, as the file */
+  if ((size_t)(base - file) + offset + 8 + *nbytes > len) return NULL;
+  return (const unsigned char *)base + offset + 8;
+}
+
+static int block_equals(const char *file, size_t len, const char *name, const void *expect, size_t size) {
+  uint64_t nbytes = 0;
+  const unsigned char *p = appended_block(file, len, name, &nbytes);
+  return p && nbytes == size && memcmp(p, expect, size) == 0;
+}
+
+/* ---- tests ------------------------------------------------------------- */
+
+static void test_binary(const char *dir, const sample *s) {
+  char *path = mrn_path_join(dir, "p.vtp");
+  CHECK(mrn_vtp_write(path, NPTS, s->points, s->arrays, 4, MRN_VTK_BINARY) == MRN_OK);
+  size_t len = 0;
+  char *file = read_all(path, &len);
+  CHECK(file != NULL);
+  if (file) {
+    CHECK(strstr(file, "header_type=\"UInt64\"") != NULL);
+    CHECK(strstr(file, "NumberOfPoints=\"37\" NumberOfVerts=\"37\"") != NULL);
+    CHECK(strstr(file, "Name=\"stress\" NumberOfComponents=\"6\" format=\"appended\"") != NULL);
+    CHECK(block_equals(file, len, "stress", s->stress, sizeof s->stress));
+    CHECK(block_equals(file, len, "mass", s->mass, sizeof s->mass));
+    CHECK(block_equals(file, len, "material", s->material, sizeof s->material));
+    CHECK(block_equals(file, len, "id", s->id, sizeof s->id));
+    CHECK(block_equals(file, len, "Points", s->points, sizeof s->points));
+    int64_t conn[NPTS], offs[NPTS];
+    for (int i = 0; i < NPTS; i++) conn[i] = i, offs[i] = i + 1;
+    CHECK(block_equals(file, len, "connectivity", conn, sizeof conn));
+    CHECK(block_equals(file, len, "offsets", offs, sizeof offs));
+    CHECK(len > 11 && strcmp(file + len - 11, "</VTKFile>\n") == 0);
+  }
+  free(file);
+  free(path);
+}
+
+static void test_ascii(const char *dir, const sample *s) {
+  char *path = mrn_path_join(dir, "a.vtp");
+  CHECK(mrn_vtp_write(path, NPTS, s->points, s->arrays, 4, MRN_VTK_ASCII) == MRN_OK);
+  char *file = read_all(path, NULL);
+  CHECK(file != NULL);
+  if (file) {
+    CHECK(strstr(file, "format=\"ascii\"") != NULL);
+    CHECK(strstr(file, "format=\"appended\"") == NULL);
+    CHECK(strstr(file, "AppendedData") == NULL);
+    char expect[64];
+    snprintf(expect, sizeof expect, "%.17g", s->points[3 * 2 + 2]); /* 1/3 */
+    CHECK(strstr(file, expect) != NULL);
+    snprintf(expect, sizeof expect, "%lld\n", (long long)s->id[NPTS - 1]);
+    CHECK(strstr(file, expect) != NULL);
+  }
+  free(file);
+  free(path);
+}
+
+static void test_empty(const char *dir) {
+  char *path = mrn_path_join(dir, "empty.vtp");
+  double dummy = 0;
+  mrn_vtk_array a = {"mass", 1, MRN_VTK_FLOAT64, NULL};
+  CHECK(mrn_vtp_write(path, 0, NULL, &a, 1, MRN_VTK_BINARY) == MRN_OK);
+  size_t len = 0;
+  char *file = read_all(path, &len);
+  uint64_t nbytes = 1;
+  CHECK(file && strstr(file, "NumberOfPoints=\"0\"") != NULL);
+  CHECK(file && appended_block(file, len, "Points", &nbytes) != NULL && nbytes == 0);
+  free(file);
+  CHECK(mrn_vtp_write(path, 0, &dummy, NULL, 0, MRN_VTK_ASCII) == MRN_OK);
+  free(path);
+}
+
+static void test_pvd(const char *dir) {
+  char *path = mrn_path_join(dir, "series.pvd");
+  mrn_pvd pvd;
+  mrn_pvd_init(&pvd, path);
+  CHECK(mrn_pvd_add(&pvd, 0.0, "p.vtp") == MRN_OK);
+  CHECK(mrn_pvd_add(&pvd, 0.1, "sub/a&b.vtp") == MRN_OK);
+  CHECK(pvd.count == 2);
+  char *file = read_all(path, NULL);
+  CHECK(file != NULL);
+  if (file) {
+    CHECK(strstr(file, "<VTKFile type=\"Collection\"") != NULL);
+    CHECK(count_occurrences(file, "<DataSet ") == 2);
+    CHECK(strstr(file, "<DataSet timestep=\"0\" group=\"\" part=\"0\" file=\"p.vtp\"/>") != NULL);
+    CHECK(strstr(file, "timestep=\"0.10000000000000001\"") != NULL);
+    CHECK(strstr(file, "file=\"sub/a&amp;b.vtp\"") != NULL); /* escaped, still parseable */
+    CHECK(strstr(file, "</Collection>\n</VTKFile>\n") != NULL);
+  }
+  free(file);
+  mrn_pvd_free(&pvd);
+  CHECK(pvd.path == NULL && pvd.count == 0);
+  mrn_pvd_free(&pvd); /* a second free is harmless */
+
+  /* a failed rewrite leaves the collection as it was */
+  char *bad = mrn_path_join(dir, "missing/series.pvd");
+  mrn_pvd_init(&pvd, bad);
+  CHECK(mrn_pvd_add(&pvd, 1.0, "x.vtp") == MRN_ERR_IO);
+  CHECK(pvd.count == 0);
+  mrn_pvd_free(&pvd);
+  free(bad);
+  free(path);
+}
+
+static void test_missing_dir(const char *dir, const sample *s) {
+  char *path = mrn_path_join(dir, "nope/deeper/p.vtp");
+  mrn_error_clear();
+  CHECK(mrn_vtp_write(path, NPTS, s->points, s->arrays, 4, MRN_VTK_BINARY) == MRN_ERR_IO);
+  CHECK(strstr(mrn_error_message(), path) != NULL);
+  CHECK(strstr(mrn_error_message(), "No such file or directory") != NULL);
+  free(path);
+}
+
+static void test_atomic(const char *dir) {
+  char *path = mrn_path_join(dir, "aborted.txt");
+  mrn_atomic_file f;
+  CHECK(mrn_atomic_open(&f, path) == MRN_OK);
+  CHECK(strstr(f.temp_path, "/.aborted.txt.tmp.") != NULL);
+  fputs("partial", f.fp);
+  CHECK(!exists(path)); /* nothing visible under the final name yet */
+  mrn_atomic_abort(&f);
+  CHECK(!exists(path));
+
+  CHECK(mrn_atomic_open(&f, path) == MRN_OK);
+  fputs("whole\n", f.fp);
+  CHECK(mrn_atomic_commit(&f) == MRN_OK);
+  char *text = read_all(path, NULL);
+  CHECK(text && strcmp(text, "whole\n") == 0);
+  free(text);
+  CHECK(f.fp == NULL && f.temp_path == NULL && f.final_path == NULL);
+  free(path);
+}
+
+static void test_mkdir_p(const char *dir) {
+  char *nested = mrn_path_join(dir, "a/b//c/");
+  CHECK(mrn_mkdir_p(nested) == MRN_OK);
+  CHECK(mrn_mkdir_p(nested) == MRN_OK); /* existing directories are fine */
+  char *c = mrn_path_join(dir, "a/b/c");
+  struct stat st;
+  CHECK(stat(c, &st) == 0 && S_ISDIR(st.st_mode));
+
+  /* a component that is a file */
+  char *file = mrn_path_join(dir, "a/plain");
+  FILE *fp = fopen(file, "w");
+  if (fp) fclose(fp);
+  char *below = mrn_path_join(dir, "a/plain/d");
+  CHECK(mrn_mkdir_p(below) == MRN_ERR_IO);
+  CHECK(strstr(mrn_error_message(), below) != NULL);
+  CHECK(mrn_mkdir_p(file) == MRN_ERR_IO);
+  CHECK(mrn_mkdir_p("") == MRN_OK);
+  free(nested);
+  free(c);
+  free(file);
+  free(below);
+}
+
+static void test_path_join(void) {
+  char *p;
+  CHECK((p = mrn_path_join("out", "p.vtp")) && strcmp(p, "out/p.vtp") == 0);
+  free(p);
+  CHECK((p = mrn_path_join("out/", "p.vtp")) && strcmp(p, "out/p.vtp") == 0);
+  free(p);
+  CHECK((p = mrn_path_join("", "p.vtp")) && strcmp(p, "p.vtp") == 0);
+  free(p);
+  CHECK((p = mrn_path_join(NULL, "p.vtp")) && strcmp(p, "p.vtp") == 0);
+  free(p);
+  CHECK((p = mrn_path_join("out", "/abs/p.vtp")) && strcmp(p, "/abs/p.vtp") == 0);
+  free(p);
+}
+
+/* files for the Python check with the real VTK reader */
+static int write_roundtrip(const char *dir, const sample *s) {
+  if (mrn_mkdir_p(dir) != MRN_OK) return MRN_ERR_IO;
+  char *bin = mrn_path_join(dir, "roundtrip.vtp");
+  char *asc = mrn_path_join(dir, "roundtrip_ascii.vtp");
+  char *empty = mrn_path_join(dir, "roundtrip_empty.vtp");
+  char *pvd_path = mrn_path_join(dir, "roundtrip.pvd");
+  int rc = mrn_vtp_write(bin, NPTS, s->points, s->arrays, 4, MRN_VTK_BINARY);
+  if (rc == MRN_OK) rc = mrn_vtp_write(asc, NPTS, s->points, s->arrays, 4, MRN_VTK_ASCII);
+  if (rc == MRN_OK) rc = mrn_vtp_write(empty, 0, NULL, s->arrays, 4, MRN_VTK_BINARY);
+  mrn_pvd pvd;
+  mrn_pvd_init(&pvd, pvd_path);
+  if (rc == MRN_OK) rc = mrn_pvd_add(&pvd, 0.0, "roundtrip.vtp");
+  if (rc == MRN_OK) rc = mrn_pvd_add(&pvd, 0.25, "roundtrip_ascii.vtp");
+  if (rc == MRN_OK) rc = mrn_pvd_add(&pvd, 1.0 / 3.0, "roundtrip_empty.vtp");
+  mrn_pvd_free(&pvd);
+  free(bin);
+  free(asc);
+  free(empty);
+  free(pvd_path);
+  return rc;
+}
+
+int main(int argc, char **argv) {
+  static sample s;
+  make_sample(&s);
+  char dir[] = "/tmp/moraine_test_vtk_XXXXXX";
+  if (!mkdtemp(dir)) {
+    perror("mkdtemp");
+    return 1;
+  }
+  test_binary(dir, &s);
+  test_ascii(dir, &s);
+  test_empty(dir);
+  test_pvd(dir);
+  test_missing_dir(dir, &s);
+  test_atomic(dir);
+  test_mkdir_p(dir);
+  test_path_join();
+  CHECK(count_temp_files(dir) == 0);
+  remove_tree(dir);
+
+  if (argc > 1) {
+    int rc = write_roundtrip(argv[1], &s);
+    if (rc != MRN_OK) fprintf(stderr, "%s\n", mrn_error_message());
+    CHECK(rc == MRN_OK);
+    CHECK(count_temp_files(argv[1]) == 0);
+  }
+  CHECK_DONE();
+}
