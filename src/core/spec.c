@@ -11,49 +11,59 @@ const mrn_spec *mrn_spec_find(const mrn_spec *specs, int count, const char *key)
   return NULL;
 }
 
+/* optimal string alignment distance: insertions, deletions, substitutions
+ * and transpositions of neighbours each cost 1 ("shpae" is 1 from "shape") */
 int mrn_edit_distance(const char *a, const char *b) {
   size_t la = strlen(a), lb = strlen(b);
   if (la > 64 || lb > 64) return 99;
-  int prev[65], cur[65];
-  for (size_t j = 0; j <= lb; j++) prev[j] = (int)j;
-  for (size_t i = 1; i <= la; i++) {
-    cur[0] = (int)i;
+  int d[65][65];
+  for (size_t i = 0; i <= la; i++) d[i][0] = (int)i;
+  for (size_t j = 0; j <= lb; j++) d[0][j] = (int)j;
+  for (size_t i = 1; i <= la; i++)
     for (size_t j = 1; j <= lb; j++) {
       int cost = a[i - 1] == b[j - 1] ? 0 : 1;
-      int best = prev[j] + 1;
-      if (cur[j - 1] + 1 < best) best = cur[j - 1] + 1;
-      if (prev[j - 1] + cost < best) best = prev[j - 1] + cost;
-      cur[j] = best;
+      int best = d[i - 1][j] + 1;
+      if (d[i][j - 1] + 1 < best) best = d[i][j - 1] + 1;
+      if (d[i - 1][j - 1] + cost < best) best = d[i - 1][j - 1] + cost;
+      if (i > 1 && j > 1 && a[i - 1] == b[j - 2] && a[i - 2] == b[j - 1] && d[i - 2][j - 2] + 1 < best)
+        best = d[i - 2][j - 2] + 1;
+      d[i][j] = best;
     }
-    memcpy(prev, cur, sizeof(int) * (lb + 1));
-  }
-  return prev[lb];
+  return d[la][lb];
 }
 
-/* a suggestion is offered when at most a third of the letters differ */
+/* a suggestion is offered when at most a third of the letters differ, or
+ * when the key is the start of a longer name ("quadratic" -> "quadratic_bspline") */
 static int close_enough(const char *candidate, const char *key, int distance) {
   size_t len = strlen(key) > strlen(candidate) ? strlen(key) : strlen(candidate);
+  if (strlen(key) >= 3 && strncmp(candidate, key, strlen(key)) == 0) return 1;
   return distance <= 1 || (size_t)distance * 3 <= len;
+}
+
+/* prefer a name the key starts, then the smallest distance */
+static int score(const char *candidate, const char *key) {
+  if (strlen(key) >= 3 && strncmp(candidate, key, strlen(key)) == 0) return 0;
+  return 1 + mrn_edit_distance(candidate, key);
 }
 
 const char *mrn_spec_suggest(const mrn_spec *specs, int count, const char *key) {
   const char *best = NULL;
   int best_d = 1000;
   for (int i = 0; i < count; i++) {
-    int d = mrn_edit_distance(specs[i].key, key);
+    int d = score(specs[i].key, key);
     if (d < best_d) { best_d = d; best = specs[i].key; }
   }
-  return best && close_enough(best, key, best_d) ? best : NULL;
+  return best && close_enough(best, key, best_d ? best_d - 1 : 0) ? best : NULL;
 }
 
 const char *mrn_suggest_from(const char *const *names, const char *key) {
   const char *best = NULL;
   int best_d = 1000;
   for (int i = 0; names[i]; i++) {
-    int d = mrn_edit_distance(names[i], key);
+    int d = score(names[i], key);
     if (d < best_d) { best_d = d; best = names[i]; }
   }
-  return best && close_enough(best, key, best_d) ? best : NULL;
+  return best && close_enough(best, key, best_d ? best_d - 1 : 0) ? best : NULL;
 }
 
 int mrn_spec_check_range(const mrn_spec *spec, double v, char *buf, size_t len) {

@@ -13,7 +13,7 @@
 #include "lua/lua_internal.h"
 #include "lua/moraine_lua.h"
 
-static char library_dir[PATH_MAX];
+static char library_dir[PATH_MAX + 128];
 
 static int is_dir(const char *path) {
   struct stat st;
@@ -32,7 +32,7 @@ const char *mrn_lua_library_dir(void) {
     char *slash = strrchr(exe, '/');
     if (slash) {
       *slash = '\0';
-      char candidate[PATH_MAX + 64];
+      char candidate[PATH_MAX + 128];
       snprintf(candidate, sizeof candidate, "%s/../%s/moraine", exe, MORAINE_LUA_INSTALL_REL);
       if (is_dir(candidate)) {
         snprintf(library_dir, sizeof library_dir, "%s/../%s", exe, MORAINE_LUA_INSTALL_REL);
@@ -155,8 +155,15 @@ int mrn_lua_run_deck(const char *path, const mrn_deck_options *opt) {
   int status = lua_pcall(L, 1, 0, handler);
   if (status == LUA_OK) status = luaL_loadfile(L, path);
   if (status == LUA_OK) {
+    /* mpm.deck and mpm.deck_dir: decks find their neighbouring files through these */
+    lua_getglobal(L, "mpm");
     lua_pushstring(L, path);
-    lua_setglobal(L, "DECK");
+    lua_setfield(L, -2, "deck");
+    const char *slash = strrchr(path, '/');
+    if (slash) lua_pushlstring(L, path, (size_t)(slash - path));
+    else lua_pushstring(L, ".");
+    lua_setfield(L, -2, "deck_dir");
+    lua_pop(L, 1);
     status = lua_pcall(L, 0, 0, handler);
   }
   int rc = 0;

@@ -298,7 +298,7 @@ static void read_output(lua_State *L, int idx, const char *where, sim_box *b) {
     mrn_lua_error(L, sub, "vtk must be a series name or false, got %s", luaL_typename(L, -1));
   if (name && (!name[0] || strstr(name, "..")))
     mrn_lua_error(L, sub, "vtk = '%s' must be a non-empty name inside the output directory", name);
-  double every = mrn_lua_get_number(L, idx, sub, output_specs, MRN_COUNT(output_specs), "every");
+  double every = mrn_lua_has(L, idx, "every") ? mrn_lua_get_number(L, idx, sub, output_specs, MRN_COUNT(output_specs), "every") : 0;
   long every_steps = mrn_lua_has(L, idx, "every_steps")
                          ? mrn_lua_get_integer(L, idx, sub, output_specs, MRN_COUNT(output_specs), "every_steps")
                          : 0;
@@ -541,7 +541,7 @@ static int l_run(lua_State *L) {
   }
   mrn_run_options opt;
   memset(&opt, 0, sizeof opt);
-  opt.time = mrn_lua_get_number(L, 2, where, run_specs, MRN_COUNT(run_specs), "time");
+  opt.time = mrn_lua_has(L, 2, "time") ? mrn_lua_get_number(L, 2, where, run_specs, MRN_COUNT(run_specs), "time") : 0;
   opt.steps = mrn_lua_has(L, 2, "steps") ? mrn_lua_get_integer(L, 2, where, run_specs, MRN_COUNT(run_specs), "steps") : 0;
   opt.thermo_every = mrn_lua_has(L, 2, "thermo") ? mrn_lua_get_integer(L, 2, where, run_specs, MRN_COUNT(run_specs), "thermo")
                                                  : b->thermo_every;

@@ -81,12 +81,14 @@ int mrn_run(mrn_sim *sim, mrn_output *out, mrn_run_options *opt) {
   int rc = after_step(sim, out, opt, 1);
   while (rc == MRN_OK) {
     if (step_end >= 0 && sim->step >= step_end) break;
-    double remaining = t_end - sim->time;
-    /* a sliver of time left over by round-off is not worth a step */
-    if (remaining <= 1e-12 * (fabs(t_end) + 1e-30)) break;
     double dt;
     if ((rc = mrn_dt_compute(sim, &dt)) != MRN_OK) break;
-    if (dt > remaining) dt = remaining;
+    if (opt->time > 0) {
+      double remaining = t_end - sim->time;
+      /* a sliver of time left over by round-off is not worth a step */
+      if (remaining <= 1e-9 * dt) break;
+      if (dt > remaining) dt = remaining;
+    }
     if ((rc = mrn_sim_step_dt(sim, dt)) != MRN_OK) break;
     rc = after_step(sim, out, opt, 0);
     if (opt->progress) {

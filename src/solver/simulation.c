@@ -5,6 +5,7 @@
 #include <string.h>
 
 #include "core/error.h"
+#include "core/parallel.h"
 
 mrn_sim *mrn_sim_new(const mrn_sim_config *cfg) {
   mrn_sim *sim = calloc(1, sizeof *sim);
@@ -54,7 +55,7 @@ void mrn_sim_diagnostics(const mrn_sim *sim, mrn_diagnostics *out) {
   double mom0 = 0, mom1 = 0, mom2 = 0, ang0 = 0, ang1 = 0, ang2 = 0, mx0 = 0, mx1 = 0, mx2 = 0;
   const double *g = sim->gravity;
   const long n = (long)ps->n;
-#pragma omp parallel for schedule(static) reduction(+ : ek, eg, eel, wpl, mass, mom0, mom1, mom2, ang0, ang1, \
+#pragma omp parallel for schedule(static) if (n > MRN_OMP_MIN_ITEMS) reduction(+ : ek, eg, eel, wpl, mass, mom0, mom1, mom2, ang0, ang1, \
                                                         ang2, mx0, mx1, mx2)
   for (long p = 0; p < n; p++) {
     const double m = ps->mass[p];

@@ -14,6 +14,7 @@
 #include <string.h>
 
 #include "core/error.h"
+#include "core/parallel.h"
 #include "core/tensor.h"
 #include "solver/simulation.h"
 #include "transfer/kernels.h"
@@ -23,7 +24,7 @@ static void grid_velocity(mrn_sim *sim) {
   mrn_grid *g = &sim->grid;
   const double floor_mass = sim->mass_floor;
   const long n = (long)g->n;
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (n > MRN_OMP_MIN_ITEMS)
   for (long i = 0; i < n; i++) {
     double m = g->mass[i];
     for (int d = 0; d < 3; d++) g->vel[3 * i + d] = m > floor_mass ? g->mom[3 * i + d] / m : 0.0;
@@ -37,7 +38,7 @@ static void grid_update(mrn_sim *sim, double dt) {
   mrn_grid *g = &sim->grid;
   const double floor_mass = sim->mass_floor;
   const long n = (long)g->n;
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (n > MRN_OMP_MIN_ITEMS)
   for (long i = 0; i < n; i++) {
     double m = g->mass[i];
     for (int d = 0; d < 3; d++) {
@@ -46,7 +47,7 @@ static void grid_update(mrn_sim *sim, double dt) {
     }
   }
   sim->work_friction += mrn_boundary_apply(&sim->boundary, g, g->vel_new, 1);
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (n > MRN_OMP_MIN_ITEMS)
   for (long i = 0; i < n; i++)
     for (int d = 0; d < 3; d++) g->acc[3 * i + d] = (g->vel_new[3 * i + d] - g->vel[3 * i + d]) / dt;
 }
@@ -96,7 +97,7 @@ static int update_stresses(mrn_sim *sim, double dt) {
   mrn_particles *ps = &sim->particles;
   const long n = (long)ps->n;
   long first_bad = -1;
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (n > MRN_OMP_MIN_ITEMS)
   for (long p = 0; p < n; p++) {
     if (update_particle_stress(sim, (size_t)p, dt)) {
 #pragma omp critical(mrn_bad_particle)

@@ -2,6 +2,7 @@
  * KNAME(x) naming the specialised functions. See kernels.h. */
 #include <string.h>
 
+#include "core/parallel.h"
 #include "core/tensor.h"
 
 #include "solver/simulation.h"
@@ -47,7 +48,7 @@ void KNAME(mrn_gradient)(mrn_sim *sim, const double *gvel) {
   const mrn_grid *g = &sim->grid;
   mrn_particles *ps = &sim->particles;
   const long n = (long)ps->n;
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (n > MRN_OMP_MIN_ITEMS)
   for (long p = 0; p < n; p++) {
     KNAME(stencil) s;
     KNAME(stencil_build)(g, sim->shape, ps->x + 3 * p, &s);
@@ -69,7 +70,7 @@ void KNAME(mrn_g2p)(mrn_sim *sim, double dt, double *dx) {
                    : sc->velocity_update == MRN_VUPDATE_FLIP ? 1.0 : sc->flip_fraction;
   const int by_particle = sc->position_update == MRN_XUPDATE_PARTICLE;
   const long n = (long)ps->n;
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (n > MRN_OMP_MIN_ITEMS)
   for (long p = 0; p < n; p++) {
     KNAME(stencil) s;
     double *x = ps->x + 3 * p;

@@ -1,0 +1,52 @@
+# Deck tests: each runs `moraine DECK -q -o OUT` and passes when the deck's own
+# assertions (tests/decks/testlib.lua) hold; a failed check exits non-zero with
+# the deck's file and line.
+set(MORAINE_DECK_DIR ${CMAKE_CURRENT_SOURCE_DIR}/decks)
+set(MORAINE_TEST_OUT ${CMAKE_CURRENT_BINARY_DIR}/out)
+set(MORAINE_PYTHON /usr/bin/python3) # Debian's python3 with python3-vtk9
+
+function(moraine_deck_test name deck)
+  cmake_parse_arguments(ARG "" "" "ARGS;LABELS" ${ARGN})
+  add_test(NAME deck.${name}
+           COMMAND moraine ${MORAINE_DECK_DIR}/${deck} -q -o ${MORAINE_TEST_OUT}/${name} ${ARG_ARGS})
+  # parallel ctest jobs share two cores: threads must not spin while waiting
+  set_tests_properties(deck.${name} PROPERTIES LABELS "deck;${ARG_LABELS}" ENVIRONMENT OMP_WAIT_POLICY=PASSIVE)
+endfunction()
+
+moraine_deck_test(free_fall free_fall.lua)
+moraine_deck_test(lithostatic lithostatic.lua)
+moraine_deck_test(axial_bar_linear axial_bar.lua ARGS --set shape=linear --set cells=16)
+moraine_deck_test(axial_bar_quadratic axial_bar.lua ARGS --set shape=quadratic_bspline --set cells=32)
+moraine_deck_test(bouncing_cube_flip bouncing_cube.lua ARGS --set transfer=FLIP)
+moraine_deck_test(bouncing_cube_pic bouncing_cube.lua ARGS --set transfer=PIC)
+
+# VTK files read back by the real VTK reader
+moraine_deck_test(vtk_output vtk_output.lua)
+add_test(NAME python.vtk_run_readback
+         COMMAND ${MORAINE_PYTHON} ${CMAKE_CURRENT_SOURCE_DIR}/python/check_run_vtk.py
+                 ${MORAINE_TEST_OUT}/vtk_output run2d series3d/run3d)
+set_tests_properties(python.vtk_run_readback PROPERTIES DEPENDS deck.vtk_output LABELS python)
+add_test(NAME python.vtk_roundtrip_write COMMAND test_vtk ${MORAINE_TEST_OUT}/vtk_roundtrip)
+add_test(NAME python.vtk_roundtrip
+         COMMAND ${MORAINE_PYTHON} ${CMAKE_CURRENT_SOURCE_DIR}/python/test_vtk_roundtrip.py
+                 ${MORAINE_TEST_OUT}/vtk_roundtrip)
+set_tests_properties(python.vtk_roundtrip PROPERTIES DEPENDS python.vtk_roundtrip_write LABELS python)
+
+# Bad input: every deck in tests/bad/ must fail with the message on its first line
+file(GLOB MORAINE_BAD_DECKS CONFIGURE_DEPENDS ${CMAKE_CURRENT_SOURCE_DIR}/bad/*.lua)
+foreach(deck ${MORAINE_BAD_DECKS})
+  get_filename_component(name ${deck} NAME_WE)
+  add_test(NAME bad.${name}
+           COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/bad/run.sh $<TARGET_FILE:moraine> ${deck} ${MORAINE_TEST_OUT}/bad/${name})
+  set_tests_properties(bad.${name} PROPERTIES LABELS bad)
+endforeach()
+
+# The examples run (shortened through --set) so they cannot rot
+file(GLOB MORAINE_EXAMPLES CONFIGURE_DEPENDS ${CMAKE_SOURCE_DIR}/examples/*/deck.lua)
+foreach(deck ${MORAINE_EXAMPLES})
+  get_filename_component(dir ${deck} DIRECTORY)
+  get_filename_component(name ${dir} NAME)
+  add_test(NAME example.${name}
+           COMMAND moraine ${deck} -q -o ${MORAINE_TEST_OUT}/example_${name} --set quick=true)
+  set_tests_properties(example.${name} PROPERTIES LABELS example)
+endforeach()
