@@ -5,4 +5,4 @@ cd "$(dirname "$0")/.."
 scripts/install-deps.sh
 cmake -S . -B build -DCMAKE_BUILD_TYPE=Release
 cmake --build build -j "$(nproc 2>/dev/null || echo 2)"
-build/moraine examples/column_drop/deck.lua -o out/column_drop "$@"
+build/moraine examples/colliding_disks/deck.lua -o out/colliding_disks "$@"

@@ -15,9 +15,9 @@ cmake --build build -j "$jobs"
 (cd build && ctest --output-on-failure -j "$jobs")
 
 if [ "$sanitize" = 1 ]; then
-  cmake -S . -B build-asan -DCMAKE_BUILD_TYPE=Debug -DMORAINE_SANITIZE=ON -DMORAINE_OPENMP=OFF
+  cmake -S . -B build-asan -DCMAKE_BUILD_TYPE=RelWithDebInfo -DMORAINE_SANITIZE=ON
   cmake --build build-asan -j "$jobs"
-  # the sanitised build runs the quick tests (the long physics runs are too slow under ASan)
+  # the whole suite again, sanitised (tests labelled "slow", if any, are left to the release pass)
   (cd build-asan && ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 \
      ctest --output-on-failure -j "$jobs" -LE slow)
 fi
