@@ -24,10 +24,14 @@ typedef struct mrn_material_point {
   double stress[6];       /* in: start-of-step stress (rotated); out: new stress */
   double dstrain[6];      /* strain increment sym(L) dt (002, Eq. 29) */
   const double *F;        /* deformation gradient at the end of the step */
-  double J;               /* det F */
+  double J;               /* det F at the end of the step */
+  double J_old;           /* det F at the start of the step */
   double dt;
   double *state;          /* history variables (`nstate` values) */
-  double de_elastic;      /* out: elastic energy increment per unit volume (000, Eq. 64) */
+  double de_elastic;      /* out: elastic energy increment per unit volume (000, Eq. 64); the step
+                           * multiplies it by the mid-step volume V0 (J_old + J) / 2, so a model
+                           * with a stored-energy density psi per reference volume returns
+                           * (psi_new - psi_old) / ((J_old + J) / 2) */
   double dw_plastic;      /* out: plastic work increment per unit volume, <= 0 (000, Eq. 65) */
 } mrn_material_point;
 

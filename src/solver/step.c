@@ -63,6 +63,7 @@ static int update_particle_stress(mrn_sim *sim, size_t p, double dt) {
   double inc[9], Fn[9];
   for (int k = 0; k < 9; k++) inc[k] = (k % 4 == 0 ? 1.0 : 0.0) + dt * L[k];
   mat_mul(inc, F, Fn);
+  double J_old = mat_det(F);
   double J = mat_det(Fn);
   if (!(J > 0.0)) return 1;
   memcpy(F, Fn, sizeof Fn);
@@ -80,6 +81,7 @@ static int update_particle_stress(mrn_sim *sim, size_t p, double dt) {
   }
   pt.F = F;
   pt.J = J;
+  pt.J_old = J_old;
   pt.dt = dt;
   pt.state = ps->state_stride ? ps->state + (size_t)ps->state_stride * p : NULL;
   pt.de_elastic = pt.dw_plastic = 0.0;
