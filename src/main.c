@@ -10,7 +10,9 @@
 #include <omp.h>
 #endif
 
+#include "core/error.h"
 #include "core/log.h"
+#include "io/atomic_file.h"
 #include "core/spec.h"
 #include "lua/moraine_lua.h"
 
@@ -115,6 +117,12 @@ int main(int argc, char **argv) {
     usage(stderr);
     free(sets);
     return 2;
+  }
+  /* the output directory exists before the deck runs, so decks can write there too */
+  if (mrn_mkdir_p(opt.outdir) != 0) {
+    fprintf(stderr, "moraine: %s\n", mrn_error_message());
+    free(sets);
+    return 1;
   }
   opt.sets = sets;
   opt.nsets = nsets;

@@ -49,7 +49,9 @@ int mrn_grid_init(mrn_grid *g, int dim, const double origin[3], const double siz
   g->vel_new = calloc(3 * g->n, sizeof(double));
   g->force = calloc(3 * g->n, sizeof(double));
   g->acc = calloc(3 * g->n, sizeof(double));
-  if (!g->mass || !g->mom || !g->vel || !g->vel_new || !g->force || !g->acc) {
+  g->vel_star = calloc(3 * g->n, sizeof(double));
+  g->work = calloc(3 * g->n, sizeof(double));
+  if (!g->mass || !g->mom || !g->vel || !g->vel_new || !g->force || !g->acc || !g->vel_star || !g->work) {
     mrn_grid_free(g);
     return mrn_error("grid: out of memory for %zu nodes", (size_t)total);
   }
@@ -63,7 +65,9 @@ void mrn_grid_free(mrn_grid *g) {
   free(g->vel_new);
   free(g->force);
   free(g->acc);
-  g->mass = g->mom = g->vel = g->vel_new = g->force = g->acc = NULL;
+  free(g->vel_star);
+  free(g->work);
+  g->mass = g->mom = g->vel = g->vel_new = g->force = g->acc = g->vel_star = g->work = NULL;
 }
 
 void mrn_grid_clear(mrn_grid *g) {

@@ -10,7 +10,7 @@
 
 #include <stddef.h>
 
-#define MRN_GRID_PAD 1
+#define MRN_GRID_PAD 2
 
 typedef struct mrn_grid {
   int dim;
@@ -30,6 +30,8 @@ typedef struct mrn_grid {
   double *vel_new;  /* 3n updated velocity V~^i (000, Eq. 28) */
   double *force;    /* 3n total nodal force */
   double *acc;      /* 3n acceleration actually applied, (V~ - V)/dt after BCs */
+  double *vel_star; /* 3n XPIC(m) smoothed velocity V* (see transfer/xpic.c) */
+  double *work;     /* 3n scratch for the XPIC iterations */
 } mrn_grid;
 
 /* size[d] is rounded to a whole number of cells (error if the rounding is off

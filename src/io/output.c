@@ -136,8 +136,17 @@ int mrn_output_maybe_vtk(mrn_output *o, const mrn_sim *sim) {
 }
 
 static int open_csv(mrn_output *o) {
-  if (mrn_mkdir_p(o->dir) != MRN_OK) return MRN_ERR_IO;
   char *path = mrn_path_join(o->dir, o->csv_name);
+  char *slash = strrchr(path, '/');
+  if (slash) { /* the output directory and any directory in the file name */
+    *slash = '\0';
+    int rc = mrn_mkdir_p(path);
+    *slash = '/';
+    if (rc != MRN_OK) {
+      free(path);
+      return MRN_ERR_IO;
+    }
+  }
   o->csv = fopen(path, "w");
   if (!o->csv) {
     int rc = mrn_error_code(MRN_ERR_IO, "cannot write '%s': %s", path, strerror(errno));

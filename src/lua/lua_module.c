@@ -46,11 +46,13 @@ const char *mrn_lua_library_dir(void) {
 
 static int l_param(lua_State *L) {
   const char *name = luaL_checkstring(L, 1);
+  int has_default = !lua_isnone(L, 2);
+  lua_settop(L, 2);
   lua_getfield(L, LUA_REGISTRYINDEX, "moraine.args");
   lua_getfield(L, -1, name);
   if (lua_isnil(L, -1)) {
+    if (!has_default) return luaL_error(L, "param('%s'): not given with --set and no default", name);
     lua_settop(L, 2);
-    if (lua_isnone(L, 2)) return luaL_error(L, "param('%s'): not given with --set and no default", name);
     return 1;
   }
   /* convert to the default's type when it is a number or boolean */

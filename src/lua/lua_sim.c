@@ -42,6 +42,8 @@ static const mrn_spec sim_specs[] = {
     {"dim", MRN_SPEC_INTEGER, 1, 2, 2, 3, 0, 0, "", "dimension: 2 (plane strain) or 3", NULL},
     {"grid", MRN_SPEC_TABLE, 1, 0, 0, 0, 0, 0, NULL, "background grid {origin, size, cell}", NULL},
     {"shape", MRN_SPEC_STRING, 0, 0, 0, 0, 0, 0, NULL, "shape function (default quadratic_bspline)", NULL},
+    {"shape_boundary", MRN_SPEC_STRING, 0, 0, 0, 0, 0, 0, NULL,
+     "kernels at the grid faces: extended (default), truncated, modified or wls", NULL},
     {"scheme", MRN_SPEC_ANY, 0, 0, 0, 0, 0, 0, NULL, "strategy preset string or {transfer, stress_update}", NULL},
     {"gravity", MRN_SPEC_VECTOR, 0, 0, -HUGE_VAL, HUGE_VAL, 0, 0, "m/s^2", "body acceleration (default 0)", NULL},
     {"boundary", MRN_SPEC_TABLE, 0, 0, 0, 0, 0, 0, NULL, "face conditions (default slip on every face)", NULL},
@@ -60,9 +62,16 @@ static const mrn_spec grid_specs[] = {
     {"cell", MRN_SPEC_NUMBER, 1, 0, 0, HUGE_VAL, 1, 0, "m", "cell size (square/cubic cells)", NULL},
 };
 
+static const char *const gradient_choices[] = {"standard", "mls", NULL};
 static const mrn_spec scheme_specs[] = {
     {"transfer", MRN_SPEC_STRING, 0, 0, 0, 0, 0, 0, NULL, "strategy preset (default FLIP)", NULL},
-    {"stress_update", MRN_SPEC_STRING, 0, 0, 0, 0, 0, 0, NULL, "USF, USL or MUSL (default USF)", NULL},
+    {"stress_update", MRN_SPEC_STRING, 0, 0, 0, 0, 0, 0, NULL, "USF, USL, MUSL or USAVG (default USF)", NULL},
+    {"grid_velocity", MRN_SPEC_STRING, 0, 0, 0, 0, 0, 0, NULL, "plain, affine or taylor (overrides the preset)", NULL},
+    {"velocity_update", MRN_SPEC_STRING, 0, 0, 0, 0, 0, 0, NULL, "PIC, FLIP, blend or XPIC (overrides the preset)", NULL},
+    {"position_update", MRN_SPEC_STRING, 0, 0, 0, 0, 0, 0, NULL, "grid, particle or XPIC (overrides the preset)", NULL},
+    {"flip_fraction", MRN_SPEC_NUMBER, 0, 1, 0, 1, 0, 0, "", "X of the blend X FLIP + (1 - X) PIC (000, Eq. 37)", NULL},
+    {"xpic_order", MRN_SPEC_INTEGER, 0, 1, 1, 16, 0, 0, "", "m of XPIC(m) (000, Eqs. 39-41)", NULL},
+    {"gradient", MRN_SPEC_STRING, 0, 0, 0, 0, 0, 0, NULL, "kernel gradient: standard or mls (002, Eq. 62)", gradient_choices},
 };
 
 static const char *const format_choices[] = {"binary", "ascii", NULL};
@@ -211,24 +220,53 @@ static void read_boundary(lua_State *L, int idx, const char *where, mrn_sim *sim
   }
 }
 
+/* one of the three knobs by name, overriding the preset */
+static int read_knob(lua_State *L, int idx, const char *where, const char *key, const char *const *names) {
+  const char *v = mrn_lua_get_string(L, idx, where, scheme_specs, MRN_COUNT(scheme_specs), key);
+  if (!v) return -1;
+  mrn_lua_check_choice(L, where, key, v, names);
+  return mrn_name_index(names, v);
+}
+
 static void read_scheme(lua_State *L, int idx, const char *where, mrn_sim *sim) {
   idx = lua_absindex(L, idx);
   mrn_scheme s = sim->scheme;
   if (lua_type(L, idx) == LUA_TSTRING) {
     if (mrn_scheme_from_preset(lua_tostring(L, idx), &s) != MRN_OK) mrn_lua_error(L, where, "%s", mrn_error_message());
   } else if (lua_istable(L, idx)) {
-    mrn_lua_check_table(L, idx, where, scheme_specs, MRN_COUNT(scheme_specs));
-    const char *su = mrn_lua_get_string(L, idx, where, scheme_specs, MRN_COUNT(scheme_specs), "stress_update");
+    const int n = MRN_COUNT(scheme_specs);
+    mrn_lua_check_table(L, idx, where, scheme_specs, n);
+    const char *su = mrn_lua_get_string(L, idx, where, scheme_specs, n, "stress_update");
     if (su) {
       mrn_lua_check_choice(L, where, "stress_update", su, mrn_stress_update_names());
       mrn_stress_update_from_name(su, &s.stress_update);
     }
-    const char *tr = mrn_lua_get_string(L, idx, where, scheme_specs, MRN_COUNT(scheme_specs), "transfer");
+    const char *tr = mrn_lua_get_string(L, idx, where, scheme_specs, n, "transfer");
     if (tr && mrn_scheme_from_preset(tr, &s) != MRN_OK) mrn_lua_error(L, where, "transfer: %s", mrn_error_message());
+    int k;
+    int custom = 0;
+    if ((k = read_knob(L, idx, where, "grid_velocity", mrn_grid_velocity_names())) >= 0) s.grid_velocity = k, custom = 1;
+    if ((k = read_knob(L, idx, where, "velocity_update", mrn_velocity_update_names())) >= 0) s.velocity_update = k, custom = 1;
+    if ((k = read_knob(L, idx, where, "position_update", mrn_position_update_names())) >= 0) s.position_update = k, custom = 1;
+    if (mrn_lua_has(L, idx, "flip_fraction")) {
+      s.flip_fraction = mrn_lua_get_number(L, idx, where, scheme_specs, n, "flip_fraction");
+      custom = 1;
+    }
+    if (mrn_lua_has(L, idx, "xpic_order")) {
+      s.xpic_order = (int)mrn_lua_get_integer(L, idx, where, scheme_specs, n, "xpic_order");
+      custom = 1;
+    }
+    const char *grad = mrn_lua_get_string(L, idx, where, scheme_specs, n, "gradient");
+    if (grad) {
+      s.mls_gradient = strcmp(grad, "mls") == 0;
+      custom = 1;
+    }
+    if (custom) mrn_scheme_describe(&s);
   } else {
     mrn_lua_error(L, where, "scheme must be a preset name or a table {transfer = ..., stress_update = ...}, got %s",
                   luaL_typename(L, idx));
   }
+  if (mrn_scheme_validate(&s) != MRN_OK) mrn_lua_error(L, where, "%s", mrn_error_message());
   sim->scheme = s;
 }
 
@@ -360,6 +398,12 @@ static int l_simulation(lua_State *L) {
     mrn_shape_from_name(shape, &cfg.shape);
   }
   mrn_lua_get_vector(L, 1, where, "gravity", dim, cfg.gravity, 0);
+  const char *sb = mrn_lua_get_string(L, 1, where, sim_specs, MRN_COUNT(sim_specs), "shape_boundary");
+  cfg.kernel_boundary = MRN_KERNEL_EXTENDED;
+  if (sb) {
+    mrn_lua_check_choice(L, where, "shape_boundary", sb, mrn_kernel_boundary_names());
+    mrn_kernel_boundary_from_name(sb, &cfg.kernel_boundary);
+  }
 
   sim_box *b = lua_newuserdatauv(L, sizeof *b, 0);
   memset(b, 0, sizeof *b);
@@ -442,6 +486,34 @@ static void init_vector_field(lua_State *L, int idx, const char *where, const ch
   }
 }
 
+/* (sim, options, first, count): initial velocity and stress of new particles */
+static int init_particle_fields(lua_State *L) {
+  sim_box *b = check_sim(L, 1);
+  const char *where = "add_particles()";
+  size_t first = (size_t)lua_tointeger(L, 3);
+  long count = (long)lua_tointeger(L, 4);
+  mrn_particles *ps = &b->sim->particles;
+  if (mrn_lua_has(L, 2, "velocity")) {
+    lua_getfield(L, 2, "velocity");
+    init_vector_field(L, -1, where, "velocity", b, first, count, ps->v, 3, b->sim->dim);
+    lua_pop(L, 1);
+    b->sim->affine_pending = 1; /* grad v / C follow at the next run (000 §3.2) */
+  }
+  if (mrn_lua_has(L, 2, "stress")) {
+    lua_getfield(L, 2, "stress");
+    init_vector_field(L, -1, where, "stress", b, first, count, ps->stress, 6, 6);
+    lua_pop(L, 1);
+  }
+  for (long i = 0; i < count; i++) {
+    const double *v = ps->v + 3 * (first + i), *s = ps->stress + 6 * (first + i);
+    for (int k = 0; k < 6; k++)
+      if (!isfinite(s[k]) || (k < 3 && !isfinite(v[k])))
+        mrn_lua_error(L, where, "initial velocity or stress is not finite at (%f, %f, %f)", ps->x[3 * (first + i)],
+                      ps->x[3 * (first + i) + 1], ps->x[3 * (first + i) + 2]);
+  }
+  return 0;
+}
+
 static int l_add_particles(lua_State *L) {
   sim_box *b = check_sim(L, 1);
   const char *where = "add_particles()";
@@ -475,22 +547,18 @@ static int l_add_particles(lua_State *L) {
     mrn_lua_error(L, where, "%s", mrn_error_message());
   if (count == 0) mrn_lua_error(L, where, "the region seeds no particle on this grid (is it inside the domain?)");
 
-  mrn_particles *ps = &b->sim->particles;
-  if (mrn_lua_has(L, 3, "velocity")) {
-    lua_getfield(L, 3, "velocity");
-    init_vector_field(L, -1, where, "velocity", b, first, count, ps->v, 3, dim);
-    lua_pop(L, 1);
-  }
-  if (mrn_lua_has(L, 3, "stress")) {
-    lua_getfield(L, 3, "stress");
-    init_vector_field(L, -1, where, "stress", b, first, count, ps->stress, 6, 6);
-    lua_pop(L, 1);
-  }
-  for (long i = 0; i < count; i++) {
-    const double *v = ps->v + 3 * (first + i), *s = ps->stress + 6 * (first + i);
-    for (int k = 0; k < 6; k++)
-      if (!isfinite(s[k]) || (k < 3 && !isfinite(v[k])))
-        mrn_lua_error(L, where, "initial velocity or stress is not finite at particle %lld", (long long)ps->id[first + i]);
+  /* the initial fields call deck functions that may fail: on any error the
+   * particles just seeded are removed again, so a caught error leaves the
+   * simulation as it was */
+  lua_pushcfunction(L, init_particle_fields);
+  lua_pushvalue(L, 1);
+  lua_pushvalue(L, 3);
+  lua_pushinteger(L, (lua_Integer)first);
+  lua_pushinteger(L, count);
+  if (lua_pcall(L, 4, 0, 0) != LUA_OK) {
+    b->sim->particles.n = first;
+    mrn_sim_particles_changed(b->sim);
+    return lua_error(L);
   }
   lua_pushinteger(L, count);
   return 1;
@@ -707,7 +775,8 @@ static int l_particle(lua_State *L) {
   sim_box *b = check_sim(L, 1);
   lua_Integer i = luaL_checkinteger(L, 2);
   mrn_particles *ps = &b->sim->particles;
-  if (i < 1 || (size_t)i > ps->n) return luaL_error(L, "particle(): index %lld outside 1..%zu", (long long)i, ps->n);
+  if (i < 1 || (size_t)i > ps->n)
+    return luaL_error(L, "particle(): index %I outside 1..%I", (lua_Integer)i, (lua_Integer)ps->n);
   size_t p = (size_t)i - 1;
   int dim = b->sim->dim;
   lua_createtable(L, 0, 8);
@@ -727,6 +796,12 @@ static int l_info(lua_State *L) {
   mrn_sim *s = b->sim;
   lua_createtable(L, 0, 8);
   lua_pushstring(L, mrn_shape_info_of(s->shape)->name); lua_setfield(L, -2, "shape");
+  lua_pushstring(L, mrn_kernel_boundary_names()[s->kernel_boundary]); lua_setfield(L, -2, "shape_boundary");
+  lua_pushstring(L, mrn_grid_velocity_names()[s->scheme.grid_velocity]); lua_setfield(L, -2, "grid_velocity");
+  lua_pushstring(L, mrn_velocity_update_names()[s->scheme.velocity_update]); lua_setfield(L, -2, "velocity_update");
+  lua_pushstring(L, mrn_position_update_names()[s->scheme.position_update]); lua_setfield(L, -2, "position_update");
+  lua_pushnumber(L, s->scheme.flip_fraction); lua_setfield(L, -2, "flip_fraction");
+  lua_pushinteger(L, s->scheme.xpic_order); lua_setfield(L, -2, "xpic_order");
   lua_pushstring(L, s->scheme.name); lua_setfield(L, -2, "transfer");
   lua_pushstring(L, mrn_stress_update_names()[s->scheme.stress_update]); lua_setfield(L, -2, "stress_update");
   lua_pushnumber(L, s->grid.cell); lua_setfield(L, -2, "cell");
@@ -755,10 +830,12 @@ static int l_tostring(lua_State *L) {
     return 1;
   }
   mrn_sim *s = b->sim;
-  lua_pushfstring(L, "moraine simulation '%s' (%dD, %d x %d%s cells of %f m, %d particles, %s + %s, step %d, t = %f s)",
-                  b->name, s->dim, s->grid.ncell[0], s->grid.ncell[1], s->dim == 3 ? " x more" : "", s->grid.cell,
-                  (int)s->particles.n, s->scheme.name, mrn_stress_update_names()[s->scheme.stress_update], (int)s->step,
-                  s->time);
+  char cells[64];
+  if (s->dim == 3) snprintf(cells, sizeof cells, "%d x %d x %d", s->grid.ncell[0], s->grid.ncell[1], s->grid.ncell[2]);
+  else snprintf(cells, sizeof cells, "%d x %d", s->grid.ncell[0], s->grid.ncell[1]);
+  lua_pushfstring(L, "moraine simulation '%s' (%dD, %s cells of %f m, %I particles, %s + %s, step %I, t = %f s)", b->name,
+                  s->dim, cells, s->grid.cell, (lua_Integer)s->particles.n, s->scheme.name,
+                  mrn_stress_update_names()[s->scheme.stress_update], (lua_Integer)s->step, s->time);
   return 1;
 }
 

@@ -21,6 +21,7 @@
   X(vol0, 1, "initial volume")                                                              \
   X(F, 9, "deformation gradient")                                                           \
   X(gradv, 9, "velocity gradient of the last step (1/s)")                                   \
+  X(affine, 9, "APIC C = B D^-1 (000, Eq. 25) or Taylor grad v (000, Eq. 22) (1/s)")       \
   X(stress, 6, "Cauchy stress (Pa), tension positive")                                      \
   X(strain, 6, "accumulated small strain (sum of symmetric velocity-gradient increments)")   \
   X(e_elastic, 1, "elastic energy stored (J; J/m in 2D)")                                   \

@@ -5,11 +5,27 @@
 static const mrn_shape_info shapes[MRN_SHAPE_KIND_COUNT] = {
     {MRN_SHAPE_LINEAR, "linear", 2,
      "piecewise-linear hat functions (C0; prone to cell-crossing noise, 000 §2.3)"},
+    {MRN_SHAPE_GIMP, "gimp", 3,
+     "uGIMP: hat functions convolved with the particle's initial extent (Bardenhagen & Kober)"},
     {MRN_SHAPE_QUADRATIC_BSPLINE, "quadratic_bspline", 3,
-     "quadratic B-spline, C1, support of 3 cells per axis (002, Eq. 6)"},
+     "quadratic B-spline, C1, support of 3 cells per axis (002 §4, Eq. 52)"},
+    {MRN_SHAPE_CUBIC_BSPLINE, "cubic_bspline", 4,
+     "cubic B-spline, C2, support of 4 cells per axis (000 §2.3; 002 Fig. 4)"},
 };
 
-static const char *const names[] = {"linear", "quadratic_bspline", NULL};
+static const char *const names[] = {"linear", "gimp", "quadratic_bspline", "cubic_bspline", NULL};
+static const char *const boundary_names[] = {"extended", "truncated", "modified", "wls", NULL};
+
+const char *const *mrn_kernel_boundary_names(void) { return boundary_names; }
+
+int mrn_kernel_boundary_from_name(const char *name, mrn_kernel_boundary *out) {
+  for (int i = 0; boundary_names[i]; i++)
+    if (strcmp(boundary_names[i], name) == 0) {
+      *out = (mrn_kernel_boundary)i;
+      return 1;
+    }
+  return 0;
+}
 
 const mrn_shape_info *mrn_shape_info_of(mrn_shape_kind k) {
   return k < MRN_SHAPE_KIND_COUNT ? &shapes[k] : NULL;

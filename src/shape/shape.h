@@ -13,7 +13,44 @@
 
 #include <math.h>
 
-typedef enum { MRN_SHAPE_LINEAR = 0, MRN_SHAPE_QUADRATIC_BSPLINE, MRN_SHAPE_KIND_COUNT } mrn_shape_kind;
+typedef enum {
+  MRN_SHAPE_LINEAR = 0,
+  MRN_SHAPE_GIMP,
+  MRN_SHAPE_QUADRATIC_BSPLINE,
+  MRN_SHAPE_CUBIC_BSPLINE,
+  MRN_SHAPE_KIND_COUNT
+} mrn_shape_kind;
+
+/* How kernels meet the faces of the grid:
+ *   EXTENDED   ghost nodes beyond each face keep the full kernel (face
+ *              conditions act on the ghost nodes too);
+ *   TRUNCATED  nodes outside the domain are dropped; the partition of unity
+ *              fails next to the faces (for comparison and tests);
+ *   MODIFIED   boundary-modified B-splines: each exterior node's function is
+ *              folded onto the two nearest interior nodes by linear
+ *              extrapolation (u_-1 = 2 u_0 - u_1), which restores the partition
+ *              of unity and linear reproduction with nodes in the domain only
+ *              (the purpose of 000 §2.3);
+ *   WLS        truncated kernels corrected by weighted least squares
+ *              (002, Eqs. 53-63), only for particles whose support crosses a
+ *              face (002, Eqs. 61 and 63). */
+typedef enum {
+  MRN_KERNEL_EXTENDED = 0,
+  MRN_KERNEL_TRUNCATED,
+  MRN_KERNEL_MODIFIED,
+  MRN_KERNEL_WLS,
+  MRN_KERNEL_BOUNDARY_COUNT
+} mrn_kernel_boundary;
+
+/* everything the transfer kernels need to know about the kernel */
+typedef struct mrn_kernel_options {
+  mrn_shape_kind shape;
+  mrn_kernel_boundary boundary;
+  int mls_gradient; /* 1: grad N_i = (C2 + C3 (x_i - x_p)) N_i everywhere (002, Eq. 62) */
+} mrn_kernel_options;
+
+const char *const *mrn_kernel_boundary_names(void);
+int mrn_kernel_boundary_from_name(const char *name, mrn_kernel_boundary *out);
 
 #define MRN_SHAPE_MAX_SUPPORT 4
 
@@ -29,7 +66,9 @@ int mrn_shape_from_name(const char *name, mrn_shape_kind *out);
 /* NULL-terminated list of names */
 const char *const *mrn_shape_names(void);
 
-static inline int mrn_shape_support(mrn_shape_kind k) { return k == MRN_SHAPE_LINEAR ? 2 : 3; }
+static inline int mrn_shape_support(mrn_shape_kind k) {
+  return k == MRN_SHAPE_LINEAR ? 2 : k == MRN_SHAPE_CUBIC_BSPLINE ? 4 : 3;
+}
 
 /* linear hat functions, support 2 */
 static inline int mrn_shape_linear_1d(double xi, double *w, double *dw) {
@@ -42,7 +81,7 @@ static inline int mrn_shape_linear_1d(double xi, double *w, double *dw) {
   return base;
 }
 
-/* quadratic B-spline (002, Eq. 6 with the cell size h), support 3 */
+/* quadratic B-spline (002 §4, the kernel of Eq. 52), support 3 */
 static inline int mrn_shape_quadratic_1d(double xi, double *w, double *dw) {
   int base = (int)floor(xi - 0.5);
   double d0 = xi - base; /* in [0.5, 1.5) : distance to the first node */
@@ -57,9 +96,58 @@ static inline int mrn_shape_quadratic_1d(double xi, double *w, double *dw) {
   return base;
 }
 
-static inline int mrn_shape_weights_1d(mrn_shape_kind k, double xi, double *w, double *dw) {
+/* cubic B-spline, support 4: N(r) = r^3/2 - r^2 + 2/3 for |r| < 1,
+ * (2 - |r|)^3 / 6 for 1 <= |r| < 2 (r in cells) */
+static inline int mrn_shape_cubic_1d(double xi, double *w, double *dw) {
+  int base = (int)floor(xi) - 1;
+  for (int k = 0; k < 4; k++) {
+    double r = xi - (base + k);
+    double a = fabs(r), sgn = r < 0 ? -1.0 : 1.0;
+    if (a < 1.0) {
+      w[k] = 0.5 * a * a * a - a * a + 2.0 / 3.0;
+      dw[k] = sgn * (1.5 * a * a - 2.0 * a);
+    } else if (a < 2.0) {
+      double t = 2.0 - a;
+      w[k] = t * t * t / 6.0;
+      dw[k] = -sgn * 0.5 * t * t;
+    } else {
+      w[k] = dw[k] = 0.0;
+    }
+  }
+  return base;
+}
+
+/* uGIMP (Bardenhagen & Kober): the hat function convolved with a particle of
+ * half-width lp (in cells, fixed at its initial size), support 3 for lp <= 1/2.
+ * dw is d/dxi of the weight, r = xi - node. */
+static inline int mrn_shape_gimp_1d(double xi, double lp, double *w, double *dw) {
+  int base = (int)floor(xi - lp);
+  for (int k = 0; k < 3; k++) {
+    double r = xi - (base + k);
+    double a = fabs(r), sgn = r < 0 ? -1.0 : 1.0;
+    if (a < lp) {
+      w[k] = 1.0 - (r * r + lp * lp) / (2.0 * lp);
+      dw[k] = -r / lp;
+    } else if (a < 1.0 - lp) {
+      w[k] = 1.0 - a;
+      dw[k] = -sgn;
+    } else if (a < 1.0 + lp) {
+      double t = 1.0 + lp - a;
+      w[k] = t * t / (4.0 * lp);
+      dw[k] = -sgn * t / (2.0 * lp);
+    } else {
+      w[k] = dw[k] = 0.0;
+    }
+  }
+  return base;
+}
+
+/* lp: particle half-width in cells (uGIMP only) */
+static inline int mrn_shape_weights_1d(mrn_shape_kind k, double xi, double lp, double *w, double *dw) {
   switch (k) {
   case MRN_SHAPE_LINEAR: return mrn_shape_linear_1d(xi, w, dw);
+  case MRN_SHAPE_GIMP: return mrn_shape_gimp_1d(xi, lp, w, dw);
+  case MRN_SHAPE_CUBIC_BSPLINE: return mrn_shape_cubic_1d(xi, w, dw);
   default: return mrn_shape_quadratic_1d(xi, w, dw);
   }
 }

@@ -20,6 +20,7 @@ mrn_sim *mrn_sim_new(const mrn_sim_config *cfg) {
   sim->dim = cfg->dim;
   mrn_particles_init(&sim->particles, cfg->dim);
   sim->shape = cfg->shape;
+  sim->kernel_boundary = cfg->kernel_boundary;
   mrn_scheme_default(&sim->scheme);
   for (int d = 0; d < 3; d++) sim->gravity[d] = d < cfg->dim ? cfg->gravity[d] : 0.0;
   mrn_dt_policy_a_tau(&sim->dt_policy, 0.05);

@@ -26,6 +26,7 @@ typedef struct mrn_sim {
   mrn_grid grid;
   mrn_particles particles;
   mrn_shape_kind shape;
+  mrn_kernel_boundary kernel_boundary;
   mrn_scheme scheme;
   mrn_boundary boundary;
   double gravity[3];
@@ -42,6 +43,7 @@ typedef struct mrn_sim {
   /* cumulative energy terms that are not stored per particle */
   double work_friction; /* (000, Eq. 66), negative while dissipating */
   double mass_floor;    /* nodes lighter than this are treated as empty */
+  int affine_pending;   /* initial velocities were assigned: initialise grad v / B at the next run */
 
   /* scratch, sized to the particle count */
   double *scratch;
@@ -52,6 +54,7 @@ typedef struct mrn_sim_config {
   int dim;
   double origin[3], size[3], cell;
   mrn_shape_kind shape;
+  mrn_kernel_boundary kernel_boundary;
   double gravity[3];
 } mrn_sim_config;
 
@@ -84,6 +87,11 @@ void mrn_sim_particles_changed(mrn_sim *sim);
 
 /* One explicit step with a given dt (the policy is not asked) */
 int mrn_sim_step_dt(mrn_sim *sim, double dt);
+
+/* Initialise the Taylor grad v (and APIC C, to the same value) of particles
+ * given initial velocities by repeating 000 Eqs. 19-22 until grad v
+ * converges (000 §3.2, last paragraph). Returns the iterations used. */
+int mrn_sim_init_affine(mrn_sim *sim);
 
 /* Energies, momenta and centre of mass of the current state */
 void mrn_sim_diagnostics(const mrn_sim *sim, mrn_diagnostics *d);

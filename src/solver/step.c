@@ -7,6 +7,7 @@
  *   MUSL: as USL, then the new particle momenta are mapped back to the grid
  *         (at the start-of-step positions), BCs, and the stress is updated
  *         from that velocity before the particles move.
+ *   USAVG: half the strain increment as in USF, half as in USL.
  * 000 §3.4 describes MUSL as USL with V~ in Eq. (45); moraine follows the
  * original definitions, in which USL already uses V~ and MUSL re-maps. */
 #include <math.h>
@@ -18,6 +19,7 @@
 #include "core/tensor.h"
 #include "solver/simulation.h"
 #include "transfer/kernels.h"
+#include "transfer/xpic.h"
 
 /* nodal velocity from momentum, for nodes above the mass floor */
 static void grid_velocity(mrn_sim *sim) {
@@ -126,6 +128,17 @@ static double *scratch(mrn_sim *sim, size_t count) {
   return sim->scratch;
 }
 
+/* grid velocity from the particles, and XPIC's smoothed velocity when needed */
+static int grid_velocity_stage(mrn_sim *sim) {
+  grid_velocity(sim);
+  if (sim->scheme.velocity_update == MRN_VUPDATE_XPIC) {
+    double *ps = scratch(sim, 3 * sim->particles.n);
+    if (!ps && sim->particles.n) return mrn_error("step: out of memory");
+    mrn_xpic_smooth(sim, ps);
+  }
+  return MRN_OK;
+}
+
 int mrn_sim_step_dt(mrn_sim *sim, double dt) {
   if (!(dt > 0.0) || !isfinite(dt)) return mrn_error("step %ld: invalid time step %g", sim->step + 1, dt);
   const int dim = sim->dim;
@@ -134,7 +147,7 @@ int mrn_sim_step_dt(mrn_sim *sim, double dt) {
   switch (sim->scheme.stress_update) {
   case MRN_STRESS_USF:
     mrn_p2g(sim, dim, 1, 0);
-    grid_velocity(sim);
+    if ((rc = grid_velocity_stage(sim))) return rc;
     mrn_gradient(sim, dim, sim->grid.vel);
     if ((rc = update_stresses(sim, dt))) return rc;
     mrn_p2g(sim, dim, 0, 1);
@@ -143,18 +156,32 @@ int mrn_sim_step_dt(mrn_sim *sim, double dt) {
     break;
   case MRN_STRESS_USL:
     mrn_p2g(sim, dim, 1, 1);
-    grid_velocity(sim);
+    if ((rc = grid_velocity_stage(sim))) return rc;
     grid_update(sim, dt);
     mrn_gradient(sim, dim, sim->grid.vel_new);
     mrn_g2p(sim, dim, dt, NULL);
     if ((rc = update_stresses(sim, dt))) return rc;
     break;
+  case MRN_STRESS_USAVG:
+    /* half the strain increment from V^i before the forces, half from V~^i
+     * after the motion: two constitutive calls per step (000 §3.4) */
+    mrn_p2g(sim, dim, 1, 0);
+    if ((rc = grid_velocity_stage(sim))) return rc;
+    mrn_gradient(sim, dim, sim->grid.vel);
+    if ((rc = update_stresses(sim, 0.5 * dt))) return rc;
+    mrn_p2g(sim, dim, 0, 1);
+    grid_update(sim, dt);
+    mrn_gradient(sim, dim, sim->grid.vel_new);
+    mrn_g2p(sim, dim, dt, NULL);
+    if ((rc = update_stresses(sim, 0.5 * dt))) return rc;
+    break;
   case MRN_STRESS_MUSL: {
+    mrn_p2g(sim, dim, 1, 1);
+    if ((rc = grid_velocity_stage(sim))) return rc;
+    grid_update(sim, dt);
+    /* the XPIC smoothing used the scratch; the position increments take it now */
     double *dx = scratch(sim, 3 * sim->particles.n);
     if (!dx && sim->particles.n) return mrn_error("step: out of memory");
-    mrn_p2g(sim, dim, 1, 1);
-    grid_velocity(sim);
-    grid_update(sim, dt);
     mrn_g2p(sim, dim, dt, dx);
     /* re-map the updated particle momenta (start-of-step positions) */
     mrn_p2g(sim, dim, 1, 0);

@@ -1,15 +1,16 @@
 /* moraine: particle <-> grid transfer kernels, specialised for 2D and 3D.
  *
  * The same source (kernels_impl.h) is compiled twice, with DIM = 2 and 3;
- * these wrappers pick the right one. */
+ * the wrappers below pick the right one. */
 #ifndef MRN_TRANSFER_KERNELS_H
 #define MRN_TRANSFER_KERNELS_H
 
 struct mrn_sim;
 
-/* P2G: nodal mass and momentum (000, Eqs. 6 and 16) when `momentum` is set,
- * internal force -sum V sigma . grad N (002, Fig. 1 step 3) when `force` is set.
- * The grid arrays touched are cleared first. */
+/* P2G: nodal mass and momentum (000, Eqs. 6, 16), with the affine (000,
+ * Eqs. 23-24) or Taylor (000, Eqs. 19-20) term of the scheme, when
+ * `momentum` is set; internal force -sum V sigma . grad N (002, Fig. 1 step 3)
+ * when `force` is set. The grid arrays touched are cleared first. */
 void mrn_p2g_2d(struct mrn_sim *sim, int momentum, int force);
 void mrn_p2g_3d(struct mrn_sim *sim, int momentum, int force);
 
@@ -18,20 +19,37 @@ void mrn_p2g_3d(struct mrn_sim *sim, int momentum, int force);
 void mrn_gradient_2d(struct mrn_sim *sim, const double *gvel);
 void mrn_gradient_3d(struct mrn_sim *sim, const double *gvel);
 
-/* G2P: new particle velocities by the scheme (000, Eqs. 31, 33, 37) and the
- * position increments (000, Eqs. 32, 36, 38). When `dx` is NULL positions are
- * moved at once, otherwise the increments are stored there (3 per particle). */
+/* G2P: new particle velocities by the scheme (000, Eqs. 31, 33, 37, 40), the
+ * affine/Taylor matrices (000, Eqs. 22, 25-27) and the position increments
+ * (000, Eqs. 32, 36, 38, 41). When `dx` is NULL positions are moved at once,
+ * otherwise the increments are stored there (3 per particle). */
 void mrn_g2p_2d(struct mrn_sim *sim, double dt, double *dx);
 void mrn_g2p_3d(struct mrn_sim *sim, double dt, double *dx);
 
+/* G = interpolation of a nodal field to the particles (000, Eq. 11), 3 per particle */
+void mrn_grid_to_particles_2d(struct mrn_sim *sim, const double *gvel, double *pvel);
+void mrn_grid_to_particles_3d(struct mrn_sim *sim, const double *gvel, double *pvel);
+/* P_m = mass-weighted projection of particle velocities to the nodes (000, Eq. 17);
+ * uses the nodal masses already in the grid */
+void mrn_particles_to_grid_2d(struct mrn_sim *sim, const double *pvel, double *gvel);
+void mrn_particles_to_grid_3d(struct mrn_sim *sim, const double *pvel, double *gvel);
+
+#define MRN_DISPATCH(name, dim, ...) ((dim) == 2 ? name##_2d(__VA_ARGS__) : name##_3d(__VA_ARGS__))
+
 static inline void mrn_p2g(struct mrn_sim *sim, int dim, int momentum, int force) {
-  if (dim == 2) mrn_p2g_2d(sim, momentum, force); else mrn_p2g_3d(sim, momentum, force);
+  MRN_DISPATCH(mrn_p2g, dim, sim, momentum, force);
 }
 static inline void mrn_gradient(struct mrn_sim *sim, int dim, const double *gvel) {
-  if (dim == 2) mrn_gradient_2d(sim, gvel); else mrn_gradient_3d(sim, gvel);
+  MRN_DISPATCH(mrn_gradient, dim, sim, gvel);
 }
 static inline void mrn_g2p(struct mrn_sim *sim, int dim, double dt, double *dx) {
-  if (dim == 2) mrn_g2p_2d(sim, dt, dx); else mrn_g2p_3d(sim, dt, dx);
+  MRN_DISPATCH(mrn_g2p, dim, sim, dt, dx);
+}
+static inline void mrn_grid_to_particles(struct mrn_sim *sim, int dim, const double *gvel, double *pvel) {
+  MRN_DISPATCH(mrn_grid_to_particles, dim, sim, gvel, pvel);
+}
+static inline void mrn_particles_to_grid(struct mrn_sim *sim, int dim, const double *pvel, double *gvel) {
+  MRN_DISPATCH(mrn_particles_to_grid, dim, sim, pvel, gvel);
 }
 
 #endif

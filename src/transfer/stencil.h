@@ -1,33 +1,86 @@
 /* moraine: the nodes a particle talks to, with weights and gradients.
  *
  * Included by the dimension-specialised kernel files with DIM defined to 2
- * or 3, so every loop bound below is a compile-time constant. */
+ * or 3, so every loop bound below is a compile-time constant. The kernel is
+ * the tensor product of 1D functions (002, Eq. 52), adjusted at the faces of
+ * the grid as mrn_kernel_boundary says, and optionally with the MLS gradient
+ * (002 Remark 4; Hu et al. 2018) in place of the kernel's own gradient. */
 #ifndef DIM
 #error "stencil.h needs DIM"
 #endif
 
 #include "grid/grid.h"
 #include "shape/shape.h"
+#include "transfer/wls.h"
 
+#undef STENCIL_MAX
 #define STENCIL_MAX (MRN_SHAPE_MAX_SUPPORT * MRN_SHAPE_MAX_SUPPORT * (DIM == 3 ? MRN_SHAPE_MAX_SUPPORT : 1))
 
 typedef struct KNAME(stencil) {
   int count;
   size_t node[STENCIL_MAX];
   double N[STENCIL_MAX];
-  double dN[STENCIL_MAX][DIM]; /* d N / d x (1/m) */
+  double dN[STENCIL_MAX][DIM];     /* d N / d x (1/m) */
   double offset[STENCIL_MAX][DIM]; /* x_i - x_p, the branch vector (000, Eq. 21) */
 } KNAME(stencil);
 
-/* fill the stencil of a particle at x (which must lie inside the domain) */
-static inline void KNAME(stencil_build)(const mrn_grid *g, mrn_shape_kind shape, const double *x,
-                                        KNAME(stencil) *s) {
+
+/* Fold the weight of exterior node `ext` (domain index) onto the face node
+ * and its neighbour by linear extrapolation: u_ext = (1 + k) u_face - k u_next
+ * with k the distance in cells from the face. */
+static inline void KNAME(fold_exterior)(int base, int sup, int ext, int face, int next, double *w, double *dw) {
+  int ke = ext - base, kf = face - base, kn = next - base;
+  if (kf < 0 || kf >= sup || kn < 0 || kn >= sup) return;
+  double k = fabs((double)(ext - face));
+  w[kf] += (1 + k) * w[ke];
+  dw[kf] += (1 + k) * dw[ke];
+  w[kn] -= k * w[ke];
+  dw[kn] -= k * dw[ke];
+  w[ke] = dw[ke] = 0.0;
+}
+
+/* Apply the face treatment along one axis; returns 1 when the support
+ * crossed a face (so the WLS correction is needed). */
+static inline int KNAME(axis_boundary)(mrn_kernel_boundary mode, int base, int sup, int ncell, double *w,
+                                       double *dw) {
+  int crossed = 0;
+  for (int k = 0; k < sup; k++) {
+    int node = base + k;
+    if (node >= 0 && node <= ncell) continue;
+    if (w[k] != 0.0 || dw[k] != 0.0) crossed = 1;
+    if (mode == MRN_KERNEL_MODIFIED) {
+      if (node < 0) KNAME(fold_exterior)(base, sup, node, 0, 1, w, dw);
+      else KNAME(fold_exterior)(base, sup, node, ncell, ncell - 1, w, dw);
+    } else {
+      w[k] = dw[k] = 0.0;
+    }
+  }
+  return crossed;
+}
+
+/* fill the stencil of a particle at x (inside the domain); vol0 is its
+ * initial volume (uGIMP uses it for the particle size) */
+static inline void KNAME(stencil_build)(const mrn_grid *g, const mrn_kernel_options *opt, const double *x,
+                                        double vol0, KNAME(stencil) *s) {
   double w[DIM][MRN_SHAPE_MAX_SUPPORT], dw[DIM][MRN_SHAPE_MAX_SUPPORT];
   int base[DIM];
-  const int sup = mrn_shape_support(shape);
+  const int sup = mrn_shape_support(opt->shape);
+  double lp = 0.0;
+  if (opt->shape == MRN_SHAPE_GIMP) /* half the particle's initial side, in cells */
+    lp = 0.5 * (DIM == 2 ? sqrt(vol0) : cbrt(vol0)) * g->inv_cell;
+  int crossed = 0;
   for (int d = 0; d < DIM; d++) {
     double xi = (x[d] - g->origin[d]) * g->inv_cell;
-    base[d] = mrn_shape_weights_1d(shape, xi, w[d], dw[d]);
+    base[d] = mrn_shape_weights_1d(opt->shape, xi, lp, w[d], dw[d]);
+    if (opt->shape == MRN_SHAPE_LINEAR && base[d] == g->ncell[d]) {
+      /* a particle exactly on the upper face belongs to the last cell, not to
+       * one beyond the domain (same values, gradient from inside) */
+      base[d] = g->ncell[d] - 1;
+      w[d][0] = 0.0, w[d][1] = 1.0;
+      dw[d][0] = -1.0, dw[d][1] = 1.0;
+    }
+    if (opt->boundary != MRN_KERNEL_EXTENDED)
+      crossed |= KNAME(axis_boundary)(opt->boundary, base[d], sup, g->ncell[d], w[d], dw[d]);
   }
   int c = 0;
 #if DIM == 3
@@ -58,4 +111,7 @@ static inline void KNAME(stencil_build)(const mrn_grid *g, mrn_shape_kind shape,
         c++;
       }
   s->count = c;
+  int correct_values = opt->boundary == MRN_KERNEL_WLS && crossed;
+  if (correct_values || opt->mls_gradient)
+    mrn_wls_correct(DIM, c, s->N, &s->dN[0][0], &s->offset[0][0], correct_values, 1);
 }
