@@ -18,7 +18,12 @@ moraine_deck_test(lithostatic lithostatic.lua)
 moraine_deck_test(axial_bar_linear axial_bar.lua ARGS --set shape=linear --set cells=16)
 moraine_deck_test(axial_bar_quadratic axial_bar.lua ARGS --set shape=quadratic_bspline --set cells=32)
 moraine_deck_test(bouncing_cube_flip bouncing_cube.lua ARGS --set transfer=FLIP)
-moraine_deck_test(bouncing_cube_pic bouncing_cube.lua ARGS --set transfer=PIC)
+moraine_deck_test(bouncing_cube_pic_family bouncing_cube_strategies.lua ARGS --set strategies=PIC,APIC,TPIC,AFLIP)
+moraine_deck_test(bouncing_cube_flip_family bouncing_cube_strategies.lua
+                  ARGS --set strategies=PIC,FLIP,TFLIP,XPIC\(2\),XPIC\(3\),XPIC\(4\))
+moraine_deck_test(rotating_disk rotating_disk.lua)
+moraine_deck_test(simple_shear simple_shear.lua)
+moraine_deck_test(rotating_cube rotating_cube.lua ARGS --set time=10)
 
 # VTK files read back by the real VTK reader
 moraine_deck_test(vtk_output vtk_output.lua)

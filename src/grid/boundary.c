@@ -3,7 +3,9 @@
 #include <math.h>
 #include <string.h>
 
-static const char *const kind_names[] = {"free", "fixed", "slip", "friction", NULL};
+#include "core/error.h"
+
+static const char *const kind_names[] = {"free", "fixed", "slip", "friction", "velocity", "periodic", NULL};
 
 const char *mrn_bc_kind_name(mrn_bc_kind k) { return k < MRN_BC_KIND_COUNT ? kind_names[k] : "?"; }
 const char *const *mrn_bc_kind_names(void) { return kind_names; }
@@ -28,6 +30,12 @@ static double apply_face(const mrn_face_bc *f, double *v, double mass, int axis,
                          int with_friction) {
   switch (f->kind) {
   case MRN_BC_FREE:
+  case MRN_BC_PERIODIC:
+    return 0.0;
+  case MRN_BC_VELOCITY:
+    v[0] = f->velocity[0];
+    v[1] = f->velocity[1];
+    v[2] = f->velocity[2];
     return 0.0;
   case MRN_BC_FIXED:
     v[0] = v[1] = v[2] = 0.0;
@@ -63,7 +71,7 @@ double mrn_boundary_apply(const mrn_boundary *bc, const mrn_grid *g, double *vel
   for (int axis = 0; axis < g->dim; axis++) {
     for (int side = 0; side < 2; side++) {
       const mrn_face_bc *f = &bc->face[2 * axis + side];
-      if (f->kind == MRN_BC_FREE) continue;
+      if (f->kind == MRN_BC_FREE || f->kind == MRN_BC_PERIODIC) continue;
       /* node layers on and beyond the face, in domain numbering */
       int first = side == 0 ? -g->pad : g->ncell[axis];
       int last = side == 0 ? 0 : g->ncell[axis] + g->pad;
@@ -86,4 +94,14 @@ double mrn_boundary_apply(const mrn_boundary *bc, const mrn_grid *g, double *vel
     }
   }
   return work;
+}
+
+int mrn_boundary_validate(const mrn_boundary *bc, int dim) {
+  for (int axis = 0; axis < dim; axis++) {
+    int lo = bc->face[2 * axis].kind == MRN_BC_PERIODIC, hi = bc->face[2 * axis + 1].kind == MRN_BC_PERIODIC;
+    if (lo != hi)
+      return mrn_error("face %s is periodic but %s is not: both faces of an axis must be periodic",
+                       mrn_face_name(lo ? 2 * axis : 2 * axis + 1), mrn_face_name(lo ? 2 * axis + 1 : 2 * axis));
+  }
+  return MRN_OK;
 }

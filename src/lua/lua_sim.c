@@ -100,8 +100,9 @@ static const mrn_spec boundary_specs[] = {
 };
 
 static const mrn_spec face_specs[] = {
-    {"kind", MRN_SPEC_STRING, 0, 0, 0, 0, 0, 0, NULL, "free, fixed, slip or friction", NULL},
+    {"kind", MRN_SPEC_STRING, 0, 0, 0, 0, 0, 0, NULL, "free, fixed, slip, friction, velocity or periodic", NULL},
     {"mu", MRN_SPEC_NUMBER, 0, 0, 0, HUGE_VAL, 0, 0, "", "Coulomb friction coefficient (friction faces)", NULL},
+    {"v", MRN_SPEC_VECTOR, 0, 0, -HUGE_VAL, HUGE_VAL, 0, 0, "m/s", "prescribed velocity (velocity faces)", NULL},
 };
 
 static const mrn_spec dt_specs[] = {
@@ -139,10 +140,11 @@ static const mrn_spec particle_specs[] = {
 
 /* ------------------------------------------------------- configuration */
 
-static void read_face(lua_State *L, int value_idx, const char *where, const char *key, mrn_face_bc *f) {
+static void read_face(lua_State *L, int value_idx, const char *where, const char *key, mrn_face_bc *f, int dim) {
   value_idx = lua_absindex(L, value_idx);
   const char *kind = NULL;
   f->mu = 0.0;
+  f->velocity[0] = f->velocity[1] = f->velocity[2] = 0.0;
   if (lua_type(L, value_idx) == LUA_TSTRING) {
     kind = lua_tostring(L, value_idx);
   } else if (lua_istable(L, value_idx)) {
@@ -178,8 +180,15 @@ static void read_face(lua_State *L, int value_idx, const char *where, const char
   if (!kind) mrn_lua_error(L, where, "%s: no condition kind given (free, fixed, slip or friction)", key);
   mrn_lua_check_choice(L, where, key, kind, mrn_bc_kind_names());
   mrn_bc_kind_from_name(kind, &f->kind);
-  if (f->kind == MRN_BC_FRICTION && !mrn_lua_has(L, value_idx, "mu") && lua_istable(L, value_idx) == 0)
+  if (f->kind == MRN_BC_FRICTION && (!lua_istable(L, value_idx) || !mrn_lua_has(L, value_idx, "mu")))
     mrn_lua_error(L, where, "%s: a friction face needs a coefficient, e.g. {\"friction\", mu = 0.3}", key);
+  if (f->kind == MRN_BC_VELOCITY) {
+    if (!lua_istable(L, value_idx) || !mrn_lua_has(L, value_idx, "v"))
+      mrn_lua_error(L, where, "%s: a velocity face needs v, e.g. {\"velocity\", v = {0.001, 0}}", key);
+    char sub[96];
+    snprintf(sub, sizeof sub, "%s %s", where, key);
+    mrn_lua_get_vector(L, value_idx, sub, "v", dim, f->velocity, 1);
+  }
 }
 
 static int face_of_key(const char *key, int dim) {
@@ -204,7 +213,7 @@ static void read_boundary(lua_State *L, int idx, const char *where, mrn_sim *sim
   if (mrn_lua_has(L, idx, "all")) {
     mrn_face_bc f;
     lua_getfield(L, idx, "all");
-    read_face(L, -1, sub, "all", &f);
+    read_face(L, -1, sub, "all", &f, sim->dim);
     lua_pop(L, 1);
     for (int i = 0; i < 2 * sim->dim; i++) sim->boundary.face[i] = f;
   }
@@ -215,9 +224,10 @@ static void read_boundary(lua_State *L, int idx, const char *where, mrn_sim *sim
     if (face == -2 || face >= 2 * sim->dim)
       mrn_lua_error(L, sub, "face '%s' does not exist in %dD", key, sim->dim);
     lua_getfield(L, idx, key);
-    read_face(L, -1, sub, key, &sim->boundary.face[face]);
+    read_face(L, -1, sub, key, &sim->boundary.face[face], sim->dim);
     lua_pop(L, 1);
   }
+  if (mrn_boundary_validate(&sim->boundary, sim->dim) != MRN_OK) mrn_lua_error(L, sub, "%s", mrn_error_message());
 }
 
 /* one of the three knobs by name, overriding the preset */

@@ -47,6 +47,7 @@ typedef struct mrn_kernel_options {
   mrn_shape_kind shape;
   mrn_kernel_boundary boundary;
   int mls_gradient; /* 1: grad N_i = (C2 + C3 (x_i - x_p)) N_i everywhere (002, Eq. 62) */
+  unsigned periodic; /* bit d set: axis d is periodic, kernels wrap around */
 } mrn_kernel_options;
 
 const char *const *mrn_kernel_boundary_names(void);

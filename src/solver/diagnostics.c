@@ -9,7 +9,7 @@ typedef struct column {
 static const column columns[] = {
     {"E_kinetic", "J"}, {"E_gravity", "J"},  {"E_elastic", "J"}, {"E_total", "J"},  {"W_plastic", "J"},
     {"W_friction", "J"}, {"momentum_x", "kg m/s"}, {"momentum_y", "kg m/s"}, {"momentum_z", "kg m/s"},
-    {"angular_x", "kg m^2/s"}, {"angular_y", "kg m^2/s"}, {"angular_z", "kg m^2/s"},
+    {"angular_x", "kg m^2/s"}, {"angular_y", "kg m^2/s"}, {"angular_z", "kg m^2/s"}, {"L_centroid", "kg m^2/s"},
     {"com_x", "m"}, {"com_y", "m"}, {"com_z", "m"}, {"mass", "kg"}, {"particles", ""},
 };
 enum { COLUMN_COUNT = sizeof columns / sizeof columns[0] };
@@ -28,6 +28,7 @@ void mrn_diagnostics_values(const mrn_diagnostics *d, double *v) {
   v[k++] = d->friction;
   for (int i = 0; i < 3; i++) v[k++] = d->momentum[i];
   for (int i = 0; i < 3; i++) v[k++] = d->angular[i];
+  v[k++] = d->L_centroid;
   for (int i = 0; i < 3; i++) v[k++] = d->com[i];
   v[k++] = d->mass;
   v[k++] = (double)d->particles;

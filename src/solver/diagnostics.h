@@ -13,6 +13,7 @@ typedef struct mrn_diagnostics {
   double mass;
   double momentum[3];  /* sum m v */
   double angular[3];   /* sum m x cross v, about the origin */
+  double L_centroid;   /* |sum m (x - x_c) cross v| about the centroid x_c = mean x (000, Eqs. 54, 56) */
   double com[3];       /* centre of mass */
   double com_velocity[3];
   long particles;

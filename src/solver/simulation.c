@@ -97,6 +97,27 @@ void mrn_sim_diagnostics(const mrn_sim *sim, mrn_diagnostics *out) {
     for (int d = 0; d < 3; d++) out->com_velocity[d] = out->momentum[d] / mass;
   }
   out->particles = n;
+  /* angular momentum about the unweighted centroid (000, Eqs. 54 and 56) */
+  double c0 = 0, c1 = 0, c2 = 0;
+#pragma omp parallel for schedule(static) if (n > MRN_OMP_MIN_ITEMS) reduction(+ : c0, c1, c2)
+  for (long p = 0; p < n; p++) {
+    c0 += ps->x[3 * p];
+    c1 += ps->x[3 * p + 1];
+    c2 += ps->x[3 * p + 2];
+  }
+  if (n > 0) {
+    c0 /= n, c1 /= n, c2 /= n;
+    double l0 = 0, l1 = 0, l2 = 0;
+#pragma omp parallel for schedule(static) if (n > MRN_OMP_MIN_ITEMS) reduction(+ : l0, l1, l2)
+    for (long p = 0; p < n; p++) {
+      const double m = ps->mass[p], *v = ps->v + 3 * p;
+      const double r0 = ps->x[3 * p] - c0, r1 = ps->x[3 * p + 1] - c1, r2 = ps->x[3 * p + 2] - c2;
+      l0 += m * (r1 * v[2] - r2 * v[1]);
+      l1 += m * (r2 * v[0] - r0 * v[2]);
+      l2 += m * (r0 * v[1] - r1 * v[0]);
+    }
+    out->L_centroid = sqrt(l0 * l0 + l1 * l1 + l2 * l2);
+  }
 }
 
 int mrn_sim_check_state(const mrn_sim *sim) {

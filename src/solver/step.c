@@ -128,6 +128,25 @@ static double *scratch(mrn_sim *sim, size_t count) {
   return sim->scratch;
 }
 
+/* particles that left through a periodic face re-enter through the other */
+static void wrap_periodic(mrn_sim *sim) {
+  const mrn_grid *g = &sim->grid;
+  mrn_particles *ps = &sim->particles;
+  for (int d = 0; d < sim->dim; d++) {
+    if (!mrn_boundary_periodic(&sim->boundary, d)) continue;
+    const double lo = g->origin[d], L = g->size[d];
+    for (size_t p = 0; p < ps->n; p++) {
+      double *x = ps->x + 3 * p + d;
+      if (*x < lo || *x >= lo + L) {
+        double shift = L * floor((*x - lo) / L);
+        *x -= shift;
+        ps->x0[3 * p + d] -= shift; /* the displacement stays continuous */
+        if (*x >= lo + L) *x = lo; /* round-off at the seam */
+      }
+    }
+  }
+}
+
 /* grid velocity from the particles, and XPIC's smoothed velocity when needed */
 static int grid_velocity_stage(mrn_sim *sim) {
   grid_velocity(sim);
@@ -193,6 +212,7 @@ int mrn_sim_step_dt(mrn_sim *sim, double dt) {
     break;
   }
   }
+  wrap_periodic(sim);
   sim->time += dt;
   sim->step++;
   return mrn_sim_check_state(sim);

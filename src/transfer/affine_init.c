@@ -28,7 +28,7 @@ int mrn_sim_init_affine(mrn_sim *sim) {
       scale = fmax(scale, fabs(ps->gradv[k]));
     }
     memcpy(ps->affine, ps->gradv, 9 * ps->n * sizeof(double));
-    if (change <= 1e-13 * scale || scale == 0.0) break;
+    if (change <= 1e-15 * scale || scale == 0.0) break;
   }
   sim->scheme.grid_velocity = saved;
   memset(ps->gradv, 0, 9 * ps->n * sizeof(double));

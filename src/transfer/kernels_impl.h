@@ -9,7 +9,9 @@
 #include "transfer/stencil.h"
 
 static inline mrn_kernel_options KNAME(kernel_options)(const mrn_sim *sim) {
-  mrn_kernel_options o = {sim->shape, sim->kernel_boundary, sim->scheme.mls_gradient};
+  mrn_kernel_options o = {sim->shape, sim->kernel_boundary, sim->scheme.mls_gradient, 0};
+  for (int d = 0; d < DIM; d++)
+    if (mrn_boundary_periodic(&sim->boundary, d)) o.periodic |= 1u << d;
   return o;
 }
 

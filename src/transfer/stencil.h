@@ -63,11 +63,15 @@ static inline int KNAME(axis_boundary)(mrn_kernel_boundary mode, int base, int s
 static inline void KNAME(stencil_build)(const mrn_grid *g, const mrn_kernel_options *opt, const double *x,
                                         double vol0, KNAME(stencil) *s) {
   double w[DIM][MRN_SHAPE_MAX_SUPPORT], dw[DIM][MRN_SHAPE_MAX_SUPPORT];
-  int base[DIM];
+  int base[DIM], node[DIM][MRN_SHAPE_MAX_SUPPORT];
   const int sup = mrn_shape_support(opt->shape);
   double lp = 0.0;
-  if (opt->shape == MRN_SHAPE_GIMP) /* half the particle's initial side, in cells */
+  if (opt->shape == MRN_SHAPE_GIMP) {
+    /* half the particle's initial side, in cells; at most half a cell so the
+     * support stays within 3 nodes (one particle per cell) */
     lp = 0.5 * (DIM == 2 ? sqrt(vol0) : cbrt(vol0)) * g->inv_cell;
+    if (lp > 0.5) lp = 0.5;
+  }
   int crossed = 0;
   for (int d = 0; d < DIM; d++) {
     double xi = (x[d] - g->origin[d]) * g->inv_cell;
@@ -79,8 +83,14 @@ static inline void KNAME(stencil_build)(const mrn_grid *g, const mrn_kernel_opti
       w[d][0] = 0.0, w[d][1] = 1.0;
       dw[d][0] = -1.0, dw[d][1] = 1.0;
     }
-    if (opt->boundary != MRN_KERNEL_EXTENDED)
-      crossed |= KNAME(axis_boundary)(opt->boundary, base[d], sup, g->ncell[d], w[d], dw[d]);
+    if (opt->periodic & (1u << d)) {
+      /* node numbers wrap around; offsets keep the unwrapped positions */
+      for (int k = 0; k < sup; k++) node[d][k] = ((base[d] + k) % g->ncell[d] + g->ncell[d]) % g->ncell[d];
+    } else {
+      if (opt->boundary != MRN_KERNEL_EXTENDED)
+        crossed |= KNAME(axis_boundary)(opt->boundary, base[d], sup, g->ncell[d], w[d], dw[d]);
+      for (int k = 0; k < sup; k++) node[d][k] = base[d] + k;
+    }
   }
   int c = 0;
 #if DIM == 3
@@ -104,9 +114,9 @@ static inline void KNAME(stencil_build)(const mrn_grid *g, const mrn_kernel_opti
         }
         s->N[c] = N;
 #if DIM == 3
-        s->node[c] = mrn_grid_index(g, base[0] + i, base[1] + j, base[2] + k);
+        s->node[c] = mrn_grid_index(g, node[0][i], node[1][j], node[2][k]);
 #else
-        s->node[c] = mrn_grid_index(g, base[0] + i, base[1] + j, 0);
+        s->node[c] = mrn_grid_index(g, node[0][i], node[1][j], 0);
 #endif
         c++;
       }

@@ -1,3 +1,3 @@
--- expect: bad_shape.lua:3: simulation\{\}: shape = 'quadratic' is not valid .*valid: 'linear', 'quadratic_bspline'
+-- expect: bad_shape.lua:3: simulation\{\}: shape = 'quadratic' is not valid \(did you mean 'quadratic_bspline'\?\); valid: 'linear', 'gimp', 'quadratic_bspline', 'cubic_bspline'
 local mpm = require "moraine"
 local sim = mpm.simulation{ dim = 2, grid = { size = {1, 1}, cell = 0.1 }, shape = "quadratic" }

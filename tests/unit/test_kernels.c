@@ -53,7 +53,7 @@ static errors sweep(int dim, mrn_shape_kind shape, mrn_kernel_boundary mode, int
   mrn_grid g;
   double origin[3] = {-1.0, 0.5, 2.0}, size[3] = {1.0, 0.8, 0.6};
   mrn_grid_init(&g, dim, origin, size, 0.1);
-  mrn_kernel_options opt = {shape, mode, 0};
+  mrn_kernel_options opt = {shape, mode, 0, 0};
   errors e = {0, 0, 0, 0};
   unsigned seed = 7u + shape * 13u + mode * 101u;
   const double vol0 = pow(0.05, dim); /* 2 particles per cell axis */
