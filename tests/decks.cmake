@@ -23,6 +23,8 @@ moraine_deck_test(bouncing_cube_flip_family bouncing_cube_strategies.lua
                   ARGS --set strategies=PIC,FLIP,TFLIP,XPIC\(2\),XPIC\(3\),XPIC\(4\))
 moraine_deck_test(rotating_disk rotating_disk.lua)
 moraine_deck_test(simple_shear simple_shear.lua)
+moraine_deck_test(settling settling.lua)
+moraine_deck_test(disks_cfl disks_cfl.lua)
 moraine_deck_test(rotating_cube rotating_cube.lua ARGS --set time=10)
 
 # VTK files read back by the real VTK reader

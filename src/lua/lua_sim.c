@@ -48,6 +48,7 @@ static const mrn_spec sim_specs[] = {
     {"gravity", MRN_SPEC_VECTOR, 0, 0, -HUGE_VAL, HUGE_VAL, 0, 0, "m/s^2", "body acceleration (default 0)", NULL},
     {"boundary", MRN_SPEC_TABLE, 0, 0, 0, 0, 0, 0, NULL, "face conditions (default slip on every face)", NULL},
     {"dt", MRN_SPEC_ANY, 0, 0, 0, 0, 0, 0, "s", "time-step policy (default {a_tau = 0.05})", NULL},
+    {"damping", MRN_SPEC_TABLE, 0, 0, 0, 0, 0, 0, NULL, "grid-force damping {cundall, viscous} (default none)", NULL},
     {"thermo", MRN_SPEC_INTEGER, 0, 100, 0, 1e12, 0, 0, "steps", "thermo line every N steps (0: none)", NULL},
     {"diagnostics", MRN_SPEC_ANY, 0, 0, 0, 0, 0, 0, NULL, "CSV file name in the output directory, or false", NULL},
     {"diagnostics_every", MRN_SPEC_INTEGER, 0, 10, 1, 1e12, 0, 0, "steps", "CSV row every N steps", NULL},
@@ -108,10 +109,28 @@ static const mrn_spec face_specs[] = {
 static const mrn_spec dt_specs[] = {
     {"fixed", MRN_SPEC_NUMBER, 0, 0, 0, HUGE_VAL, 1, 0, "s", "constant time step", NULL},
     {"a_tau", MRN_SPEC_NUMBER, 0, 0.05, 0, HUGE_VAL, 1, 0, "", "dt = a_tau l_cell sqrt(rho/E) (000, Eq. 29)", NULL},
+    {"cfl", MRN_SPEC_NUMBER, 0, 0.5, 0, HUGE_VAL, 1, 0, "", "Courant number of the particle CFL step (002, Eqs. 34-37)", NULL},
+    {"grid_cfl", MRN_SPEC_NUMBER, 0, 1, 0, HUGE_VAL, 1, 0, "", "factor on the grid-averaged CFL step (001, Eqs. 58-61)", NULL},
     {"fn", MRN_SPEC_FUNCTION, 0, 0, 0, 0, 0, 0, NULL, "function(sim) returning dt", NULL},
     {"min", MRN_SPEC_NUMBER, 0, 0, 0, HUGE_VAL, 0, 0, "s", "stop the run if dt falls below this", NULL},
     {"max", MRN_SPEC_NUMBER, 0, 0, 0, HUGE_VAL, 0, 0, "s", "upper bound on dt", NULL},
 };
+
+static const mrn_spec damping_specs[] = {
+    {"cundall", MRN_SPEC_NUMBER, 0, 0, 0, HUGE_VAL, 0, 0, "", "D of Cundall's local non-viscous damping (000, Eqs. 61-62)", NULL},
+    {"viscous", MRN_SPEC_NUMBER, 0, 0, 0, HUGE_VAL, 0, 0, "1/s", "alpha of mass-proportional viscous damping -alpha m v", NULL},
+};
+
+static void read_damping(lua_State *L, int idx, const char *where, mrn_sim *sim) {
+  idx = lua_absindex(L, idx);
+  char sub[96];
+  snprintf(sub, sizeof sub, "%s damping", where);
+  mrn_lua_check_table(L, idx, sub, damping_specs, MRN_COUNT(damping_specs));
+  if (mrn_lua_has(L, idx, "cundall"))
+    sim->damping_cundall = mrn_lua_get_number(L, idx, sub, damping_specs, MRN_COUNT(damping_specs), "cundall");
+  if (mrn_lua_has(L, idx, "viscous"))
+    sim->damping_viscous = mrn_lua_get_number(L, idx, sub, damping_specs, MRN_COUNT(damping_specs), "viscous");
+}
 
 static const mrn_spec run_specs[] = {
     {"time", MRN_SPEC_NUMBER, 0, 0, 0, HUGE_VAL, 1, 0, "s", "model time to advance", NULL},
@@ -311,14 +330,19 @@ static void read_dt(lua_State *L, int idx, const char *where, mrn_sim *sim) {
     char sub[96];
     snprintf(sub, sizeof sub, "%s dt", where);
     mrn_lua_check_table(L, idx, sub, dt_specs, MRN_COUNT(dt_specs));
-    int kinds = mrn_lua_has(L, idx, "fixed") + mrn_lua_has(L, idx, "a_tau") + mrn_lua_has(L, idx, "fn");
-    if (kinds != 1) mrn_lua_error(L, sub, "give exactly one of fixed, a_tau or fn (got %d)", kinds);
+    int kinds = mrn_lua_has(L, idx, "fixed") + mrn_lua_has(L, idx, "a_tau") + mrn_lua_has(L, idx, "fn") +
+                mrn_lua_has(L, idx, "cfl") + mrn_lua_has(L, idx, "grid_cfl");
+    if (kinds != 1) mrn_lua_error(L, sub, "give exactly one of fixed, a_tau, cfl, grid_cfl or fn (got %d)", kinds);
     min = mrn_lua_get_number(L, idx, sub, dt_specs, MRN_COUNT(dt_specs), "min");
     max = mrn_lua_get_number(L, idx, sub, dt_specs, MRN_COUNT(dt_specs), "max");
     if (mrn_lua_has(L, idx, "fixed")) {
       mrn_dt_policy_fixed(p, mrn_lua_get_number(L, idx, sub, dt_specs, MRN_COUNT(dt_specs), "fixed"));
     } else if (mrn_lua_has(L, idx, "a_tau")) {
       mrn_dt_policy_a_tau(p, mrn_lua_get_number(L, idx, sub, dt_specs, MRN_COUNT(dt_specs), "a_tau"));
+    } else if (mrn_lua_has(L, idx, "cfl")) {
+      mrn_dt_policy_cfl(p, MRN_DT_CFL, mrn_lua_get_number(L, idx, sub, dt_specs, MRN_COUNT(dt_specs), "cfl"));
+    } else if (mrn_lua_has(L, idx, "grid_cfl")) {
+      mrn_dt_policy_cfl(p, MRN_DT_GRID_CFL, mrn_lua_get_number(L, idx, sub, dt_specs, MRN_COUNT(dt_specs), "grid_cfl"));
     } else {
       lua_getfield(L, idx, "fn");
       read_dt(L, -1, where, sim);
@@ -326,7 +350,7 @@ static void read_dt(lua_State *L, int idx, const char *where, mrn_sim *sim) {
     }
     if (max > 0 && min > max) mrn_lua_error(L, sub, "min = %g is above max = %g", min, max);
   } else {
-    mrn_lua_error(L, where, "dt must be a number, a table {fixed|a_tau|fn, min, max} or a function, got %s",
+    mrn_lua_error(L, where, "dt must be a number, a table {fixed|a_tau|cfl|grid_cfl|fn, min, max} or a function, got %s",
                   luaL_typename(L, idx));
   }
   p->min = min;
@@ -442,6 +466,11 @@ static int l_simulation(lua_State *L) {
   if (mrn_lua_has(L, 1, "dt")) {
     lua_getfield(L, 1, "dt");
     read_dt(L, -1, where, b->sim);
+    lua_pop(L, 1);
+  }
+  if (mrn_lua_has(L, 1, "damping")) {
+    lua_getfield(L, 1, "damping");
+    read_damping(L, -1, where, b->sim);
     lua_pop(L, 1);
   }
   b->thermo_every = mrn_lua_get_integer(L, 1, where, sim_specs, MRN_COUNT(sim_specs), "thermo");
@@ -694,6 +723,25 @@ static int l_set_dt(lua_State *L) {
   return 0;
 }
 
+static int l_set_damping(lua_State *L) {
+  sim_box *b = check_sim(L, 1);
+  read_damping(L, 2, "set_damping()", b->sim);
+  return 0;
+}
+
+/* the critical steps the CFL policies use, without their Courant number */
+static int l_dt_estimate(lua_State *L) {
+  sim_box *b = check_sim(L, 1);
+  lua_createtable(L, 0, 3);
+  lua_pushnumber(L, mrn_dt_particle_critical(b->sim));
+  lua_setfield(L, -2, "cfl");
+  lua_pushnumber(L, mrn_dt_grid_critical(b->sim));
+  lua_setfield(L, -2, "grid_cfl");
+  lua_pushnumber(L, b->sim->grid.cell * mrn_sim_slowness(b->sim));
+  lua_setfield(L, -2, "a_tau");
+  return 1;
+}
+
 static int l_set_output(lua_State *L) {
   sim_box *b = check_sim(L, 1);
   read_output(L, 2, "output()", b);
@@ -734,6 +782,8 @@ static int l_energy(lua_State *L) {
   lua_pushnumber(L, d.total); lua_setfield(L, -2, "total");
   lua_pushnumber(L, d.plastic); lua_setfield(L, -2, "plastic");
   lua_pushnumber(L, d.friction); lua_setfield(L, -2, "friction");
+  lua_pushnumber(L, d.damping); lua_setfield(L, -2, "damping");
+  lua_pushnumber(L, d.mpm_error); lua_setfield(L, -2, "mpm_error");
   return 1;
 }
 
@@ -855,7 +905,7 @@ void mrn_lua_open_simulation(lua_State *L, int module) {
   luaL_setfuncs(L, meta, 0);
   static const luaL_Reg methods[] = {
       {"add_particles", l_add_particles}, {"run", l_run}, {"hook", l_hook}, {"set_gravity", l_set_gravity},
-      {"set_boundary", l_set_boundary}, {"set_scheme", l_set_scheme}, {"set_dt", l_set_dt},
+      {"set_boundary", l_set_boundary}, {"set_scheme", l_set_scheme}, {"set_dt", l_set_dt}, {"set_damping", l_set_damping}, {"dt_estimate", l_dt_estimate},
       {"output", l_set_output}, {"write_vtk", l_write_vtk}, {"time", l_time}, {"step", l_step}, {"dt", l_dt},
       {"particle_count", l_count}, {"dim", l_dim}, {"energy", l_energy}, {"diagnostics", l_diagnostics},
       {"field", l_field}, {"particle", l_particle}, {"info", l_info}, {"free", l_gc}, {NULL, NULL}};
@@ -873,6 +923,7 @@ void mrn_lua_open_simulation(lua_State *L, int module) {
   mrn_spec_register_group("simulation{} boundary", boundary_specs, MRN_COUNT(boundary_specs));
   mrn_spec_register_group("boundary face", face_specs, MRN_COUNT(face_specs));
   mrn_spec_register_group("simulation{} dt", dt_specs, MRN_COUNT(dt_specs));
+  mrn_spec_register_group("simulation{} damping", damping_specs, MRN_COUNT(damping_specs));
   mrn_spec_register_group("run{}", run_specs, MRN_COUNT(run_specs));
   mrn_spec_register_group("hook{}", hook_specs, MRN_COUNT(hook_specs));
   mrn_spec_register_group("add_particles()", particle_specs, MRN_COUNT(particle_specs));

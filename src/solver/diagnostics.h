@@ -9,6 +9,8 @@ typedef struct mrn_diagnostics {
   double elastic;      /* E_el, accumulated increments (000, Eq. 64) */
   double plastic;      /* W_pl, accumulated, <= 0 (000, Eq. 65) */
   double friction;     /* W_frict, accumulated, <= 0 (000, Eq. 66) */
+  double damping;      /* W_damp, work of the damping forces, accumulated, <= 0 */
+  double mpm_error;    /* W_MPM = E - E_ref - W_pl - W_frict - W_damp (000, Eqs. 67-68) */
   double total;        /* E_k + E_g + E_el */
   double mass;
   double momentum[3];  /* sum m v */

@@ -78,6 +78,7 @@ int mrn_run(mrn_sim *sim, mrn_output *out, mrn_run_options *opt) {
     if (opt->hooks[i].every_time > 0) opt->hooks[i].next_time = sim->time;
 
   if (sim->affine_pending && sim->scheme.grid_velocity != MRN_VGRID_PLAIN) mrn_sim_init_affine(sim);
+  if (!sim->energy_ref_set) mrn_sim_energy_balance_start(sim);
   if (opt->thermo_every > 0 && !mrn_log_quiet()) mrn_thermo_header(stdout);
   int rc = after_step(sim, out, opt, 1);
   while (rc == MRN_OK) {

@@ -82,7 +82,10 @@ void mrn_sim_diagnostics(const mrn_sim *sim, mrn_diagnostics *out) {
   out->elastic = eel;
   out->plastic = wpl;
   out->friction = sim->work_friction;
+  out->damping = sim->work_damping;
   out->total = ek + eg + eel;
+  /* (000, Eq. 68) summed over the steps since the balance started */
+  out->mpm_error = sim->energy_ref_set ? out->total - sim->energy_ref - wpl - sim->work_friction - sim->work_damping : 0.0;
   out->mass = mass;
   out->momentum[0] = mom0;
   out->momentum[1] = mom1;
@@ -190,4 +193,12 @@ void mrn_sim_particles_changed(mrn_sim *sim) {
   /* a node touched only by the far tail of a kernel carries a mass many orders below a
    * particle's; its velocity f/m is meaningless, so such nodes count as empty */
   sim->mass_floor = isfinite(lightest) ? 1e-12 * lightest : 0.0;
+}
+
+void mrn_sim_energy_balance_start(mrn_sim *sim) {
+  mrn_diagnostics d;
+  sim->energy_ref_set = 0;
+  mrn_sim_diagnostics(sim, &d);
+  sim->energy_ref = d.total - d.plastic - d.friction - d.damping;
+  sim->energy_ref_set = 1;
 }

@@ -40,8 +40,15 @@ typedef struct mrn_sim {
   long step;
   double dt;          /* the step size of the last (or next) step */
 
+  /* damping of the grid forces */
+  double damping_cundall; /* D of Cundall's local non-viscous damping (000, Eqs. 61-62), >= 0 */
+  double damping_viscous; /* alpha of mass-proportional viscous damping f = -alpha m v (1/s), >= 0 */
+
   /* cumulative energy terms that are not stored per particle */
   double work_friction; /* (000, Eq. 66), negative while dissipating */
+  double work_damping;  /* work of the damping forces, negative while dissipating */
+  double energy_ref;    /* E_k + E_g + E_el when the energy balance started (000, Eq. 68) */
+  int energy_ref_set;
   double mass_floor;    /* nodes lighter than this are treated as empty */
   int affine_pending;   /* initial velocities were assigned: initialise grad v / B at the next run */
 
@@ -95,6 +102,10 @@ int mrn_sim_init_affine(mrn_sim *sim);
 
 /* Energies, momenta and centre of mass of the current state */
 void mrn_sim_diagnostics(const mrn_sim *sim, mrn_diagnostics *d);
+
+/* Start the energy balance W_MPM (000, Eq. 68) from the current state;
+ * mrn_run() does it before the first step of a simulation */
+void mrn_sim_energy_balance_start(mrn_sim *sim);
 
 /* Check particle state after a step: finite values, inside the grid, J > 0. */
 int mrn_sim_check_state(const mrn_sim *sim);

@@ -34,20 +34,44 @@ static void grid_velocity(mrn_sim *sim) {
   mrn_boundary_apply(&sim->boundary, g, g->vel, 0);
 }
 
-/* V~ = V + dt (f / m + g) (000, Eq. 28), boundary conditions with friction,
- * and the acceleration the particles will see, a = (V~ - V) / dt */
+/* Damping force on a node with total force f and velocity v:
+ * Cundall's local non-viscous damping, component-wise against the motion,
+ * f_damp,k = -D |f_k| sign(v_k) (000, Eqs. 61-62), plus mass-proportional
+ * viscous damping -alpha m v. */
+static inline double damping_force(double D, double alpha, double f, double v, double m) {
+  double fd = 0.0;
+  if (D > 0.0 && v != 0.0) fd -= D * fabs(f) * (v > 0.0 ? 1.0 : -1.0);
+  if (alpha > 0.0) fd -= alpha * m * v;
+  return fd;
+}
+
+/* V~ = V + dt (f / m + g) (000, Eq. 28) with the damping force added to f,
+ * boundary conditions with friction, and the acceleration the particles will
+ * see, a = (V~ - V) / dt. The damping work is f_damp . (V + V~) / 2 dt. */
 static void grid_update(mrn_sim *sim, double dt) {
   mrn_grid *g = &sim->grid;
   const double floor_mass = sim->mass_floor;
+  const double D = sim->damping_cundall, alpha = sim->damping_viscous;
+  const int damped = D > 0.0 || alpha > 0.0;
   const long n = (long)g->n;
-#pragma omp parallel for schedule(static) if (n > MRN_OMP_MIN_ITEMS)
+  double work = 0.0;
+#pragma omp parallel for schedule(static) if (n > MRN_OMP_MIN_ITEMS) reduction(+ : work)
   for (long i = 0; i < n; i++) {
     double m = g->mass[i];
     for (int d = 0; d < 3; d++) {
-      double a = m > floor_mass ? g->force[3 * i + d] / m + sim->gravity[d] : 0.0;
-      g->vel_new[3 * i + d] = m > floor_mass ? g->vel[3 * i + d] + dt * a : 0.0;
+      if (!(m > floor_mass)) {
+        g->vel_new[3 * i + d] = 0.0;
+        continue;
+      }
+      double v = g->vel[3 * i + d];
+      double f = g->force[3 * i + d] + m * sim->gravity[d];
+      double fd = damped ? damping_force(D, alpha, f, v, m) : 0.0;
+      double v_new = v + dt * (f + fd) / m;
+      g->vel_new[3 * i + d] = v_new;
+      work += fd * 0.5 * (v + v_new) * dt;
     }
   }
+  sim->work_damping += work;
   sim->work_friction += mrn_boundary_apply(&sim->boundary, g, g->vel_new, 1);
 #pragma omp parallel for schedule(static) if (n > MRN_OMP_MIN_ITEMS)
   for (long i = 0; i < n; i++)

@@ -5,9 +5,60 @@
 #include "core/error.h"
 #include "solver/simulation.h"
 
-static const char *const kind_names[] = {"fixed", "a_tau", "function"};
+#include <stdlib.h>
+
+static const char *const kind_names[] = {"fixed", "a_tau", "cfl", "grid_cfl", "function"};
 
 const char *mrn_dt_kind_name(mrn_dt_kind k) { return k <= MRN_DT_CALLBACK ? kind_names[k] : "?"; }
+
+double mrn_grid_slowness_2d(mrn_sim *sim, const double *modulus);
+double mrn_grid_slowness_3d(mrn_sim *sim, const double *modulus);
+
+void mrn_dt_policy_cfl(mrn_dt_policy *p, mrn_dt_kind kind, double courant) {
+  mrn_dt_policy_release(p);
+  p->kind = kind;
+  p->value = courant;
+}
+
+/* kinematic viscosity of a material, 0 when it has none */
+static double kinematic_viscosity(const mrn_material *m) {
+  double mu = mrn_material_get(m, "viscosity");
+  return isnan(mu) ? 0.0 : mu / mrn_material_density(m);
+}
+
+double mrn_dt_particle_critical(const mrn_sim *sim) {
+  const mrn_particles *ps = &sim->particles;
+  double speed[MRN_MAX_MATERIALS], nu_max = 0.0;
+  for (int i = 0; i < sim->nmaterials; i++) {
+    const mrn_material *m = sim->materials[i];
+    speed[i] = m->type->wave_speed ? m->type->wave_speed(m) : 0.0; /* (002, Eq. 34) */
+    nu_max = fmax(nu_max, kinematic_viscosity(m));
+  }
+  double fastest = 0.0;
+  for (size_t p = 0; p < ps->n; p++) {
+    const double *v = ps->v + 3 * p;
+    double s = speed[ps->material[p]] + sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+    if (s > fastest) fastest = s;
+  }
+  const double h = sim->grid.cell;
+  double dt = fastest > 0.0 ? h / fastest : HUGE_VAL; /* (002, Eq. 35) */
+  if (nu_max > 0.0) dt = fmin(dt, h * h / nu_max);     /* (002, Eq. 36) */
+  return dt;
+}
+
+double mrn_dt_grid_critical(mrn_sim *sim) {
+  const mrn_particles *ps = &sim->particles;
+  double *modulus = malloc((ps->n ? ps->n : 1) * sizeof(double));
+  if (!modulus) return NAN;
+  for (size_t p = 0; p < ps->n; p++) {
+    const mrn_material *m = sim->materials[ps->material[p]];
+    double c = m->type->wave_speed ? m->type->wave_speed(m) : 0.0;
+    modulus[p] = ps->mass[p] / ps->vol[p] * c * c; /* M_p = rho_p c_p^2 */
+  }
+  double slowness = sim->dim == 2 ? mrn_grid_slowness_2d(sim, modulus) : mrn_grid_slowness_3d(sim, modulus);
+  free(modulus);
+  return sim->grid.cell * slowness; /* (001, Eq. 61) */
+}
 
 void mrn_dt_policy_release(mrn_dt_policy *p) {
   if (p->release && p->ctx) p->release(p->ctx);
@@ -42,6 +93,12 @@ int mrn_dt_compute(mrn_sim *sim, double *out) {
     dt = p->value * sim->grid.cell * slowness; /* (000, Eq. 29) */
     break;
   }
+  case MRN_DT_CFL:
+    dt = p->value * mrn_dt_particle_critical(sim); /* (002, Eq. 37) */
+    break;
+  case MRN_DT_GRID_CFL:
+    dt = p->value * mrn_dt_grid_critical(sim);
+    break;
   case MRN_DT_CALLBACK: {
     int rc = p->callback(p->ctx, sim, &dt);
     if (rc) return rc;
