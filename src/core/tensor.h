@@ -78,6 +78,22 @@ static inline double mat_det(const double A[9]) {
          A[2] * (A[3] * A[7] - A[4] * A[6]);
 }
 
+/* B = A^-1 for 3x3; returns 1 (B untouched) when A is singular */
+static inline int mat_inverse(const double A[9], double B[9]) {
+  double det = mat_det(A);
+  if (!(fabs(det) > 0.0)) return 1;
+  B[0] = (A[4] * A[8] - A[5] * A[7]) / det;
+  B[1] = (A[2] * A[7] - A[1] * A[8]) / det;
+  B[2] = (A[1] * A[5] - A[2] * A[4]) / det;
+  B[3] = (A[5] * A[6] - A[3] * A[8]) / det;
+  B[4] = (A[0] * A[8] - A[2] * A[6]) / det;
+  B[5] = (A[2] * A[3] - A[0] * A[5]) / det;
+  B[6] = (A[3] * A[7] - A[4] * A[6]) / det;
+  B[7] = (A[1] * A[6] - A[0] * A[7]) / det;
+  B[8] = (A[0] * A[4] - A[1] * A[3]) / det;
+  return 0;
+}
+
 static inline void mat_identity(double A[9]) {
   A[0] = A[4] = A[8] = 1.0;
   A[1] = A[2] = A[3] = A[5] = A[6] = A[7] = 0.0;

@@ -48,7 +48,8 @@ mrn_sim *mrn_checkpoint_load_info(const char *path, mrn_checkpoint_info *info);
  * history variables. `override` (may be NULL) is a material given to every
  * imported particle, registered with mrn_sim_add_material; without it the
  * checkpoint's materials are re-created (or reused when the simulation has an
- * identical one). `offset` (may be NULL) is added to the positions (and the
+ * identical one). History variables carry over to particles that keep the
+ * same model and start at zero otherwise; masses are kept. `offset` (may be NULL) is added to the positions (and the
  * initial positions, so displacements carry over). Imported particles get new
  * ids. Every particle must land inside the grid. On success *count (may be
  * NULL) receives the number imported; on failure the simulation is untouched

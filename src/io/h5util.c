@@ -90,16 +90,20 @@ static hid_t list_space(int n) {
   return H5Screate_simple(1, dims, NULL);
 }
 
-/* variable-length UTF-8: h5py reads these as str, h5dump prints them plainly */
+/* Fixed-length, NUL-terminated UTF-8. Variable-length strings would live in
+ * HDF5's global heap, whose reader trusts the file and crashes on damaged
+ * ones; a fixed-length string sits in the attribute itself. (h5py reads these
+ * as bytes: .decode() gives the text.) */
 void mrn_h5w_string(mrn_h5w *w, hid_t obj, const char *name, const char *value) {
   if (w->failed) return;
   hid_t t = H5Tcopy(H5T_C_S1);
-  if (t < 0 || H5Tset_size(t, H5T_VARIABLE) < 0 || H5Tset_cset(t, H5T_CSET_UTF8) < 0) {
+  if (t < 0 || H5Tset_size(t, strlen(value) + 1) < 0 || H5Tset_strpad(t, H5T_STR_NULLTERM) < 0 ||
+      H5Tset_cset(t, H5T_CSET_UTF8) < 0) {
     if (t >= 0) H5Tclose(t);
     w_fail(w, obj, name, 1);
     return;
   }
-  w_attr(w, obj, name, t, H5Screate(H5S_SCALAR), &value);
+  w_attr(w, obj, name, t, H5Screate(H5S_SCALAR), value);
   H5Tclose(t);
 }
 
@@ -126,12 +130,12 @@ void mrn_h5w_int64(mrn_h5w *w, hid_t obj, const char *name, int64_t value) {
 void mrn_h5w_dataset(mrn_h5w *w, hid_t group, const char *name, hid_t type, const void *data, size_t rows,
                      int cols, const char *units, const char *description) {
   if (!w_begin(w)) return;
-  hsize_t dims[2] = {(hsize_t)rows, (hsize_t)cols};
-  hid_t space = H5Screate_simple(cols ? 2 : 1, dims, NULL);
+  hsize_t dims[2] = {(hsize_t)rows, cols < 0 ? 0 : (hsize_t)cols};
+  hid_t space = H5Screate_simple(cols < 0 ? 1 : 2, dims, NULL);
   hid_t d = space < 0 ? -1 : H5Dcreate2(group, name, type, space, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
   if (space >= 0) H5Sclose(space);
   /* an empty dataset (no particles, no history variables) has nothing to write */
-  size_t count = cols ? rows * (size_t)cols : rows;
+  size_t count = cols < 0 ? rows : rows * (size_t)cols;
   herr_t rc = d < 0 ? -1 : 0;
   if (rc == 0 && count > 0) rc = H5Dwrite(d, type, H5S_ALL, H5S_ALL, H5P_DEFAULT, data);
   if (rc < 0) {
@@ -251,6 +255,25 @@ long mrn_h5r_group_size(mrn_h5r *r, const char *path) {
   return (long)info.nlinks;
 }
 
+typedef struct each_attr_ctx {
+  int (*fn)(void *user, const char *name);
+  void *user;
+} each_attr_ctx;
+
+static herr_t each_attr_cb(hid_t loc, const char *name, const H5A_info_t *info, void *data) {
+  each_attr_ctx *c = data;
+  return c->fn(c->user, name) ? 1 : 0;
+}
+
+int mrn_h5r_each_attr(mrn_h5r *r, const char *obj, int (*fn)(void *user, const char *name), void *user) {
+  if (r->failed) return MRN_ERR_IO;
+  each_attr_ctx c = {fn, user};
+  hsize_t idx = 0;
+  if (H5Aiterate_by_name(r->file, obj, H5_INDEX_NAME, H5_ITER_INC, &idx, each_attr_cb, &c, H5P_DEFAULT) < 0)
+    return mrn_h5r_fail(r, "cannot read the attributes of %s (truncated or corrupted file)", obj);
+  return r->failed ? MRN_ERR_IO : MRN_OK;
+}
+
 /* ---- reading: types and shapes -------------------------------------------- */
 
 /* "64-bit float", "32-bit integer", "string", ... for messages */
@@ -280,6 +303,8 @@ static const char *want_text(want_type w) {
   default: return "string";
   }
 }
+
+static const char *article(const char *word) { return strchr("aeiou", word[0]) ? "an" : "a"; }
 
 static int type_matches(hid_t t, want_type want) {
   H5T_class_t c = H5Tget_class(t);
@@ -327,7 +352,8 @@ static hid_t open_attr(mrn_h5r *r, const char *obj, const char *name, want_type 
   if (!ok) {
     char text[64] = "unreadable type";
     if (t >= 0) type_text(t, text, sizeof text);
-    mrn_h5r_fail(r, "attribute '%s' of %s is a %s, expected a %s", name, obj, text, want_text(want));
+    mrn_h5r_fail(r, "attribute '%s' of %s is %s %s, expected %s %s", name, obj, article(text), text,
+                 article(want_text(want)), want_text(want));
   }
   if (t >= 0) H5Tclose(t);
   if (!ok) {
@@ -429,17 +455,16 @@ int mrn_h5r_string(mrn_h5r *r, const char *obj, const char *name, char *buf, siz
       take_string(r, obj, name, s ? s : "", s ? strlen(s) : 0, buf, cap);
     if (s) H5free_memory(s);
   } else if (ft >= 0) {
-    /* fixed length (h5py's numpy.bytes_): read at the stored size, then cut */
+    /* fixed length: read in the stored type itself (HDF5 converts between
+     * character sets only by refusing), then cut at the first NUL */
     size_t size = H5Tget_size(ft);
     char *tmp = size <= 65536 ? malloc(size + 1) : NULL;
-    hid_t mt = H5Tcopy(H5T_C_S1);
     if (!tmp)
       mrn_h5r_fail(r, "attribute '%s' of %s is a string of %zu bytes, at most %zu expected", name, obj, size, cap - 1);
-    else if (mt < 0 || H5Tset_size(mt, size) < 0 || H5Aread(a, mt, tmp) < 0)
+    else if (H5Aread(a, ft, tmp) < 0)
       mrn_h5r_fail(r, "cannot read attribute '%s' of %s (truncated or corrupted file)", name, obj);
     else
       take_string(r, obj, name, tmp, size, buf, cap);
-    if (mt >= 0) H5Tclose(mt);
     free(tmp);
   }
   if (ft >= 0) H5Tclose(ft);
@@ -498,13 +523,13 @@ static int check_dataset_shape(mrn_h5r *r, hid_t d, const char *path, int64_t ro
   if (s < 0) return mrn_h5r_fail(r, "cannot read %s (truncated or corrupted file)", path);
   hsize_t dims[H5S_MAX_RANK] = {0};
   int rank = H5Sget_simple_extent_type(s) == H5S_SIMPLE ? H5Sget_simple_extent_dims(s, dims, NULL) : -1;
-  int want_rank = cols ? 2 : 1;
-  int ok = rank == want_rank && dims[0] == (hsize_t)rows && (!cols || dims[1] == (hsize_t)cols);
+  int want_rank = cols < 0 ? 1 : 2;
+  int ok = rank == want_rank && dims[0] == (hsize_t)rows && (cols < 0 || dims[1] == (hsize_t)cols);
   char got[128], want[64];
   shape_text(s, got, sizeof got);
   H5Sclose(s);
   if (ok) return MRN_OK;
-  if (cols)
+  if (cols >= 0)
     snprintf(want, sizeof want, "%lld x %d", (long long)rows, cols);
   else
     snprintf(want, sizeof want, "%lld", (long long)rows);
@@ -528,8 +553,8 @@ static int check_dataset_storage(mrn_h5r *r, hid_t d, const char *path, size_t b
 void *mrn_h5r_dataset(mrn_h5r *r, const char *path, mrn_h5_elem elem, int64_t rows, int cols) {
   if (r->failed) return NULL;
   if (!mrn_h5r_exists(r, path)) return mrn_h5r_fail(r, "missing dataset %s", path), NULL;
-  int width = cols ? cols : 1;
-  if (rows < 0 || cols < 0 || (uint64_t)rows > SIZE_MAX / elem_size(elem) / (size_t)width)
+  size_t width = cols < 0 ? 1 : (size_t)cols;
+  if (rows < 0 || (width && (uint64_t)rows > SIZE_MAX / elem_size(elem) / width))
     return mrn_h5r_fail(r, "%s: impossible size %lld x %d", path, (long long)rows, cols), NULL;
   size_t bytes = (size_t)rows * (size_t)width * elem_size(elem);
   hid_t d = H5Oopen(r->file, path, H5P_DEFAULT);

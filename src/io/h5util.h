@@ -49,8 +49,11 @@ void mrn_h5w_doubles(mrn_h5w *w, hid_t obj, const char *name, const double *valu
 void mrn_h5w_int32(mrn_h5w *w, hid_t obj, const char *name, int value);
 void mrn_h5w_int32s(mrn_h5w *w, hid_t obj, const char *name, const int *values, int n);
 void mrn_h5w_int64(mrn_h5w *w, hid_t obj, const char *name, int64_t value);
-/* A dataset of `rows` x `cols` values of the native type `type` (cols == 0:
- * a rank-1 dataset of `rows` values), stored in that same type so nothing is
+/* `cols` of a rank-1 dataset (one value per row) */
+#define MRN_H5_RANK1 (-1)
+
+/* A dataset of `rows` x `cols` values of the native type `type` (cols ==
+ * MRN_H5_RANK1: `rows` values), stored in that same type so nothing is
  * converted, with `units` and `description` attributes. */
 void mrn_h5w_dataset(mrn_h5w *w, hid_t group, const char *name, hid_t type, const void *data, size_t rows,
                      int cols, const char *units, const char *description);
@@ -85,6 +88,8 @@ int mrn_h5r_group(mrn_h5r *r, const char *path);
 int mrn_h5r_has_attr(mrn_h5r *r, const char *obj, const char *name);
 /* the number of links (members) of a group; -1 once failed */
 long mrn_h5r_group_size(mrn_h5r *r, const char *path);
+/* call fn for every attribute name of `obj` until it returns non-zero */
+int mrn_h5r_each_attr(mrn_h5r *r, const char *obj, int (*fn)(void *user, const char *name), void *user);
 
 /* Attributes of the object at path `obj`. Numbers: one value (a scalar or a
  * one-element array), or exactly n values. Doubles must be stored as 64-bit
@@ -99,7 +104,7 @@ int mrn_h5r_string(mrn_h5r *r, const char *obj, const char *name, char *buf, siz
 int mrn_h5r_choice(mrn_h5r *r, const char *obj, const char *name, const char *const *names, int *out);
 
 /* The dataset at `path` as a malloc'd array of rows x cols elements (cols ==
- * 0: rank 1), after checking its presence, type, rank and shape and that the
+ * MRN_H5_RANK1: rows elements), after checking its presence, type, rank and shape and that the
  * file can hold that much data. NULL once failed. */
 void *mrn_h5r_dataset(mrn_h5r *r, const char *path, mrn_h5_elem elem, int64_t rows, int cols);
 

@@ -10,6 +10,12 @@
 /* The registry: a new model adds one line here. */
 static const mrn_material_type *const registry[] = {
     &mrn_material_linear_elastic,
+    &mrn_material_mohr_coulomb,
+    &mrn_material_drucker_prager,
+    &mrn_material_von_mises,
+    &mrn_material_newtonian,
+    &mrn_material_hencky,
+    &mrn_material_neo_hookean,
 };
 enum { REGISTRY_COUNT = sizeof registry / sizeof registry[0] };
 

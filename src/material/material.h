@@ -49,6 +49,9 @@ typedef struct mrn_material_type {
   void (*update)(const struct mrn_material *m, mrn_material_point *pt);
   /* speed of the fastest elastic wave (m/s), for time-step estimates */
   double (*wave_speed)(const struct mrn_material *m);
+  /* viscous time-step limit (s) for a grid spacing h, h^2 / nu (002, Eq. 36);
+   * NULL for models without viscosity */
+  double (*viscous_dt)(const struct mrn_material *m, double h);
 } mrn_material_type;
 
 typedef struct mrn_material {
@@ -79,6 +82,12 @@ double mrn_material_young(const mrn_material *m);
 
 /* the models */
 extern const mrn_material_type mrn_material_linear_elastic;
+extern const mrn_material_type mrn_material_mohr_coulomb;
+extern const mrn_material_type mrn_material_drucker_prager;
+extern const mrn_material_type mrn_material_von_mises;
+extern const mrn_material_type mrn_material_newtonian;
+extern const mrn_material_type mrn_material_hencky;
+extern const mrn_material_type mrn_material_neo_hookean;
 
 /* Isotropic linear elasticity shared by every small-strain model:
  * ds = lambda tr(de) I + 2 G de. */

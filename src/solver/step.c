@@ -17,6 +17,7 @@
 #include "core/error.h"
 #include "core/parallel.h"
 #include "core/tensor.h"
+#include "material/advance.h"
 #include "solver/simulation.h"
 #include "transfer/kernels.h"
 #include "transfer/xpic.h"
@@ -79,45 +80,21 @@ static void grid_update(mrn_sim *sim, double dt) {
 }
 
 /* Kinematics and constitutive update of one particle from its velocity
- * gradient (particles.gradv): F (002, Eq. 27), volume from J, Jaumann
- * rotation and the material's stress increment (002, Eqs. 28-30), energies
- * (000, Eqs. 64-65). Returns 0, or 1 when F inverted. */
+ * gradient (particles.gradv), volume from J, and its energies weighted by the
+ * mid-step volume (000, Eqs. 64-65). Returns 0, or 1 when F would invert. */
 static int update_particle_stress(mrn_sim *sim, size_t p, double dt) {
   mrn_particles *ps = &sim->particles;
-  const double *L = ps->gradv + 9 * p;
-  double *F = ps->F + 9 * p;
-  double inc[9], Fn[9];
-  for (int k = 0; k < 9; k++) inc[k] = (k % 4 == 0 ? 1.0 : 0.0) + dt * L[k];
-  mat_mul(inc, F, Fn);
-  double J_old = mat_det(F);
-  double J = mat_det(Fn);
-  if (!(J > 0.0)) return 1;
-  memcpy(F, Fn, sizeof Fn);
-  double vol_old = ps->vol[p];
-  ps->vol[p] = ps->vol0[p] * J;
-
   const mrn_material *mat = sim->materials[ps->material[p]];
-  mrn_material_point pt;
-  memcpy(pt.stress, ps->stress + 6 * p, sizeof pt.stress);
-  mat_sym_part(L, dt, pt.dstrain);
-  if (mat->type->rate_form) {
-    double W[9];
-    mat_skew_part(L, dt, W);
-    sym_jaumann_rotate(pt.stress, W);
-  }
-  pt.F = F;
-  pt.J = J;
-  pt.J_old = J_old;
-  pt.dt = dt;
-  pt.state = ps->state_stride ? ps->state + (size_t)ps->state_stride * p : NULL;
-  pt.de_elastic = pt.dw_plastic = 0.0;
-  mat->type->update(mat, &pt);
-  memcpy(ps->stress + 6 * p, pt.stress, sizeof pt.stress);
-  double *eps = ps->strain + 6 * p;
-  for (int k = 0; k < 6; k++) eps[k] += pt.dstrain[k];
+  double *state = ps->state_stride ? ps->state + (size_t)ps->state_stride * p : NULL;
+  mrn_point_result r;
+  if (mrn_material_advance(mat, ps->gradv + 9 * p, dt, MRN_F_UPDATE_MIDPOINT, ps->F + 9 * p, ps->stress + 6 * p,
+                           ps->strain + 6 * p, state, &r))
+    return 1;
+  double vol_old = ps->vol[p];
+  ps->vol[p] = ps->vol0[p] * r.J;
   double vol_mid = 0.5 * (vol_old + ps->vol[p]);
-  ps->e_elastic[p] += vol_mid * pt.de_elastic;
-  ps->w_plastic[p] += vol_mid * pt.dw_plastic;
+  ps->e_elastic[p] += vol_mid * r.de_elastic;
+  ps->w_plastic[p] += vol_mid * r.dw_plastic;
   return 0;
 }
 

@@ -20,19 +20,14 @@ void mrn_dt_policy_cfl(mrn_dt_policy *p, mrn_dt_kind kind, double courant) {
   p->value = courant;
 }
 
-/* kinematic viscosity of a material, 0 when it has none */
-static double kinematic_viscosity(const mrn_material *m) {
-  double mu = mrn_material_get(m, "viscosity");
-  return isnan(mu) ? 0.0 : mu / mrn_material_density(m);
-}
-
 double mrn_dt_particle_critical(const mrn_sim *sim) {
   const mrn_particles *ps = &sim->particles;
-  double speed[MRN_MAX_MATERIALS], nu_max = 0.0;
+  const double h = sim->grid.cell;
+  double speed[MRN_MAX_MATERIALS], viscous = HUGE_VAL;
   for (int i = 0; i < sim->nmaterials; i++) {
     const mrn_material *m = sim->materials[i];
     speed[i] = m->type->wave_speed ? m->type->wave_speed(m) : 0.0; /* (002, Eq. 34) */
-    nu_max = fmax(nu_max, kinematic_viscosity(m));
+    if (m->type->viscous_dt) viscous = fmin(viscous, m->type->viscous_dt(m, h)); /* h^2 / nu (002, Eq. 36) */
   }
   double fastest = 0.0;
   for (size_t p = 0; p < ps->n; p++) {
@@ -40,10 +35,8 @@ double mrn_dt_particle_critical(const mrn_sim *sim) {
     double s = speed[ps->material[p]] + sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
     if (s > fastest) fastest = s;
   }
-  const double h = sim->grid.cell;
   double dt = fastest > 0.0 ? h / fastest : HUGE_VAL; /* (002, Eq. 35) */
-  if (nu_max > 0.0) dt = fmin(dt, h * h / nu_max);     /* (002, Eq. 36) */
-  return dt;
+  return fmin(dt, viscous);                              /* (002, Eq. 36) */
 }
 
 double mrn_dt_grid_critical(mrn_sim *sim) {

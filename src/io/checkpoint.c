@@ -1,0 +1,489 @@
+/* moraine: checkpoints — writing a simulation, and building one (or adding
+ * particles to one) from a validated file. Reading and validation are in
+ * checkpoint_read.c; the layout is documented in doc/checkpoint-format.md. */
+#include "io/checkpoint.h"
+
+#include <errno.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "core/error.h"
+#include "io/atomic_file.h"
+#include "io/checkpoint_internal.h"
+#include "io/h5util.h"
+
+/* ---- units of the particle fields ------------------------------------------ */
+
+/* The field table documents units in prose; the files carry them as a
+ * separate attribute. 2D simulations are per unit thickness. */
+static const struct {
+  const char *field, *unit3d, *unit2d;
+} field_units[] = {
+    {"x", "m", "m"},         {"x0", "m", "m"},          {"v", "m/s", "m/s"},      {"mass", "kg", "kg/m"},
+    {"vol", "m^3", "m^2"},   {"vol0", "m^3", "m^2"},    {"F", "1", "1"},          {"gradv", "1/s", "1/s"},
+    {"affine", "1/s", "1/s"}, {"stress", "Pa", "Pa"},   {"strain", "1", "1"},     {"e_elastic", "J", "J/m"},
+    {"w_plastic", "J", "J/m"},
+};
+
+/* A field added later without an entry here: take the first short "(unit)"
+ * of its description ("(000, Eq. 25)" is a reference, not a unit), else leave
+ * the unit to the description. */
+static const char *unit_from_doc(const char *doc) {
+  static _Thread_local char unit[32];
+  for (const char *open = strchr(doc, '('); open; open = strchr(open + 1, '(')) {
+    size_t len = strcspn(open + 1, ";)");
+    if (len == 0 || len >= sizeof unit || memchr(open + 1, ' ', len)) continue;
+    memcpy(unit, open + 1, len);
+    unit[len] = '\0';
+    return unit;
+  }
+  return "";
+}
+
+/* units of a particle field in a `dim`-dimensional simulation ("" unknown) */
+static const char *field_units_of(const char *field, int dim) {
+  for (size_t i = 0; i < sizeof field_units / sizeof field_units[0]; i++)
+    if (strcmp(field_units[i].field, field) == 0) return dim == 2 ? field_units[i].unit2d : field_units[i].unit3d;
+  const mrn_particle_field_info *f = mrn_particle_field_find(field);
+  return f ? unit_from_doc(f->doc) : "";
+}
+
+/* the component order, appended to each field's description */
+static const char *component_note(int ncomp) {
+  switch (ncomp) {
+  case 3: return "; columns x, y, z (z = 0 in 2D)";
+  case 6: return "; columns xx, yy, zz, xy, yz, xz";
+  case 9: return "; columns xx, xy, xz, yx, yy, yz, zx, zy, zz (row-major 3 x 3)";
+  default: return "";
+  }
+}
+
+/* ---- writing ---------------------------------------------------------------- */
+
+static void save_root(mrn_h5w *w) {
+  hid_t root = H5Gopen2(w->file, "/", H5P_DEFAULT);
+  if (root < 0) {
+    w->failed = 1;
+    snprintf(w->what, sizeof w->what, "the root group");
+    return;
+  }
+  mrn_h5w_string(w, root, "format", MRN_CHECKPOINT_FORMAT);
+  mrn_h5w_int32(w, root, "version", MRN_CHECKPOINT_VERSION);
+  mrn_h5w_string(w, root, "moraine_version", MORAINE_VERSION " (" MORAINE_GIT_COMMIT ")");
+  H5Gclose(root);
+}
+
+static void save_simulation(mrn_h5w *w, const mrn_sim *sim) {
+  hid_t g = mrn_h5w_group(w, w->file, "simulation");
+  if (g < 0) return;
+  mrn_h5w_int32(w, g, "dim", sim->dim);
+  mrn_h5w_string(w, g, "shape", mrn_shape_info_of(sim->shape)->name);
+  mrn_h5w_string(w, g, "kernel_boundary", mrn_kernel_boundary_names()[sim->kernel_boundary]);
+  mrn_h5w_double(w, g, "time", sim->time);
+  mrn_h5w_int64(w, g, "step", sim->step);
+  mrn_h5w_double(w, g, "dt", sim->dt);
+  mrn_h5w_doubles(w, g, "gravity", sim->gravity, 3);
+  mrn_h5w_double(w, g, "damping_cundall", sim->damping_cundall);
+  mrn_h5w_double(w, g, "damping_viscous", sim->damping_viscous);
+  mrn_h5w_double(w, g, "work_friction", sim->work_friction);
+  mrn_h5w_double(w, g, "work_damping", sim->work_damping);
+  mrn_h5w_double(w, g, "energy_ref", sim->energy_ref);
+  mrn_h5w_int32(w, g, "energy_ref_set", sim->energy_ref_set);
+  mrn_h5w_double(w, g, "mass_floor", sim->mass_floor);
+  mrn_h5w_int32(w, g, "affine_pending", sim->affine_pending);
+  H5Gclose(g);
+}
+
+static void save_grid(mrn_h5w *w, const mrn_grid *grid) {
+  hid_t g = mrn_h5w_group(w, w->file, "grid");
+  if (g < 0) return;
+  mrn_h5w_int32(w, g, "dim", grid->dim);
+  mrn_h5w_doubles(w, g, "origin", grid->origin, 3);
+  mrn_h5w_doubles(w, g, "size", grid->size, 3);
+  mrn_h5w_double(w, g, "cell", grid->cell);
+  mrn_h5w_int32s(w, g, "ncell", grid->ncell, 3);
+  H5Gclose(g);
+}
+
+static void save_scheme(mrn_h5w *w, const mrn_scheme *s) {
+  hid_t g = mrn_h5w_group(w, w->file, "scheme");
+  if (g < 0) return;
+  mrn_h5w_string(w, g, "name", s->name);
+  mrn_h5w_string(w, g, "grid_velocity", mrn_grid_velocity_names()[s->grid_velocity]);
+  mrn_h5w_string(w, g, "velocity_update", mrn_velocity_update_names()[s->velocity_update]);
+  mrn_h5w_string(w, g, "position_update", mrn_position_update_names()[s->position_update]);
+  mrn_h5w_double(w, g, "flip_fraction", s->flip_fraction);
+  mrn_h5w_int32(w, g, "xpic_order", s->xpic_order);
+  mrn_h5w_int32(w, g, "mls_gradient", s->mls_gradient);
+  mrn_h5w_string(w, g, "stress_update", mrn_stress_update_names()[s->stress_update]);
+  H5Gclose(g);
+}
+
+/* all six faces, also in 2D (the z faces are then unused) */
+static void save_boundary(mrn_h5w *w, const mrn_boundary *bc) {
+  hid_t g = mrn_h5w_group(w, w->file, "boundary");
+  for (int f = 0; f < MRN_FACE_COUNT && g >= 0; f++) {
+    hid_t face = mrn_h5w_group(w, g, mrn_face_name(f));
+    if (face < 0) break;
+    mrn_h5w_string(w, face, "kind", mrn_bc_kind_name(bc->face[f].kind));
+    mrn_h5w_double(w, face, "mu", bc->face[f].mu);
+    mrn_h5w_doubles(w, face, "velocity", bc->face[f].velocity, 3);
+    H5Gclose(face);
+  }
+  if (g >= 0) H5Gclose(g);
+}
+
+static void save_dt_policy(mrn_h5w *w, const mrn_dt_policy *p) {
+  hid_t g = mrn_h5w_group(w, w->file, "dt_policy");
+  if (g < 0) return;
+  mrn_h5w_string(w, g, "kind", mrn_dt_kind_name(p->kind));
+  mrn_h5w_double(w, g, "value", p->value);
+  mrn_h5w_double(w, g, "min", p->min);
+  mrn_h5w_double(w, g, "max", p->max);
+  if (p->kind == MRN_DT_CALLBACK)
+    mrn_h5w_string(w, g, "note",
+                   "the time step was computed by a function, which a file cannot hold: a loaded simulation "
+                   "steps with a fixed dt equal to /simulation dt until the deck sets its function again");
+  H5Gclose(g);
+}
+
+static void save_material(mrn_h5w *w, hid_t parent, int index, const mrn_material *m) {
+  char name[32];
+  snprintf(name, sizeof name, "%d", index);
+  hid_t g = mrn_h5w_group(w, parent, name);
+  if (g < 0) return;
+  mrn_h5w_string(w, g, "type", m->type->name);
+  mrn_h5w_string(w, g, "name", m->name);
+  hid_t params = mrn_h5w_group(w, g, "parameters");
+  for (int i = 0; i < m->type->nparams && params >= 0; i++)
+    mrn_h5w_double(w, params, m->type->params[i].key, m->param[i]);
+  if (params >= 0) H5Gclose(params);
+  H5Gclose(g);
+}
+
+static void save_materials(mrn_h5w *w, const mrn_sim *sim) {
+  hid_t g = mrn_h5w_group(w, w->file, "materials");
+  if (g < 0) return;
+  mrn_h5w_int32(w, g, "count", sim->nmaterials);
+  for (int i = 0; i < sim->nmaterials; i++) save_material(w, g, i, sim->materials[i]);
+  H5Gclose(g);
+}
+
+/* Every field of the particle table, so a field added to the engine is saved
+ * without touching this file. */
+static void save_particles(mrn_h5w *w, const mrn_sim *sim) {
+  const mrn_particles *ps = &sim->particles;
+  hid_t g = mrn_h5w_group(w, w->file, "particles");
+  if (g < 0) return;
+  mrn_h5w_int64(w, g, "count", (int64_t)ps->n);
+  mrn_h5w_int64(w, g, "next_id", ps->next_id);
+  mrn_h5w_int32(w, g, "state_stride", ps->state_stride);
+  for (int i = 0; i < mrn_particle_field_count(); i++) {
+    const mrn_particle_field_info *f = mrn_particle_field_at(i);
+    char doc[512];
+    snprintf(doc, sizeof doc, "%s%s", f->doc, component_note(f->ncomp));
+    mrn_h5w_dataset(w, g, f->name, H5T_NATIVE_DOUBLE, mrn_particle_field_data(ps, f), ps->n,
+                    f->ncomp == 1 ? MRN_H5_RANK1 : f->ncomp, field_units_of(f->name, sim->dim), doc);
+  }
+  mrn_h5w_dataset(w, g, "material", H5T_NATIVE_INT32, ps->material, ps->n, MRN_H5_RANK1, "1",
+                  "material index: the group /materials/<index>");
+  mrn_h5w_dataset(w, g, "id", H5T_NATIVE_INT64, ps->id, ps->n, MRN_H5_RANK1, "1",
+                  "particle id, unique in the simulation and stable through the run");
+  mrn_h5w_dataset(w, g, "state", H5T_NATIVE_DOUBLE, ps->state, ps->n, ps->state_stride, "",
+                  "material history variables, state_stride per particle; the first nstate of them belong to "
+                  "the particle's material (its type's state_names), units as the model defines them");
+  H5Gclose(g);
+}
+
+static void save_all(mrn_h5w *w, const mrn_sim *sim) {
+  save_root(w);
+  save_simulation(w, sim);
+  save_grid(w, &sim->grid);
+  save_scheme(w, &sim->scheme);
+  save_boundary(w, &sim->boundary);
+  save_dt_policy(w, &sim->dt_policy);
+  save_materials(w, sim);
+  save_particles(w, sim);
+}
+
+/* HDF5 writes the temporary file by name; mrn_atomic_file reserved that name
+ * and, on commit, fsyncs it (fsync covers every descriptor of the file) and
+ * renames it into place, so a crash leaves the old checkpoint or the new one,
+ * never half of one. */
+static int write_file(const mrn_sim *sim, const char *temp_path, const char *final_path) {
+  mrn_h5w w = {.file = H5I_INVALID_HID};
+  hid_t fapl = H5Pcreate(H5P_FILE_ACCESS);
+  if (fapl >= 0) H5Pset_fclose_degree(fapl, H5F_CLOSE_STRONG);
+  /* The HDF5 1.8 file format: its metadata (superblock, object headers with
+   * the attributes, B-trees) carries checksums, so a damaged file is refused
+   * by HDF5 instead of being decoded; every HDF5 since 1.8 and h5py read it. */
+  if (fapl >= 0) H5Pset_libver_bounds(fapl, H5F_LIBVER_V18, H5F_LIBVER_V18);
+  errno = 0;
+  w.file = H5Fcreate(temp_path, H5F_ACC_TRUNC, H5P_DEFAULT, fapl >= 0 ? fapl : H5P_DEFAULT);
+  if (fapl >= 0) H5Pclose(fapl);
+  if (w.file < 0) {
+    w.failed = 1;
+    w.err = errno;
+    snprintf(w.what, sizeof w.what, "the file");
+  } else {
+    save_all(&w, sim);
+    errno = 0;
+    /* the data only has to be complete once the file is closed */
+    if (H5Fclose(w.file) < 0 && !w.failed) {
+      w.failed = 1;
+      w.err = errno;
+      snprintf(w.what, sizeof w.what, "the file (closing it)");
+    }
+  }
+  if (!w.failed) return MRN_OK;
+  if (w.err)
+    return mrn_error_code(MRN_ERR_IO, "cannot write '%s': %s (writing %s)", final_path, strerror(w.err), w.what);
+  return mrn_error_code(MRN_ERR_IO, "cannot write '%s': HDF5 could not write %s", final_path, w.what);
+}
+
+int mrn_checkpoint_save(const mrn_sim *sim, const char *path) {
+  mrn_atomic_file file;
+  int rc = mrn_atomic_open(&file, path);
+  if (rc) return rc;
+  mrn_h5_quiet quiet;
+  mrn_h5_silence(&quiet);
+  rc = write_file(sim, file.temp_path, path);
+  mrn_h5_restore(&quiet);
+  if (rc) {
+    mrn_atomic_abort(&file);
+    return rc;
+  }
+  return mrn_atomic_commit(&file);
+}
+
+/* ---- loading ------------------------------------------------------------------ */
+
+static void take_dt_policy(mrn_sim *sim, const ck_data *d, mrn_checkpoint_info *info) {
+  if (d->dt_kind != MRN_DT_CALLBACK) {
+    /* every policy but a function is its kind and value */
+    mrn_dt_policy_release(&sim->dt_policy);
+    sim->dt_policy.kind = d->dt_kind;
+    sim->dt_policy.value = d->dt_value;
+  } else {
+    /* a function cannot be saved: keep stepping with the last dt it gave */
+    mrn_dt_policy_fixed(&sim->dt_policy, d->dt);
+    info->dt_function_dropped = 1;
+    snprintf(info->note, sizeof info->note,
+             "the time step was set by a function, which a checkpoint cannot hold; the loaded simulation uses a "
+             "fixed dt = %.17g s (the last step's) until the function is set again",
+             d->dt);
+  }
+  sim->dt_policy.min = d->dt_min;
+  sim->dt_policy.max = d->dt_max;
+}
+
+static int take_particles(mrn_sim *sim, const ck_data *d) {
+  mrn_particles *ps = &sim->particles;
+  if (mrn_particles_set_state_stride(ps, d->state_stride) || mrn_particles_reserve(ps, (size_t)d->n))
+    return MRN_ERR;
+  for (int i = 0; i < mrn_particle_field_count(); i++) {
+    const mrn_particle_field_info *f = mrn_particle_field_at(i);
+    if (d->n) memcpy(mrn_particle_field_data(ps, f), d->field[i], (size_t)d->n * f->ncomp * sizeof(double));
+  }
+  if (d->n) {
+    memcpy(ps->material, d->material, (size_t)d->n * sizeof *ps->material);
+    memcpy(ps->id, d->id, (size_t)d->n * sizeof *ps->id);
+  }
+  if (d->n && d->state_stride) memcpy(ps->state, d->state, (size_t)d->n * d->state_stride * sizeof(double));
+  ps->n = (size_t)d->n;
+  ps->next_id = d->next_id;
+  return MRN_OK;
+}
+
+/* everything in d has been checked; what can still fail is memory */
+static mrn_sim *build_sim(const ck_data *d, mrn_checkpoint_info *info) {
+  mrn_sim_config cfg = {.dim = d->dim, .cell = d->cell, .shape = d->shape, .kernel_boundary = d->kernel_boundary};
+  memcpy(cfg.origin, d->origin, sizeof cfg.origin);
+  memcpy(cfg.size, d->size, sizeof cfg.size);
+  memcpy(cfg.gravity, d->gravity, sizeof cfg.gravity);
+  mrn_sim *sim = mrn_sim_new(&cfg);
+  if (!sim) return NULL;
+  memcpy(sim->gravity, d->gravity, sizeof sim->gravity);
+  sim->scheme = d->scheme;
+  sim->boundary = d->boundary;
+  take_dt_policy(sim, d, info);
+  sim->time = d->time;
+  sim->step = (long)d->step;
+  sim->dt = d->dt;
+  sim->damping_cundall = d->damping_cundall;
+  sim->damping_viscous = d->damping_viscous;
+  sim->work_friction = d->work_friction;
+  sim->work_damping = d->work_damping;
+  sim->energy_ref = d->energy_ref;
+  sim->energy_ref_set = d->energy_ref_set;
+  sim->affine_pending = d->affine_pending;
+  for (int i = 0; i < d->nmaterials; i++)
+    if (mrn_sim_add_material(sim, d->materials[i]) < 0) goto fail;
+  if (take_particles(sim, d)) goto fail;
+  mrn_sim_particles_changed(sim);
+  sim->mass_floor = d->mass_floor; /* as saved, whatever rule computed it */
+  return sim;
+fail:
+  mrn_sim_free(sim);
+  return NULL;
+}
+
+mrn_sim *mrn_checkpoint_load_info(const char *path, mrn_checkpoint_info *info) {
+  mrn_checkpoint_info scratch;
+  if (!info) info = &scratch;
+  memset(info, 0, sizeof *info);
+  mrn_h5_quiet quiet;
+  mrn_h5_silence(&quiet);
+  ck_data d;
+  int rc = ck_read(path, &d);
+  mrn_h5_restore(&quiet);
+  if (rc) return NULL;
+  mrn_sim *sim = build_sim(&d, info);
+  if (!sim) {
+    char inner[1024];
+    snprintf(inner, sizeof inner, "%s", mrn_error_message());
+    mrn_error_code(MRN_ERR_IO, "'%s': %s", path, inner);
+  } else {
+    info->version = d.version;
+    snprintf(info->moraine_version, sizeof info->moraine_version, "%s", d.moraine_version);
+    info->particles = (long)d.n;
+  }
+  ck_free(&d);
+  return sim;
+}
+
+mrn_sim *mrn_checkpoint_load(const char *path) { return mrn_checkpoint_load_info(path, NULL); }
+
+/* ---- importing ------------------------------------------------------------------ */
+
+/* where the imported particles' materials go in the target simulation */
+typedef struct import_plan {
+  int target[MRN_MAX_MATERIALS];        /* checkpoint material -> target index, -1 unused */
+  mrn_material *add[MRN_MAX_MATERIALS]; /* materials to register, in order */
+  int nadd;
+  int stride; /* history storage the target needs */
+} import_plan;
+
+static int same_material(const mrn_material *a, const mrn_material *b) {
+  return a->type == b->type && strcmp(a->name, b->name) == 0 &&
+         memcmp(a->param, b->param, sizeof(double) * (size_t)a->type->nparams) == 0;
+}
+
+/* index a material will have in the target: its present one, or the next free */
+static int plan_material(import_plan *plan, const mrn_sim *sim, mrn_material *m, int reuse_equal) {
+  for (int j = 0; j < sim->nmaterials; j++)
+    if (sim->materials[j] == m || (reuse_equal && same_material(sim->materials[j], m))) return j;
+  for (int k = 0; k < plan->nadd; k++)
+    if (plan->add[k] == m) return sim->nmaterials + k;
+  if (m->type->nstate > plan->stride) plan->stride = m->type->nstate;
+  plan->add[plan->nadd] = m;
+  return sim->nmaterials + plan->nadd++;
+}
+
+static int make_plan(import_plan *plan, const mrn_sim *sim, const ck_data *d, mrn_material *override,
+                     const char *path) {
+  memset(plan, 0, sizeof *plan);
+  plan->stride = sim->particles.state_stride;
+  for (int i = 0; i < MRN_MAX_MATERIALS; i++) plan->target[i] = -1;
+  int used[MRN_MAX_MATERIALS] = {0};
+  for (int64_t p = 0; p < d->n; p++) used[d->material[p]] = 1;
+  /* the additions cannot exceed the table: each is a distinct checkpoint material or the override */
+  for (int i = 0; i < d->nmaterials; i++) {
+    if (!used[i]) continue;
+    if (override) {
+      plan->target[i] = plan_material(plan, sim, override, 0);
+    } else {
+      plan->target[i] = plan_material(plan, sim, d->materials[i], 1);
+    }
+  }
+  if (sim->nmaterials + plan->nadd > MRN_MAX_MATERIALS)
+    return mrn_error_code(MRN_ERR_IO, "'%s': importing needs %d more material%s, the simulation has room for %d",
+                          path, plan->nadd, plan->nadd == 1 ? "" : "s", MRN_MAX_MATERIALS - sim->nmaterials);
+  return MRN_OK;
+}
+
+static int check_landing(const mrn_sim *sim, const ck_data *d, const double offset[3], const char *path) {
+  const double *x = ck_field(d, "x");
+  const mrn_grid *g = &sim->grid;
+  for (int64_t p = 0; p < d->n; p++) {
+    double y[3];
+    for (int k = 0; k < 3; k++) y[k] = x[3 * p + k] + (k < d->dim ? offset[k] : 0.0);
+    if (mrn_grid_contains(g, y)) continue;
+    char box[160];
+    int used = snprintf(box, sizeof box, "[%g, %g] x [%g, %g]", g->origin[0], g->origin[0] + g->size[0],
+                        g->origin[1], g->origin[1] + g->size[1]);
+    if (g->dim == 3)
+      snprintf(box + used, sizeof box - (size_t)used, " x [%g, %g]", g->origin[2], g->origin[2] + g->size[2]);
+    return mrn_error_code(MRN_ERR_IO,
+                          "'%s': particle %lld (id %lld) would land at (%g, %g, %g), outside the grid %s",
+                          path, (long long)p, (long long)d->id[p], y[0], y[1], y[2], box);
+  }
+  return MRN_OK;
+}
+
+/* copy one imported particle q of the checkpoint to slot i of the target */
+static void import_one(mrn_sim *sim, const ck_data *d, const import_plan *plan, const double offset[3],
+                       size_t i, int64_t q) {
+  mrn_particles *ps = &sim->particles;
+  for (int k = 0; k < mrn_particle_field_count(); k++) {
+    const mrn_particle_field_info *f = mrn_particle_field_at(k);
+    memcpy(mrn_particle_field_data(ps, f) + i * f->ncomp, d->field[k] + q * f->ncomp, sizeof(double) * f->ncomp);
+  }
+  for (int k = 0; k < d->dim && offset; k++) {
+    ps->x[3 * i + k] += offset[k];
+    ps->x0[3 * i + k] += offset[k];
+  }
+  int target = plan->target[d->material[q]];
+  ps->material[i] = target;
+  ps->id[i] = ps->next_id++;
+  if (!ps->state_stride) return;
+  /* history variables belong to a model: they carry over only to the same model */
+  double *state = ps->state + i * (size_t)ps->state_stride;
+  memset(state, 0, sizeof(double) * (size_t)ps->state_stride);
+  const mrn_material_type *from = d->materials[d->material[q]]->type;
+  if (sim->materials[target]->type == from && from->nstate > 0)
+    memcpy(state, d->state + q * d->state_stride, sizeof(double) * (size_t)from->nstate);
+}
+
+static int import_data(mrn_sim *sim, const ck_data *d, mrn_material *override, const double offset[3],
+                       const char *path, long *count) {
+  if (d->dim != sim->dim)
+    return mrn_error_code(MRN_ERR_IO, "'%s': the checkpoint is %dD but the simulation is %dD", path, d->dim,
+                          sim->dim);
+  static const double no_offset[3] = {0, 0, 0};
+  for (int k = 0; k < 3 && offset; k++)
+    if (!isfinite(offset[k]))
+      return mrn_error("import '%s': offset[%d] is %g, expected a finite number", path, k + 1, offset[k]);
+  import_plan plan;
+  int rc = check_landing(sim, d, offset ? offset : no_offset, path);
+  if (!rc) rc = make_plan(&plan, sim, d, override, path);
+  if (rc) return rc;
+  /* set aside all memory first: once particles are copied nothing can fail */
+  mrn_particles *ps = &sim->particles;
+  if (mrn_particles_set_state_stride(ps, plan.stride) || mrn_particles_reserve(ps, ps->n + (size_t)d->n))
+    return MRN_ERR;
+  for (int k = 0; k < plan.nadd; k++)
+    if (mrn_sim_add_material(sim, plan.add[k]) < 0) return MRN_ERR;
+  size_t first = ps->n;
+  for (int64_t q = 0; q < d->n; q++) import_one(sim, d, &plan, offset, first + (size_t)q, q);
+  ps->n = first + (size_t)d->n;
+  mrn_sim_particles_changed(sim);
+  if (count) *count = (long)d->n;
+  return MRN_OK;
+}
+
+int mrn_checkpoint_import(mrn_sim *sim, const char *path, mrn_material *override, const double offset[3],
+                          long *count) {
+  if (count) *count = 0;
+  mrn_h5_quiet quiet;
+  mrn_h5_silence(&quiet);
+  ck_data d;
+  int rc = ck_read(path, &d);
+  mrn_h5_restore(&quiet);
+  if (rc) return rc;
+  rc = import_data(sim, &d, override, offset, path, count);
+  ck_free(&d);
+  return rc;
+}

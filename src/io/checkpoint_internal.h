@@ -1,0 +1,66 @@
+/* moraine: what the checkpoint writer and reader share.
+ *
+ * The reader turns a file into a ck_data (every value checked) before a
+ * simulation is touched; load and import then build from it. */
+#ifndef MRN_IO_CHECKPOINT_INTERNAL_H
+#define MRN_IO_CHECKPOINT_INTERNAL_H
+
+#include <stdint.h>
+
+#include "solver/simulation.h"
+
+/* upper bound on history variables per particle, against absurd files */
+#define CK_MAX_STATE_STRIDE 4096
+/* step counter and next particle id: far beyond any run, far below overflow
+ * (both are incremented by the engine without checks) */
+#define CK_MAX_COUNTER ((int64_t)1 << 53)
+
+typedef struct ck_data {
+  /* / */
+  int version;
+  char moraine_version[64];
+  /* /simulation */
+  int dim;
+  mrn_shape_kind shape;
+  mrn_kernel_boundary kernel_boundary;
+  int affine_pending;
+  double time, dt, gravity[3], mass_floor;
+  double damping_cundall, damping_viscous;
+  double work_friction, work_damping, energy_ref; /* energy balance (000, Eqs. 66-68) */
+  int energy_ref_set;
+  int64_t step;
+  /* /grid */
+  double origin[3], size[3], cell;
+  int ncell[3];
+  /* /scheme, /boundary */
+  mrn_scheme scheme;
+  mrn_boundary boundary;
+  /* /dt_policy */
+  mrn_dt_kind dt_kind;
+  double dt_value, dt_min, dt_max;
+  /* /materials: prepared materials, one reference each */
+  int nmaterials;
+  mrn_material *materials[MRN_MAX_MATERIALS];
+  /* /particles */
+  int64_t n, next_id;
+  int state_stride;
+  double **field; /* one array per mrn_particle_field_at(i), n * ncomp values */
+  int32_t *material;
+  int64_t *id;
+  double *state; /* n * state_stride */
+} ck_data;
+
+/* the array of the particle field `name` (one of the table's) */
+static inline double *ck_field(const ck_data *d, const char *name) {
+  return d->field[mrn_particle_field_find(name) - mrn_particle_field_at(0)];
+}
+
+/* Read and validate the whole checkpoint at `path`. 0, or MRN_ERR_IO with a
+ * message naming the file (nothing to free then). */
+int ck_read(const char *path, ck_data *d);
+void ck_free(ck_data *d);
+
+/* NULL-terminated names of the time-step policy kinds, in enum order */
+const char *const *ck_dt_kind_names(void);
+
+#endif
