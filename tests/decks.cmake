@@ -25,6 +25,7 @@ moraine_deck_test(rotating_disk rotating_disk.lua)
 moraine_deck_test(simple_shear simple_shear.lua)
 moraine_deck_test(settling settling.lua)
 moraine_deck_test(disks_cfl disks_cfl.lua)
+moraine_deck_test(checkpoint_workflow checkpoint_workflow.lua)
 moraine_deck_test(rotating_cube rotating_cube.lua ARGS --set time=10)
 
 # VTK files read back by the real VTK reader

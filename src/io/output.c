@@ -135,6 +135,25 @@ int mrn_output_maybe_vtk(mrn_output *o, const mrn_sim *sim) {
   return due ? mrn_output_write_vtk(o, sim) : MRN_OK;
 }
 
+/* CSV files opened in this process: a second simulation writing to the same
+ * file (a settling run and the collapse that follows it, say) appends its rows
+ * under the same header instead of truncating the first one's */
+#define MAX_CSV_SEEN 64
+static char *csv_seen[MAX_CSV_SEEN];
+static int csv_seen_count;
+
+static int csv_seen_before(const char *path) {
+  for (int i = 0; i < csv_seen_count; i++)
+    if (strcmp(csv_seen[i], path) == 0) return 1;
+  if (csv_seen_count < MAX_CSV_SEEN) csv_seen[csv_seen_count++] = strdup(path);
+  return 0;
+}
+
+void mrn_output_forget_files(void) {
+  for (int i = 0; i < csv_seen_count; i++) free(csv_seen[i]);
+  csv_seen_count = 0;
+}
+
 static int open_csv(mrn_output *o) {
   char *path = mrn_path_join(o->dir, o->csv_name);
   char *slash = strrchr(path, '/');
@@ -147,15 +166,18 @@ static int open_csv(mrn_output *o) {
       return MRN_ERR_IO;
     }
   }
-  o->csv = fopen(path, "w");
+  int append = csv_seen_before(path);
+  o->csv = fopen(path, append ? "a" : "w");
   if (!o->csv) {
     int rc = mrn_error_code(MRN_ERR_IO, "cannot write '%s': %s", path, strerror(errno));
     free(path);
     return rc;
   }
-  fprintf(o->csv, "step,time,dt");
-  for (int i = 0; i < mrn_diagnostics_column_count(); i++) fprintf(o->csv, ",%s", mrn_diagnostics_column_name(i));
-  fputc('\n', o->csv);
+  if (!append) {
+    fprintf(o->csv, "step,time,dt");
+    for (int i = 0; i < mrn_diagnostics_column_count(); i++) fprintf(o->csv, ",%s", mrn_diagnostics_column_name(i));
+    fputc('\n', o->csv);
+  }
   free(path);
   return MRN_OK;
 }

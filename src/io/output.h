@@ -43,6 +43,10 @@ void mrn_output_free(mrn_output *o);
 int mrn_output_set_vtk(mrn_output *o, const char *name, double every_time, long every_steps);
 int mrn_output_set_csv(mrn_output *o, const char *name, long every);
 
+/* forget which CSV files this process has written (they are appended to
+ * when a second output names the same file); called when a deck ends */
+void mrn_output_forget_files(void);
+
 /* write a snapshot now (0 or MRN_ERR_IO) */
 int mrn_output_write_vtk(mrn_output *o, const struct mrn_sim *sim);
 /* write a snapshot if one is due at the current time/step */

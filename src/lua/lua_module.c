@@ -10,6 +10,7 @@
 
 #include "core/error.h"
 #include "core/spec.h"
+#include "io/output.h"
 #include "lua/lua_internal.h"
 #include "lua/moraine_lua.h"
 
@@ -174,5 +175,6 @@ int mrn_lua_run_deck(const char *path, const mrn_deck_options *opt) {
     rc = 1;
   }
   lua_close(L);
+  mrn_output_forget_files();
   return rc;
 }

@@ -7,7 +7,9 @@
 
 #include "core/error.h"
 #include "core/log.h"
+#include "io/atomic_file.h"
 #include "core/tensor.h"
+#include "io/checkpoint.h"
 #include "io/particle_fields.h"
 #include "lua/lua_check.h"
 #include "lua/lua_internal.h"
@@ -406,6 +408,18 @@ static const char *output_dir(lua_State *L) {
 
 /* ------------------------------------------------------- constructor */
 
+/* a new simulation userdata with its outputs ready and no engine simulation yet */
+static sim_box *push_sim_box(lua_State *L) {
+  sim_box *b = lua_newuserdatauv(L, sizeof *b, 0);
+  memset(b, 0, sizeof *b);
+  luaL_setmetatable(L, MRN_LUA_SIM);
+  mrn_output_init(&b->out, output_dir(L));
+  b->out_ready = 1;
+  b->thermo_every = 100;
+  b->progress = 1;
+  return b;
+}
+
 static int l_simulation(lua_State *L) {
   const char *where = "simulation{}";
   mrn_lua_check_table(L, 1, where, sim_specs, MRN_COUNT(sim_specs));
@@ -439,17 +453,12 @@ static int l_simulation(lua_State *L) {
     mrn_kernel_boundary_from_name(sb, &cfg.kernel_boundary);
   }
 
-  sim_box *b = lua_newuserdatauv(L, sizeof *b, 0);
-  memset(b, 0, sizeof *b);
-  luaL_setmetatable(L, MRN_LUA_SIM);
+  sim_box *b = push_sim_box(L);
   int self = lua_gettop(L);
   b->sim = mrn_sim_new(&cfg);
   if (!b->sim) mrn_lua_error(L, where, "%s", mrn_error_message());
-  mrn_output_init(&b->out, output_dir(L));
-  b->out_ready = 1;
-  b->thermo_every = 100;
-  b->progress = 1;
   for (int i = 0; i < MRN_FACE_COUNT; i++) b->sim->boundary.face[i].kind = MRN_BC_SLIP;
+  mrn_output_set_csv(&b->out, "diagnostics.csv", 10);
   const char *name = mrn_lua_get_string(L, 1, where, sim_specs, MRN_COUNT(sim_specs), "name");
   snprintf(b->name, sizeof b->name, "%s", name ? name : "simulation");
 
@@ -723,6 +732,103 @@ static int l_set_dt(lua_State *L) {
   return 0;
 }
 
+/* ------------------------------------------------------- checkpoints */
+
+static const char *output_path(lua_State *L, sim_box *b, const char *path) {
+  if (path[0] == '/') return path;
+  char *joined = mrn_path_join(b->out.dir, path);
+  lua_pushstring(L, joined);
+  free(joined);
+  return lua_tostring(L, -1);
+}
+
+/* sim:save(path): the complete state, relative paths in the output directory */
+static int l_save(lua_State *L) {
+  sim_box *b = check_sim(L, 1);
+  const char *path = output_path(L, b, luaL_checkstring(L, 2));
+  if (mrn_mkdir_p(b->out.dir) != MRN_OK) mrn_lua_error(L, "save()", "%s", mrn_error_message());
+  if (mrn_checkpoint_save(b->sim, path) != MRN_OK) mrn_lua_error(L, "save()", "%s", mrn_error_message());
+  lua_pushstring(L, path);
+  return 1;
+}
+
+static const mrn_spec load_specs[] = {
+    {"name", MRN_SPEC_STRING, 0, 0, 0, 0, 0, 0, NULL, "label of the loaded simulation", NULL},
+    {"thermo", MRN_SPEC_INTEGER, 0, 100, 0, 1e12, 0, 0, "steps", "thermo line every N steps", NULL},
+    {"diagnostics", MRN_SPEC_ANY, 0, 0, 0, 0, 0, 0, NULL, "CSV file name, or false", NULL},
+    {"output", MRN_SPEC_TABLE, 0, 0, 0, 0, 0, 0, NULL, "VTK output settings, as in simulation{}", NULL},
+};
+
+/* mpm.load(path [, options]): a simulation continuing from a checkpoint */
+static int l_load(lua_State *L) {
+  const char *where = "load()";
+  const char *path = luaL_checkstring(L, 1);
+  int has_opts = !lua_isnoneornil(L, 2);
+  if (has_opts) mrn_lua_check_table(L, 2, where, load_specs, MRN_COUNT(load_specs));
+  /* a relative path is looked for as given, then in the output directory */
+  if (path[0] != '/' && access(path, F_OK) != 0) {
+    char *joined = mrn_path_join(output_dir(L), path);
+    if (access(joined, F_OK) == 0) {
+      lua_pushstring(L, joined);
+      path = lua_tostring(L, -1);
+    }
+    free(joined);
+  }
+  sim_box *b = push_sim_box(L);
+  int self = lua_gettop(L);
+  mrn_checkpoint_info info;
+  b->sim = mrn_checkpoint_load_info(path, &info);
+  if (!b->sim) mrn_lua_error(L, where, "%s", mrn_error_message());
+  if (info.dt_function_dropped) mrn_warn("%s", info.note);
+  snprintf(b->name, sizeof b->name, "%s", "loaded");
+  mrn_output_set_csv(&b->out, "diagnostics.csv", 10);
+  if (has_opts) {
+    const char *name = mrn_lua_get_string(L, 2, where, load_specs, MRN_COUNT(load_specs), "name");
+    if (name) snprintf(b->name, sizeof b->name, "%s", name);
+    b->thermo_every = mrn_lua_get_integer(L, 2, where, load_specs, MRN_COUNT(load_specs), "thermo");
+    lua_getfield(L, 2, "diagnostics");
+    if (lua_type(L, -1) == LUA_TSTRING) mrn_output_set_csv(&b->out, lua_tostring(L, -1), 10);
+    else if (lua_type(L, -1) == LUA_TBOOLEAN && !lua_toboolean(L, -1)) mrn_output_set_csv(&b->out, NULL, 10);
+    lua_pop(L, 1);
+    if (mrn_lua_has(L, 2, "output")) {
+      lua_getfield(L, 2, "output");
+      read_output(L, -1, where, b);
+      lua_pop(L, 1);
+    }
+  }
+  lua_pushvalue(L, self);
+  return 1;
+}
+
+static const mrn_spec import_specs[] = {
+    {"material", MRN_SPEC_ANY, 0, 0, 0, 0, 0, 0, NULL, "a material for every imported particle (default: the saved ones)", NULL},
+    {"offset", MRN_SPEC_VECTOR, 0, 0, -HUGE_VAL, HUGE_VAL, 0, 0, "m", "added to every position", NULL},
+};
+
+/* sim:import(path [, {material = m, offset = {...}}]): particles of a checkpoint */
+static int l_import(lua_State *L) {
+  sim_box *b = check_sim(L, 1);
+  const char *where = "import()";
+  const char *path = luaL_checkstring(L, 2);
+  mrn_material *override = NULL;
+  double offset[3] = {0, 0, 0};
+  if (!lua_isnoneornil(L, 3)) {
+    mrn_lua_check_table(L, 3, where, import_specs, MRN_COUNT(import_specs));
+    if (mrn_lua_has(L, 3, "material")) {
+      lua_getfield(L, 3, "material");
+      override = mrn_lua_check_material(L, -1, where);
+      lua_pop(L, 1);
+    }
+    mrn_lua_get_vector(L, 3, where, "offset", b->sim->dim, offset, 0);
+  }
+  if (path[0] != '/' && access(path, F_OK) != 0) path = output_path(L, b, path);
+  long count = 0;
+  if (mrn_checkpoint_import(b->sim, path, override, offset, &count) != MRN_OK)
+    mrn_lua_error(L, where, "%s", mrn_error_message());
+  lua_pushinteger(L, count);
+  return 1;
+}
+
 static int l_set_damping(lua_State *L) {
   sim_box *b = check_sim(L, 1);
   read_damping(L, 2, "set_damping()", b->sim);
@@ -905,7 +1011,7 @@ void mrn_lua_open_simulation(lua_State *L, int module) {
   luaL_setfuncs(L, meta, 0);
   static const luaL_Reg methods[] = {
       {"add_particles", l_add_particles}, {"run", l_run}, {"hook", l_hook}, {"set_gravity", l_set_gravity},
-      {"set_boundary", l_set_boundary}, {"set_scheme", l_set_scheme}, {"set_dt", l_set_dt}, {"set_damping", l_set_damping}, {"dt_estimate", l_dt_estimate},
+      {"set_boundary", l_set_boundary}, {"set_scheme", l_set_scheme}, {"set_dt", l_set_dt}, {"save", l_save}, {"import", l_import}, {"set_damping", l_set_damping}, {"dt_estimate", l_dt_estimate},
       {"output", l_set_output}, {"write_vtk", l_write_vtk}, {"time", l_time}, {"step", l_step}, {"dt", l_dt},
       {"particle_count", l_count}, {"dim", l_dim}, {"energy", l_energy}, {"diagnostics", l_diagnostics},
       {"field", l_field}, {"particle", l_particle}, {"info", l_info}, {"free", l_gc}, {NULL, NULL}};
@@ -915,6 +1021,8 @@ void mrn_lua_open_simulation(lua_State *L, int module) {
   lua_pop(L, 1);
   lua_pushcfunction(L, l_simulation);
   lua_setfield(L, module, "simulation");
+  lua_pushcfunction(L, l_load);
+  lua_setfield(L, module, "load");
 
   mrn_spec_register_group("simulation{}", sim_specs, MRN_COUNT(sim_specs));
   mrn_spec_register_group("simulation{} grid", grid_specs, MRN_COUNT(grid_specs));
@@ -927,4 +1035,6 @@ void mrn_lua_open_simulation(lua_State *L, int module) {
   mrn_spec_register_group("run{}", run_specs, MRN_COUNT(run_specs));
   mrn_spec_register_group("hook{}", hook_specs, MRN_COUNT(hook_specs));
   mrn_spec_register_group("add_particles()", particle_specs, MRN_COUNT(particle_specs));
+  mrn_spec_register_group("load()", load_specs, MRN_COUNT(load_specs));
+  mrn_spec_register_group("import()", import_specs, MRN_COUNT(import_specs));
 }
