@@ -732,6 +732,84 @@ static int l_set_dt(lua_State *L) {
   return 0;
 }
 
+static void push_vec(lua_State *L, const double *v, int n) {
+  lua_createtable(L, n, 0);
+  for (int i = 0; i < n; i++) {
+    lua_pushnumber(L, v[i]);
+    lua_rawseti(L, -2, i + 1);
+  }
+}
+
+/* ------------------------------------------------------- constraints */
+
+static const mrn_spec constrain_specs[] = {
+    {"region", MRN_SPEC_ANY, 1, 0, 0, 0, 0, 0, NULL, "the grid nodes inside this region are constrained", NULL},
+    {"vx", MRN_SPEC_NUMBER, 0, 0, -HUGE_VAL, HUGE_VAL, 0, 0, "m/s", "prescribed x velocity (absent: free)", NULL},
+    {"vy", MRN_SPEC_NUMBER, 0, 0, -HUGE_VAL, HUGE_VAL, 0, 0, "m/s", "prescribed y velocity (absent: free)", NULL},
+    {"vz", MRN_SPEC_NUMBER, 0, 0, -HUGE_VAL, HUGE_VAL, 0, 0, "m/s", "prescribed z velocity, 3D (absent: free)", NULL},
+};
+
+/* reads vx, vy, vz into v and mask; returns the number given */
+static int read_components(lua_State *L, int idx, const char *where, int dim, double v[3], unsigned *mask) {
+  static const char *keys[] = {"vx", "vy", "vz"};
+  int given = 0;
+  for (int d = 0; d < 3; d++) {
+    if (!mrn_lua_has(L, idx, keys[d])) continue;
+    if (d >= dim) mrn_lua_error(L, where, "%s is not a component in %dD", keys[d], dim);
+    v[d] = mrn_lua_get_number(L, idx, where, constrain_specs, MRN_COUNT(constrain_specs), keys[d]);
+    *mask |= 1u << d;
+    given++;
+  }
+  return given;
+}
+
+/* sim:constrain{region = r, vx = ..., vy = ...} -> index */
+static int l_constrain(lua_State *L) {
+  sim_box *b = check_sim(L, 1);
+  const char *where = "constrain{}";
+  mrn_lua_check_table(L, 2, where, constrain_specs, MRN_COUNT(constrain_specs));
+  lua_getfield(L, 2, "region");
+  mrn_region *region = mrn_lua_check_region(L, -1, where);
+  lua_pop(L, 1);
+  double v[3] = {0, 0, 0};
+  unsigned mask = 0;
+  if (!read_components(L, 2, where, b->sim->dim, v, &mask)) mrn_lua_error(L, where, "give at least one of vx, vy, vz");
+  mrn_lua_active = L;
+  int i = mrn_sim_add_constraint(b->sim, region, mask, v);
+  if (i < 0) mrn_lua_error(L, where, "%s", mrn_error_message());
+  lua_pushinteger(L, i + 1);
+  return 1;
+}
+
+static mrn_constraint *check_constraint(lua_State *L, sim_box *b, int idx, const char *where) {
+  lua_Integer i = luaL_checkinteger(L, idx);
+  if (i < 1 || i > b->sim->nconstraints)
+    mrn_lua_error(L, where, "no constraint %d (the simulation has %d)", (int)i, b->sim->nconstraints);
+  return &b->sim->constraints[i - 1];
+}
+
+/* sim:reaction(i) -> force the constraint exerted on the material in the last step */
+static int l_reaction(lua_State *L) {
+  sim_box *b = check_sim(L, 1);
+  mrn_constraint *c = check_constraint(L, b, 2, "reaction()");
+  push_vec(L, c->reaction, b->sim->dim);
+  return 1;
+}
+
+/* sim:set_constraint(i, {vx = ..., ...}): new prescribed values for the components given */
+static int l_set_constraint(lua_State *L) {
+  sim_box *b = check_sim(L, 1);
+  const char *where = "set_constraint()";
+  mrn_constraint *c = check_constraint(L, b, 2, where);
+  mrn_lua_check_table(L, 3, where, constrain_specs + 1, MRN_COUNT(constrain_specs) - 1);
+  double v[3] = {c->velocity[0], c->velocity[1], c->velocity[2]};
+  unsigned mask = c->mask;
+  read_components(L, 3, where, b->sim->dim, v, &mask);
+  memcpy(c->velocity, v, sizeof v);
+  c->mask = mask;
+  return 0;
+}
+
 /* ------------------------------------------------------- checkpoints */
 
 static const char *output_path(lua_State *L, sim_box *b, const char *path) {
@@ -869,13 +947,6 @@ static int l_dt(lua_State *L) { lua_pushnumber(L, check_sim(L, 1)->sim->dt); ret
 static int l_count(lua_State *L) { lua_pushinteger(L, (lua_Integer)check_sim(L, 1)->sim->particles.n); return 1; }
 static int l_dim(lua_State *L) { lua_pushinteger(L, check_sim(L, 1)->sim->dim); return 1; }
 
-static void push_vec(lua_State *L, const double *v, int n) {
-  lua_createtable(L, n, 0);
-  for (int i = 0; i < n; i++) {
-    lua_pushnumber(L, v[i]);
-    lua_rawseti(L, -2, i + 1);
-  }
-}
 
 static int l_energy(lua_State *L) {
   sim_box *b = check_sim(L, 1);
@@ -1011,7 +1082,7 @@ void mrn_lua_open_simulation(lua_State *L, int module) {
   luaL_setfuncs(L, meta, 0);
   static const luaL_Reg methods[] = {
       {"add_particles", l_add_particles}, {"run", l_run}, {"hook", l_hook}, {"set_gravity", l_set_gravity},
-      {"set_boundary", l_set_boundary}, {"set_scheme", l_set_scheme}, {"set_dt", l_set_dt}, {"save", l_save}, {"import", l_import}, {"set_damping", l_set_damping}, {"dt_estimate", l_dt_estimate},
+      {"set_boundary", l_set_boundary}, {"set_scheme", l_set_scheme}, {"set_dt", l_set_dt}, {"constrain", l_constrain}, {"reaction", l_reaction}, {"set_constraint", l_set_constraint}, {"save", l_save}, {"import", l_import}, {"set_damping", l_set_damping}, {"dt_estimate", l_dt_estimate},
       {"output", l_set_output}, {"write_vtk", l_write_vtk}, {"time", l_time}, {"step", l_step}, {"dt", l_dt},
       {"particle_count", l_count}, {"dim", l_dim}, {"energy", l_energy}, {"diagnostics", l_diagnostics},
       {"field", l_field}, {"particle", l_particle}, {"info", l_info}, {"free", l_gc}, {NULL, NULL}};
@@ -1036,5 +1107,6 @@ void mrn_lua_open_simulation(lua_State *L, int module) {
   mrn_spec_register_group("hook{}", hook_specs, MRN_COUNT(hook_specs));
   mrn_spec_register_group("add_particles()", particle_specs, MRN_COUNT(particle_specs));
   mrn_spec_register_group("load()", load_specs, MRN_COUNT(load_specs));
+  mrn_spec_register_group("constrain{}", constrain_specs, MRN_COUNT(constrain_specs));
   mrn_spec_register_group("import()", import_specs, MRN_COUNT(import_specs));
 }

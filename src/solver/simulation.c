@@ -33,6 +33,8 @@ void mrn_sim_free(mrn_sim *sim) {
   mrn_particles_free(&sim->particles);
   for (int i = 0; i < sim->nmaterials; i++) mrn_material_unref(sim->materials[i]);
   mrn_dt_policy_release(&sim->dt_policy);
+  for (int i = 0; i < sim->nconstraints; i++) mrn_constraint_free(&sim->constraints[i]);
+  free(sim->constraints);
   free(sim->scratch);
   free(sim);
 }
@@ -201,4 +203,18 @@ void mrn_sim_energy_balance_start(mrn_sim *sim) {
   mrn_sim_diagnostics(sim, &d);
   sim->energy_ref = d.total - d.plastic - d.friction - d.damping;
   sim->energy_ref_set = 1;
+}
+
+int mrn_sim_add_constraint(mrn_sim *sim, const mrn_region *region, unsigned mask, const double velocity[3]) {
+  mrn_constraint c;
+  if (mrn_constraint_init(&c, &sim->grid, region, mask, velocity) != MRN_OK) return -1;
+  mrn_constraint *grown = realloc(sim->constraints, (size_t)(sim->nconstraints + 1) * sizeof *grown);
+  if (!grown) {
+    mrn_constraint_free(&c);
+    mrn_error("constraint: out of memory");
+    return -1;
+  }
+  sim->constraints = grown;
+  sim->constraints[sim->nconstraints] = c;
+  return sim->nconstraints++;
 }

@@ -10,6 +10,7 @@
 #include <stdio.h>
 
 #include "grid/boundary.h"
+#include "grid/constraint.h"
 #include "grid/grid.h"
 #include "material/material.h"
 #include "particles/particles.h"
@@ -29,6 +30,8 @@ typedef struct mrn_sim {
   mrn_kernel_boundary kernel_boundary;
   mrn_scheme scheme;
   mrn_boundary boundary;
+  mrn_constraint *constraints; /* prescribed nodal velocities in regions */
+  int nconstraints;
   double gravity[3];
   mrn_dt_policy dt_policy;
 
@@ -80,6 +83,10 @@ int mrn_sim_seed(mrn_sim *sim, const mrn_region *region, int material_index, int
                  mrn_seed_placement placement, size_t *first, long *count);
 /* call after particles were added or removed by other means */
 void mrn_sim_particles_changed(mrn_sim *sim);
+
+/* Prescribe velocity components (bits of mask) on the nodes inside region;
+ * returns the constraint's index or -1 (message set). */
+int mrn_sim_add_constraint(mrn_sim *sim, const mrn_region *region, unsigned mask, const double velocity[3]);
 
 /* One explicit step with the dt the policy gives. 0, or an error code with a
  * message naming what went wrong (particle, position, step). */

@@ -33,6 +33,7 @@ static void grid_velocity(mrn_sim *sim) {
     for (int d = 0; d < 3; d++) g->vel[3 * i + d] = m > floor_mass ? g->mom[3 * i + d] / m : 0.0;
   }
   mrn_boundary_apply(&sim->boundary, g, g->vel, 0);
+  for (int c = 0; c < sim->nconstraints; c++) mrn_constraint_apply(&sim->constraints[c], g, g->vel, floor_mass, 0.0);
 }
 
 /* Damping force on a node with total force f and velocity v:
@@ -74,6 +75,7 @@ static void grid_update(mrn_sim *sim, double dt) {
   }
   sim->work_damping += work;
   sim->work_friction += mrn_boundary_apply(&sim->boundary, g, g->vel_new, 1);
+  for (int c = 0; c < sim->nconstraints; c++) mrn_constraint_apply(&sim->constraints[c], g, g->vel_new, floor_mass, dt);
 #pragma omp parallel for schedule(static) if (n > MRN_OMP_MIN_ITEMS)
   for (long i = 0; i < n; i++)
     for (int d = 0; d < 3; d++) g->acc[3 * i + d] = (g->vel_new[3 * i + d] - g->vel[3 * i + d]) / dt;
