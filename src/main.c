@@ -11,6 +11,7 @@
 #endif
 
 #include "core/error.h"
+#include "core/interrupt.h"
 #include "core/log.h"
 #include "io/atomic_file.h"
 #include "core/spec.h"
@@ -36,7 +37,8 @@ static void usage(FILE *f) {
           "  -v, --version        the version\n"
           "\n"
           "Exit status: 0 on success, 1 on any error (the message names the deck file\n"
-          "and line), 2 on a command-line error.\n"
+          "and line), 2 on a command-line error, 130 when SIGINT or SIGTERM stopped the\n"
+          "run (after writing a checkpoint; a second signal exits at once).\n"
           "Documentation: doc/getting-started.md and doc/lua-api.md in the source tree.\n");
 }
 
@@ -128,7 +130,9 @@ int main(int argc, char **argv) {
   opt.nsets = nsets;
   opt.argv = (const char *const *)argv;
   opt.argc = argc;
+  mrn_interrupt_install();
   int rc = mrn_lua_run_deck(deck, &opt);
+  if (rc && mrn_interrupt_pending()) rc = MRN_EXIT_INTERRUPTED;
   free(sets);
   return rc;
 

@@ -58,3 +58,13 @@ foreach(deck ${MORAINE_EXAMPLES})
            COMMAND moraine ${deck} -q -o ${MORAINE_TEST_OUT}/example_${name} --set quick=true)
   set_tests_properties(example.${name} PROPERTIES LABELS example)
 endforeach()
+
+# Robustness: a signal stops a run cleanly with a checkpoint that continues
+# bit for bit; a failed run leaves a checkpoint h5py reads
+add_test(NAME robust.sigint COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/robust/sigint.sh $<TARGET_FILE:moraine>
+                                    ${MORAINE_TEST_OUT}/robust_sigint)
+set_tests_properties(robust.sigint PROPERTIES LABELS robust ENVIRONMENT OMP_WAIT_POLICY=PASSIVE)
+add_test(NAME robust.failed_state
+         COMMAND ${MORAINE_PYTHON} ${CMAKE_CURRENT_SOURCE_DIR}/robust/check_failed_state.py
+                 ${MORAINE_TEST_OUT}/bad/unstable/simulation_failed.h5)
+set_tests_properties(robust.failed_state PROPERTIES DEPENDS bad.unstable LABELS robust)

@@ -14,7 +14,8 @@ enum {
   MRN_ERR = 1,       /* generic failure, message set */
   MRN_ERR_IO = 2,    /* a file could not be written or read */
   MRN_ERR_STATE = 3, /* the simulation state became invalid (NaN, particle left grid) */
-  MRN_ERR_HOOK = 4   /* a user callback asked to stop with an error */
+  MRN_ERR_HOOK = 4,  /* a user callback asked to stop with an error */
+  MRN_ERR_INTERRUPTED = 5 /* SIGINT or SIGTERM arrived; the run stopped after a whole step */
 };
 
 /* printf-style; always returns MRN_ERR so callers can `return mrn_error(...)` */

@@ -634,11 +634,38 @@ static int call_stop_when(void *ctx, mrn_sim *sim) {
   return stop ? MRN_STOP : MRN_OK;
 }
 
+/* When a run stops on an invalid state or a signal, the state it reached is
+ * kept: a checkpoint OUTDIR/<name>_<why>.h5 and, when a VTK series is set, a
+ * last snapshot. A failed state may hold non-finite values, which mpm.load
+ * refuses; h5py and h5dump read it for the post-mortem. Returns a note for
+ * the message (empty when nothing could be written). */
+static void write_final_state(sim_box *b, const char *why, char *note, size_t len) {
+  note[0] = '\0';
+  char file[96];
+  snprintf(file, sizeof file, "%s_%s.h5", b->name, why);
+  char *path = mrn_path_join(b->out.dir, file);
+  char saved[2048];
+  snprintf(saved, sizeof saved, "%s", mrn_error_message()); /* the save may overwrite it */
+  if (mrn_mkdir_p(b->out.dir) == MRN_OK && mrn_checkpoint_save(b->sim, path) == MRN_OK)
+    snprintf(note, len, "; the state at step %ld is in %s", b->sim->step, path);
+  if (b->out.vtk_name && b->out.vtk_last_step != b->sim->step && mrn_output_write_vtk(&b->out, b->sim) == MRN_OK) {
+    size_t used = strlen(note);
+    snprintf(note + used, len - used, "%s a last VTK snapshot was written", used ? " and" : "; ");
+  }
+  free(path);
+  mrn_error_code(MRN_ERR_STATE, "%s", saved);
+}
+
 /* raise the engine's message; a hook's own error already carries its location */
-static int raise_engine_error(lua_State *L, int rc, const char *where) {
+static int raise_engine_error(lua_State *L, int rc, const char *where, sim_box *b) {
   if (rc == MRN_ERR_HOOK) {
     lua_pushstring(L, mrn_error_message());
     return lua_error(L);
+  }
+  if (rc == MRN_ERR_STATE || rc == MRN_ERR_INTERRUPTED) {
+    char note[1024];
+    write_final_state(b, rc == MRN_ERR_STATE ? "failed" : "interrupted", note, sizeof note);
+    return mrn_lua_error(L, where, "%s%s", mrn_error_message(), note);
   }
   return mrn_lua_error(L, where, "%s", mrn_error_message());
 }
@@ -677,7 +704,7 @@ static int l_run(lua_State *L) {
   mrn_lua_active = L;
   int rc = mrn_run(b->sim, &b->out, &opt);
   mrn_lua_callback_release(stop_cb);
-  if (rc != MRN_OK) return raise_engine_error(L, rc, where);
+  if (rc != MRN_OK) return raise_engine_error(L, rc, where, b);
   return 0;
 }
 

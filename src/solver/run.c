@@ -5,6 +5,7 @@
 #include <time.h>
 
 #include "core/error.h"
+#include "core/interrupt.h"
 #include "core/log.h"
 
 void mrn_thermo_header(FILE *f) {
@@ -93,6 +94,11 @@ int mrn_run(mrn_sim *sim, mrn_output *out, mrn_run_options *opt) {
     }
     if ((rc = mrn_sim_step_dt(sim, dt)) != MRN_OK) break;
     rc = after_step(sim, out, opt, 0);
+    if (rc == MRN_OK && mrn_interrupt_pending()) {
+      rc = mrn_error_code(MRN_ERR_INTERRUPTED, "interrupted by signal %d after step %ld (t = %g s)",
+                          mrn_interrupt_pending(), sim->step, sim->time);
+      break;
+    }
     if (opt->progress) {
       double now = wall_seconds();
       if (now - last_draw > 0.25) {

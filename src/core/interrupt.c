@@ -1,0 +1,29 @@
+#include "core/interrupt.h"
+
+#include <signal.h>
+#include <string.h>
+#include <unistd.h>
+
+static volatile sig_atomic_t received = 0;
+
+static void on_signal(int sig) {
+  if (received) {
+    static const char msg[] = "\nmoraine: second signal, exiting at once\n";
+    (void)!write(2, msg, sizeof msg - 1);
+    _exit(MRN_EXIT_INTERRUPTED);
+  }
+  received = sig;
+}
+
+void mrn_interrupt_install(void) {
+  struct sigaction sa;
+  memset(&sa, 0, sizeof sa);
+  sa.sa_handler = on_signal;
+  sigemptyset(&sa.sa_mask);
+  sigaction(SIGINT, &sa, NULL);
+  sigaction(SIGTERM, &sa, NULL);
+}
+
+int mrn_interrupt_pending(void) { return (int)received; }
+
+void mrn_interrupt_clear(void) { received = 0; }
