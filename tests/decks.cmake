@@ -68,3 +68,8 @@ add_test(NAME robust.failed_state
          COMMAND ${MORAINE_PYTHON} ${CMAKE_CURRENT_SOURCE_DIR}/robust/check_failed_state.py
                  ${MORAINE_TEST_OUT}/bad/unstable/simulation_failed.h5)
 set_tests_properties(robust.failed_state PROPERTIES DEPENDS bad.unstable LABELS robust)
+
+# The installed tree finds lua/moraine/ next to its executable
+add_test(NAME install.lua_library COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/install_check.sh ${CMAKE_BINARY_DIR}
+                                          ${CMAKE_CURRENT_BINARY_DIR}/install_prefix)
+set_tests_properties(install.lua_library PROPERTIES LABELS install)

@@ -79,6 +79,8 @@ int luaopen_moraine(lua_State *L) {
   mrn_lua_open_simulation(L, module);
   lua_pushstring(L, MORAINE_VERSION);
   lua_setfield(L, module, "version");
+  lua_pushstring(L, mrn_lua_library_dir());
+  lua_setfield(L, module, "library_dir");
   lua_pushcfunction(L, l_param);
   lua_setfield(L, module, "param");
   lua_getfield(L, LUA_REGISTRYINDEX, "moraine.args");
