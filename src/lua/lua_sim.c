@@ -1034,6 +1034,133 @@ static int l_field(lua_State *L) {
   return 2;
 }
 
+/* ------------------------------------------------------- reductions */
+
+static const char *const reduce_ops[] = {"min", "max", "sum", "mean", "count", NULL};
+static const mrn_spec reduce_specs[] = {
+    {"component", MRN_SPEC_ANY, 0, 0, 0, 0, 0, 0, NULL, "component index from 1, or \"norm\" (default: 1, or the norm for vectors)", NULL},
+    {"material", MRN_SPEC_ANY, 0, 0, 0, 0, 0, 0, NULL, "only particles of this material", NULL},
+    {"region", MRN_SPEC_ANY, 0, 0, 0, 0, 0, 0, NULL, "only particles inside this region", NULL},
+    {"where", MRN_SPEC_FUNCTION, 0, 0, 0, 0, 0, 0, NULL, "only particles for which where(x, y, z) is true", NULL},
+};
+
+/* sim:reduce(op, field [, options]): min, max, sum, mean or count of a
+ * particle quantity over all particles, a material, a region or a predicate.
+ * field: a particle field name, or x / y / z for the positions. */
+static int l_reduce(lua_State *L) {
+  sim_box *b = check_sim(L, 1);
+  const char *where = "reduce()";
+  const char *op = luaL_checkstring(L, 2);
+  mrn_lua_check_choice(L, where, "op", op, reduce_ops);
+  const char *field = luaL_checkstring(L, 3);
+  int has_opts = !lua_isnoneornil(L, 4);
+  if (has_opts) mrn_lua_check_table(L, 4, where, reduce_specs, MRN_COUNT(reduce_specs));
+  const mrn_particles *ps = &b->sim->particles;
+  const size_t n = ps->n;
+  /* the values: positions directly, or a field computed into a buffer */
+  int ncomp = 1, axis = -1;
+  const double *data = NULL;
+  if (!strcmp(field, "x") || !strcmp(field, "y") || !strcmp(field, "z")) {
+    axis = field[0] - 'x';
+    if (axis >= b->sim->dim) mrn_lua_error(L, where, "field '%s' does not exist in %dD", field, b->sim->dim);
+    data = ps->x;
+    ncomp = 3;
+  } else {
+    static const char *const extra[] = {"x", "y", "z", NULL};
+    const mrn_output_field *f = mrn_output_field_find(field);
+    if (!f) {
+      const char *hint = mrn_suggest_from(mrn_output_field_names(), field);
+      if (!hint) hint = mrn_suggest_from(extra, field);
+      mrn_lua_error(L, where, "unknown field '%s'%s%s%s (fields: x, y, z and those of sim:field)", field,
+                    hint ? " (did you mean '" : "", hint ? hint : "", hint ? "'?)" : "");
+    }
+    ncomp = f->ncomp;
+    double *buf = lua_newuserdatauv(L, (n ? n : 1) * ncomp * sizeof(double), 0);
+    if (f->type == MRN_VTK_FLOAT64) {
+      f->compute(b->sim, buf);
+    } else { /* integer fields, widened */
+      int64_t *tmp = lua_newuserdatauv(L, (n ? n : 1) * sizeof(int64_t), 0);
+      f->compute(b->sim, tmp);
+      for (size_t i = 0; i < n; i++) buf[i] = f->type == MRN_VTK_INT32 ? ((int32_t *)tmp)[i] : (double)tmp[i];
+      lua_pop(L, 1);
+    }
+    data = buf;
+  }
+  int use_norm = 0, comp = 0;
+  if (axis >= 0) {
+    comp = axis;
+  } else {
+    use_norm = ncomp == 3; /* vectors: their length unless a component is asked for */
+    if (has_opts && mrn_lua_has(L, 4, "component")) {
+      lua_getfield(L, 4, "component");
+      if (lua_type(L, -1) == LUA_TSTRING && !strcmp(lua_tostring(L, -1), "norm")) {
+        use_norm = 1;
+      } else if (lua_isinteger(L, -1) && lua_tointeger(L, -1) >= 1 && lua_tointeger(L, -1) <= ncomp) {
+        use_norm = 0;
+        comp = (int)lua_tointeger(L, -1) - 1;
+      } else {
+        mrn_lua_error(L, where, "component must be 1..%d or \"norm\" for '%s'", ncomp, field);
+      }
+      lua_pop(L, 1);
+    }
+  }
+  int mat = -1;
+  mrn_region *region = NULL;
+  int pred = 0;
+  if (has_opts) {
+    if (mrn_lua_has(L, 4, "material")) {
+      lua_getfield(L, 4, "material");
+      mrn_material *m = mrn_lua_check_material(L, -1, where);
+      lua_pop(L, 1);
+      for (int i = 0; i < b->sim->nmaterials; i++)
+        if (b->sim->materials[i] == m) mat = i;
+      if (mat < 0) mat = MRN_MAX_MATERIALS; /* a material no particle has */
+    }
+    if (mrn_lua_has(L, 4, "region")) {
+      lua_getfield(L, 4, "region");
+      region = mrn_lua_check_region(L, -1, where);
+      lua_pop(L, 1);
+    }
+    if (mrn_lua_has(L, 4, "where")) {
+      lua_getfield(L, 4, "where");
+      pred = lua_gettop(L);
+    }
+  }
+  double lo = HUGE_VAL, hi = -HUGE_VAL, sum = 0.0;
+  long count = 0;
+  mrn_lua_active = L;
+  for (size_t p = 0; p < n; p++) {
+    if (mat >= 0 && ps->material[p] != mat) continue;
+    const double *x = ps->x + 3 * p;
+    if (region) {
+      int in = mrn_region_contains(region, x);
+      if (in < 0) mrn_lua_error(L, where, "%s", mrn_error_message());
+      if (!in) continue;
+    }
+    if (pred) {
+      lua_pushvalue(L, pred);
+      for (int d = 0; d < 3; d++) lua_pushnumber(L, x[d]);
+      lua_call(L, 3, 1);
+      int keep = lua_toboolean(L, -1);
+      lua_pop(L, 1);
+      if (!keep) continue;
+    }
+    const double *row = data + (size_t)ncomp * p;
+    double v = use_norm ? sqrt(row[0] * row[0] + row[1] * row[1] + row[2] * row[2]) : row[comp];
+    lo = fmin(lo, v);
+    hi = fmax(hi, v);
+    sum += v;
+    count++;
+  }
+  if (!strcmp(op, "count")) lua_pushinteger(L, count);
+  else if (count == 0) lua_pushnil(L); /* min, max, mean of nothing */
+  else if (!strcmp(op, "min")) lua_pushnumber(L, lo);
+  else if (!strcmp(op, "max")) lua_pushnumber(L, hi);
+  else if (!strcmp(op, "sum")) lua_pushnumber(L, sum);
+  else lua_pushnumber(L, sum / count);
+  return 1;
+}
+
 /* sim:particle(i) -> table of one particle's state (1-based index) */
 static int l_particle(lua_State *L) {
   sim_box *b = check_sim(L, 1);
@@ -1112,7 +1239,7 @@ void mrn_lua_open_simulation(lua_State *L, int module) {
       {"set_boundary", l_set_boundary}, {"set_scheme", l_set_scheme}, {"set_dt", l_set_dt}, {"constrain", l_constrain}, {"reaction", l_reaction}, {"set_constraint", l_set_constraint}, {"save", l_save}, {"import", l_import}, {"set_damping", l_set_damping}, {"dt_estimate", l_dt_estimate},
       {"output", l_set_output}, {"write_vtk", l_write_vtk}, {"time", l_time}, {"step", l_step}, {"dt", l_dt},
       {"particle_count", l_count}, {"dim", l_dim}, {"energy", l_energy}, {"diagnostics", l_diagnostics},
-      {"field", l_field}, {"particle", l_particle}, {"info", l_info}, {"free", l_gc}, {NULL, NULL}};
+      {"field", l_field}, {"reduce", l_reduce}, {"particle", l_particle}, {"info", l_info}, {"free", l_gc}, {NULL, NULL}};
   lua_newtable(L);
   luaL_setfuncs(L, methods, 0);
   lua_setfield(L, -2, "__index");
@@ -1135,5 +1262,6 @@ void mrn_lua_open_simulation(lua_State *L, int module) {
   mrn_spec_register_group("add_particles()", particle_specs, MRN_COUNT(particle_specs));
   mrn_spec_register_group("load()", load_specs, MRN_COUNT(load_specs));
   mrn_spec_register_group("constrain{}", constrain_specs, MRN_COUNT(constrain_specs));
+  mrn_spec_register_group("reduce()", reduce_specs, MRN_COUNT(reduce_specs));
   mrn_spec_register_group("import()", import_specs, MRN_COUNT(import_specs));
 }

@@ -21,6 +21,17 @@ s2:add_particles(mpm.disk{ center = { 0.5, 0.5 }, radius = 0.2 }, { material = m
                  velocity = mpm.rigid_rotation{ omega = 2, center = { 0.5, 0.5 } } })
 s2:run{ steps = 100 }
 dump(s2, "run2d")
+-- reductions from Lua, compared by the checker with numpy on the last .vtp
+local f = assert(io.open(mpm.outdir .. "/run2d.reductions", "w"))
+local upper = mpm.box{ min = { 0, 0.5 }, max = { 1, 1 } }
+for _, r in ipairs{ { "max", "x" }, { "min", "y" }, { "sum", "mass" }, { "mean", "von_mises" }, { "max", "velocity" },
+                    { "count", "id" }, { "mean", "pressure", { region = upper } },
+                    { "sum", "mass", { where = function(x, y) return x < 0.5 end } },
+                    { "max", "stress", { component = 4 } } } do
+  f:write(string.format("%s %s %s %.17g\n", r[1], r[2], r[3] and (r[3].region and "upper" or r[3].where and "left"
+          or "component" .. r[3].component) or "all", s2:reduce(r[1], r[2], r[3])))
+end
+f:close()
 
 local s3 = mpm.simulation{ dim = 3, grid = { size = { 1, 1, 1 }, cell = 0.125 }, gravity = { 0, 0, -9.81 },
                            thermo = 0, diagnostics = false,

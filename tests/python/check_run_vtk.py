@@ -69,6 +69,30 @@ def main():
             check(np.all(points[:, 2] == 0.0), f"{name}: z = 0 in 2D")
         for field in ("velocity", "mass", "stress", "id"):
             check(np.array_equal(arrays[field], state[field]), f"{name}: last file's {field} equals the state")
+    # reductions computed by the deck with sim:reduce, recomputed here from the last file
+    red_path = os.path.join(outdir, "run2d.reductions")
+    if os.path.exists(red_path):
+        entries = read_pvd(os.path.join(outdir, "run2d.pvd"))
+        points, arrays = read_vtp(entries[-1][1])
+        arrays = dict(arrays, x=points[:, 0], y=points[:, 1])
+        with open(red_path) as f:
+            for line in f:
+                op, field, subset, value = line.split()
+                data = arrays[field]
+                if subset.startswith("component"):
+                    data = data[:, int(subset[len("component"):]) - 1]
+                elif data.ndim == 2:
+                    data = np.linalg.norm(data, axis=1)
+                mask = np.ones(points.shape[0], dtype=bool)
+                if subset == "upper":
+                    mask = points[:, 1] >= 0.5
+                elif subset == "left":
+                    mask = points[:, 0] < 0.5
+                data = data[mask]
+                expected = {"max": np.max, "min": np.min, "sum": np.sum, "mean": np.mean,
+                            "count": lambda a: float(a.size)}[op](data)
+                check(abs(float(value) - expected) <= 1e-12 * max(1.0, abs(expected)),
+                      f"reduce {op} {field} {subset}: Lua {value}, numpy {expected}")
     print(f"{passed} passed, {failed} failed")
     return 1 if failed else 0
 
