@@ -8,7 +8,7 @@ packages=(
   liblua5.4-dev lua5.4            # the embedded Lua 5.4 (C API) and a stand-alone interpreter
   libhdf5-dev hdf5-tools          # HDF5 (checkpoints, time series) and h5dump
   python3 python3-numpy python3-vtk9 python3-h5py   # the tests read outputs with the real VTK reader
-  gnuplot-nox                     # plots of the examples
+  python3-matplotlib gnuplot-nox  # plots (scripts/moraine-plot uses matplotlib, else gnuplot)
 )
 
 missing=()

@@ -73,3 +73,14 @@ set_tests_properties(robust.failed_state PROPERTIES DEPENDS bad.unstable LABELS 
 add_test(NAME install.lua_library COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/install_check.sh ${CMAKE_BINARY_DIR}
                                           ${CMAKE_CURRENT_BINARY_DIR}/install_prefix)
 set_tests_properties(install.lua_library PROPERTIES LABELS install)
+
+# HDF5 series and grid snapshots of a real run
+moraine_deck_test(series_output series_output.lua)
+add_test(NAME python.series_run
+         COMMAND ${MORAINE_PYTHON} ${CMAKE_CURRENT_SOURCE_DIR}/python/check_series_h5.py
+                 ${MORAINE_TEST_OUT}/series_output/diagnostics.h5 ${MORAINE_TEST_OUT}/series_output/diagnostics.csv
+                 --extra-columns)
+set_tests_properties(python.series_run PROPERTIES DEPENDS deck.series_output LABELS python)
+add_test(NAME python.vti_run
+         COMMAND ${MORAINE_PYTHON} ${CMAKE_CURRENT_SOURCE_DIR}/python/check_grid_run.py ${MORAINE_TEST_OUT}/series_output s 10 10)
+set_tests_properties(python.vti_run PROPERTIES DEPENDS deck.series_output LABELS python)

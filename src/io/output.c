@@ -9,6 +9,7 @@
 #include "core/error.h"
 #include "io/atomic_file.h"
 #include "io/particle_fields.h"
+#include "io/vti.h"
 #include "solver/simulation.h"
 
 static char *dup_or_null(const char *s) { return s ? strdup(s) : NULL; }
@@ -28,6 +29,9 @@ void mrn_output_free(mrn_output *o) {
   free(o->csv_name);
   if (o->csv) fclose(o->csv);
   if (o->pvd.path) mrn_pvd_free(&o->pvd);
+  if (o->grid_pvd.path) mrn_pvd_free(&o->grid_pvd);
+  if (o->series) mrn_series_close(o->series);
+  free(o->series_name);
   memset(o, 0, sizeof *o);
 }
 
@@ -38,6 +42,8 @@ int mrn_output_set_vtk(mrn_output *o, const char *name, double every_time, long 
     o->vtk_name = dup_or_null(name);
     if (o->pvd.path) mrn_pvd_free(&o->pvd);
     memset(&o->pvd, 0, sizeof o->pvd);
+    if (o->grid_pvd.path) mrn_pvd_free(&o->grid_pvd);
+    memset(&o->grid_pvd, 0, sizeof o->grid_pvd);
     o->vtk_count = 0;
     o->vtk_last_step = -1;
   }
@@ -56,6 +62,51 @@ int mrn_output_set_csv(mrn_output *o, const char *name, long every) {
   o->csv_name = dup_or_null(name);
   if (every > 0) o->csv_every = every;
   return MRN_OK;
+}
+
+static int csv_seen_before(const char *path);
+
+int mrn_output_set_series(mrn_output *o, const char *name) {
+  if (o->series && (!name || !o->series_name || strcmp(name, o->series_name) != 0)) {
+    mrn_series_close(o->series);
+    o->series = NULL;
+  }
+  free(o->series_name);
+  o->series_name = dup_or_null(name);
+  return MRN_OK;
+}
+
+/* HDF5 series cannot be appended to by a second writer like the CSV: a second
+ * simulation of the deck naming the same file gets NAME_2.h5, NAME_3.h5, ... */
+static char *unused_series_path(mrn_output *o) {
+  char *path = mrn_path_join(o->dir, o->series_name);
+  for (int k = 2; csv_seen_before(path) && k < 1000; k++) {
+    free(path);
+    char name[512];
+    const char *dot = strrchr(o->series_name, '.');
+    int stem = dot ? (int)(dot - o->series_name) : (int)strlen(o->series_name);
+    snprintf(name, sizeof name, "%.*s_%d%s", stem, o->series_name, k, dot ? dot : "");
+    path = mrn_path_join(o->dir, name);
+  }
+  return path;
+}
+
+static int open_series(mrn_output *o) {
+  char *path = unused_series_path(o);
+  int rc = mrn_series_create(&o->series, path);
+  free(path);
+  if (rc != MRN_OK) return rc;
+  rc = mrn_series_add_column(o->series, "dt", "s", "size of the last step");
+  for (int i = 0; rc == MRN_OK && i < mrn_diagnostics_column_count(); i++)
+    rc = mrn_series_add_column(o->series, mrn_diagnostics_column_name(i), mrn_diagnostics_column_unit(i),
+                               "diagnostics, as in the CSV");
+  return rc;
+}
+
+int mrn_output_record(mrn_output *o, const char *name, double value) {
+  if (!o->series_name) return mrn_error("record: the simulation writes no HDF5 series (series = false)");
+  if (!o->series && open_series(o) != MRN_OK) return MRN_ERR_IO;
+  return mrn_series_set(o->series, name, value);
 }
 
 int mrn_output_write_vtk(mrn_output *o, const mrn_sim *sim) {
@@ -109,6 +160,22 @@ int mrn_output_write_vtk(mrn_output *o, const mrn_sim *sim) {
   if (rc == MRN_OK) rc = mrn_vtp_write(path, n, sim->particles.x, arrays, nf, o->encoding);
   for (int i = 0; i < nf; i++) free(buffers[i]);
   if (rc == MRN_OK) rc = mrn_pvd_add(&o->pvd, sim->time, file_part);
+  if (rc == MRN_OK && o->grid_vtk) {
+    /* the nodal mass, velocity and force of the last step */
+    char *grid_path = malloc(len + 16);
+    snprintf(grid_path, len + 16, "%s_grid_%06d.vti", base, o->vtk_count);
+    if (!o->grid_pvd.path) {
+      char *pvd_path = malloc(len + 16);
+      snprintf(pvd_path, len + 16, "%s_grid.pvd", base);
+      mrn_pvd_init(&o->grid_pvd, pvd_path);
+      free(pvd_path);
+    }
+    const char *grid_file = strrchr(grid_path, '/');
+    grid_file = grid_file ? grid_file + 1 : grid_path;
+    rc = mrn_vti_write_grid(grid_path, &sim->grid, sim->time, o->encoding);
+    if (rc == MRN_OK) rc = mrn_pvd_add(&o->grid_pvd, sim->time, grid_file);
+    free(grid_path);
+  }
   if (rc == MRN_OK) {
     o->vtk_count++;
     o->vtk_last_step = sim->step;
@@ -183,12 +250,24 @@ static int open_csv(mrn_output *o) {
 }
 
 int mrn_output_maybe_csv(mrn_output *o, const mrn_sim *sim, const mrn_diagnostics *d, int force) {
-  if (!o->csv_name) return MRN_OK;
+  if (!o->csv_name && !o->series_name) return MRN_OK;
   if (!force && (o->csv_every <= 0 || sim->step % o->csv_every != 0)) return MRN_OK;
-  if (o->csv && sim->step == o->csv_last_step) return MRN_OK; /* a run continuing from here */
-  if (!o->csv && open_csv(o) != MRN_OK) return MRN_ERR_IO;
+  if (sim->step == o->csv_last_step) return MRN_OK; /* a run continuing from here */
   double values[64];
   mrn_diagnostics_values(d, values);
+  if (o->series_name) {
+    if (!o->series && open_series(o) != MRN_OK) return MRN_ERR_IO;
+    int rc = mrn_series_set_at(o->series, 0, sim->dt);
+    for (int i = 0; rc == MRN_OK && i < mrn_diagnostics_column_count(); i++)
+      rc = mrn_series_set_at(o->series, i + 1, values[i]);
+    if (rc == MRN_OK) rc = mrn_series_append(o->series, sim->step, sim->time);
+    if (rc != MRN_OK) return rc;
+  }
+  if (!o->csv_name) {
+    o->csv_last_step = sim->step;
+    return MRN_OK;
+  }
+  if (!o->csv && open_csv(o) != MRN_OK) return MRN_ERR_IO;
   fprintf(o->csv, "%ld,%.17g,%.17g", sim->step, sim->time, sim->dt);
   for (int i = 0; i < mrn_diagnostics_column_count(); i++) fprintf(o->csv, ",%.17g", values[i]);
   fputc('\n', o->csv);

@@ -8,6 +8,7 @@
 
 #include <stdio.h>
 
+#include "io/series_h5.h"
 #include "io/vtk.h"
 #include "solver/diagnostics.h"
 
@@ -30,6 +31,15 @@ typedef struct mrn_output {
   const char *fields[MRN_OUTPUT_MAX_FIELDS];
   mrn_pvd pvd;
 
+  /* grid snapshots (.vti) beside the particle series, when set */
+  int grid_vtk;
+  mrn_pvd grid_pvd;
+
+  /* HDF5 time series of the diagnostics and of values recorded from Lua,
+   * written at the CSV's rows; disabled when series_name is NULL */
+  char *series_name;
+  mrn_series *series;
+
   /* diagnostics CSV; disabled when csv_name is NULL */
   char *csv_name;
   long csv_every;
@@ -42,6 +52,9 @@ void mrn_output_free(mrn_output *o);
 /* (re)configure the VTK series; name NULL disables it. A new name starts a new .pvd */
 int mrn_output_set_vtk(mrn_output *o, const char *name, double every_time, long every_steps);
 int mrn_output_set_csv(mrn_output *o, const char *name, long every);
+int mrn_output_set_series(mrn_output *o, const char *name);
+/* a value for the next row of the HDF5 series (a new name adds a column) */
+int mrn_output_record(mrn_output *o, const char *name, double value);
 
 /* forget which CSV files this process has written (they are appended to
  * when a second output names the same file); called when a deck ends */

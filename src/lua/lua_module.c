@@ -11,6 +11,7 @@
 #include "core/error.h"
 #include "core/spec.h"
 #include "io/output.h"
+#include "io/provenance.h"
 #include "lua/lua_internal.h"
 #include "lua/moraine_lua.h"
 
@@ -159,6 +160,10 @@ int mrn_lua_run_deck(const char *path, const mrn_deck_options *opt) {
   lua_pushlightuserdata(L, (void *)opt);
   int status = lua_pcall(L, 1, 0, handler);
   if (status == LUA_OK) status = luaL_loadfile(L, path);
+  /* provenance: the deck, the command line and the version beside the outputs */
+  if (status == LUA_OK && opt && opt->outdir &&
+      mrn_provenance_write(opt->outdir, path, opt->argc, opt->argv, opt->sets, opt->nsets) != MRN_OK)
+    fprintf(stderr, "moraine: warning: %s\n", mrn_error_message());
   if (status == LUA_OK) {
     /* mpm.deck and mpm.deck_dir: decks find their neighbouring files through these */
     lua_getglobal(L, "mpm");

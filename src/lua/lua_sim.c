@@ -54,6 +54,7 @@ static const mrn_spec sim_specs[] = {
     {"thermo", MRN_SPEC_INTEGER, 0, 100, 0, 1e12, 0, 0, "steps", "thermo line every N steps (0: none)", NULL},
     {"diagnostics", MRN_SPEC_ANY, 0, 0, 0, 0, 0, 0, NULL, "CSV file name in the output directory, or false", NULL},
     {"diagnostics_every", MRN_SPEC_INTEGER, 0, 10, 1, 1e12, 0, 0, "steps", "CSV row every N steps", NULL},
+    {"series", MRN_SPEC_ANY, 0, 0, 0, 0, 0, 0, NULL, "HDF5 time-series file name (default diagnostics.h5), or false", NULL},
     {"output", MRN_SPEC_TABLE, 0, 0, 0, 0, 0, 0, NULL, "VTK output {vtk, every, every_steps, fields, format}", NULL},
     {"name", MRN_SPEC_STRING, 0, 0, 0, 0, 0, 0, NULL, "label shown in messages", NULL},
     {"progress", MRN_SPEC_BOOLEAN, 0, 0, 0, 0, 0, 0, NULL, "progress bar on a terminal (default true)", NULL},
@@ -84,6 +85,7 @@ static const mrn_spec output_specs[] = {
     {"every_steps", MRN_SPEC_INTEGER, 0, 0, 1, 1e12, 0, 0, "steps", "write every N steps", NULL},
     {"fields", MRN_SPEC_TABLE, 0, 0, 0, 0, 0, 0, NULL, "list of particle fields (default all)", NULL},
     {"format", MRN_SPEC_STRING, 0, 0, 0, 0, 0, 0, NULL, "binary (default) or ascii", format_choices},
+    {"grid", MRN_SPEC_BOOLEAN, 0, 0, 0, 0, 0, 0, NULL, "also write the grid (.vti: nodal mass, velocity, force)", NULL},
 };
 
 static const mrn_spec boundary_specs[] = {
@@ -380,6 +382,8 @@ static void read_output(lua_State *L, int idx, const char *where, sim_box *b) {
   else if (o->vtk_name) mrn_output_set_vtk(o, o->vtk_name, every > 0 ? every : o->vtk_every_time,
                                            every_steps > 0 ? every_steps : o->vtk_every_steps);
   lua_pop(L, 1);
+  if (mrn_lua_has(L, idx, "grid"))
+    o->grid_vtk = mrn_lua_get_boolean(L, idx, sub, output_specs, MRN_COUNT(output_specs), "grid", 0);
   const char *format = mrn_lua_get_string(L, idx, sub, output_specs, MRN_COUNT(output_specs), "format");
   if (format) o->encoding = strcmp(format, "ascii") == 0 ? MRN_VTK_ASCII : MRN_VTK_BINARY;
   if (mrn_lua_has(L, idx, "fields")) {
@@ -491,6 +495,13 @@ static int l_simulation(lua_State *L) {
   else if (lua_type(L, -1) == LUA_TSTRING) mrn_output_set_csv(&b->out, lua_tostring(L, -1), csv_every);
   else if (lua_type(L, -1) == LUA_TBOOLEAN && !lua_toboolean(L, -1)) mrn_output_set_csv(&b->out, NULL, csv_every);
   else mrn_lua_error(L, where, "diagnostics must be a file name or false, got %s", luaL_typename(L, -1));
+  lua_pop(L, 1);
+  lua_getfield(L, 1, "series");
+  /* the series holds the diagnostics too: off with them unless named */
+  if (lua_isnil(L, -1)) mrn_output_set_series(&b->out, b->out.csv_name ? "diagnostics.h5" : NULL);
+  else if (lua_type(L, -1) == LUA_TSTRING) mrn_output_set_series(&b->out, lua_tostring(L, -1));
+  else if (lua_type(L, -1) == LUA_TBOOLEAN && !lua_toboolean(L, -1)) mrn_output_set_series(&b->out, NULL);
+  else mrn_lua_error(L, where, "series must be a file name or false, got %s", luaL_typename(L, -1));
   lua_pop(L, 1);
 
   if (mrn_lua_has(L, 1, "output")) {
@@ -887,13 +898,17 @@ static int l_load(lua_State *L) {
   if (info.dt_function_dropped) mrn_warn("%s", info.note);
   snprintf(b->name, sizeof b->name, "%s", "loaded");
   mrn_output_set_csv(&b->out, "diagnostics.csv", 10);
+  mrn_output_set_series(&b->out, "diagnostics.h5");
   if (has_opts) {
     const char *name = mrn_lua_get_string(L, 2, where, load_specs, MRN_COUNT(load_specs), "name");
     if (name) snprintf(b->name, sizeof b->name, "%s", name);
     b->thermo_every = mrn_lua_get_integer(L, 2, where, load_specs, MRN_COUNT(load_specs), "thermo");
     lua_getfield(L, 2, "diagnostics");
     if (lua_type(L, -1) == LUA_TSTRING) mrn_output_set_csv(&b->out, lua_tostring(L, -1), 10);
-    else if (lua_type(L, -1) == LUA_TBOOLEAN && !lua_toboolean(L, -1)) mrn_output_set_csv(&b->out, NULL, 10);
+    else if (lua_type(L, -1) == LUA_TBOOLEAN && !lua_toboolean(L, -1)) {
+      mrn_output_set_csv(&b->out, NULL, 10);
+      mrn_output_set_series(&b->out, NULL);
+    }
     lua_pop(L, 1);
     if (mrn_lua_has(L, 2, "output")) {
       lua_getfield(L, 2, "output");
@@ -1032,6 +1047,16 @@ static int l_field(lua_State *L) {
   }
   lua_pushinteger(L, f->ncomp);
   return 2;
+}
+
+/* sim:record(name, value): a value for the next row of the HDF5 series */
+static int l_record(lua_State *L) {
+  sim_box *b = check_sim(L, 1);
+  const char *name = luaL_checkstring(L, 2);
+  double v = luaL_checknumber(L, 3);
+  if (!name[0] || strchr(name, '/')) mrn_lua_error(L, "record()", "'%s' is not a valid series name", name);
+  if (mrn_output_record(&b->out, name, v) != MRN_OK) mrn_lua_error(L, "record()", "%s", mrn_error_message());
+  return 0;
 }
 
 /* ------------------------------------------------------- reductions */
@@ -1239,7 +1264,7 @@ void mrn_lua_open_simulation(lua_State *L, int module) {
       {"set_boundary", l_set_boundary}, {"set_scheme", l_set_scheme}, {"set_dt", l_set_dt}, {"constrain", l_constrain}, {"reaction", l_reaction}, {"set_constraint", l_set_constraint}, {"save", l_save}, {"import", l_import}, {"set_damping", l_set_damping}, {"dt_estimate", l_dt_estimate},
       {"output", l_set_output}, {"write_vtk", l_write_vtk}, {"time", l_time}, {"step", l_step}, {"dt", l_dt},
       {"particle_count", l_count}, {"dim", l_dim}, {"energy", l_energy}, {"diagnostics", l_diagnostics},
-      {"field", l_field}, {"reduce", l_reduce}, {"particle", l_particle}, {"info", l_info}, {"free", l_gc}, {NULL, NULL}};
+      {"field", l_field}, {"reduce", l_reduce}, {"record", l_record}, {"particle", l_particle}, {"info", l_info}, {"free", l_gc}, {NULL, NULL}};
   lua_newtable(L);
   luaL_setfuncs(L, methods, 0);
   lua_setfield(L, -2, "__index");

@@ -56,7 +56,8 @@ static int after_step(mrn_sim *sim, mrn_output *out, mrn_run_options *opt, int f
     if (due_hook(&opt->hooks[i], sim) && (rc = opt->hooks[i].fn(opt->hooks[i].ctx, sim)) != 0) return rc;
   if (out && (rc = mrn_output_maybe_vtk(out, sim)) != MRN_OK) return rc;
   int thermo_due = opt->thermo_every > 0 && (first || sim->step % opt->thermo_every == 0);
-  int csv_due = out && out->csv_name && (first || (out->csv_every > 0 && sim->step % out->csv_every == 0));
+  int csv_due = out && (out->csv_name || out->series_name) &&
+                (first || (out->csv_every > 0 && sim->step % out->csv_every == 0));
   if (thermo_due || csv_due) {
     mrn_diagnostics d;
     mrn_sim_diagnostics(sim, &d);
@@ -118,7 +119,7 @@ int mrn_run(mrn_sim *sim, mrn_output *out, mrn_run_options *opt) {
     mrn_diagnostics d;
     mrn_sim_diagnostics(sim, &d);
     if (opt->thermo_every > 0 && sim->step % opt->thermo_every != 0 && !mrn_log_quiet()) mrn_thermo_line(stdout, sim, &d);
-    if (out && out->csv_name && out->csv_every > 0 && sim->step % out->csv_every != 0) {
+    if (out && (out->csv_name || out->series_name) && out->csv_every > 0 && sim->step % out->csv_every != 0) {
       int crc = mrn_output_maybe_csv(out, sim, &d, 1);
       if (crc != MRN_OK) return crc;
     }
