@@ -17,10 +17,13 @@ moraine_deck_test(free_fall free_fall.lua)
 moraine_deck_test(lithostatic lithostatic.lua)
 moraine_deck_test(axial_bar_linear axial_bar.lua ARGS --set shape=linear --set cells=16)
 moraine_deck_test(axial_bar_quadratic axial_bar.lua ARGS --set shape=quadratic_bspline --set cells=32)
-moraine_deck_test(bouncing_cube_flip bouncing_cube.lua ARGS --set transfer=FLIP)
-moraine_deck_test(bouncing_cube_pic_family bouncing_cube_strategies.lua ARGS --set strategies=PIC,APIC,TPIC,AFLIP)
+# "long": physics runs of a minute or more; the sanitizer pass of
+# scripts/test.sh --sanitize leaves them to the release pass (the code paths
+# they use are all exercised under the sanitizers by the shorter tests)
+moraine_deck_test(bouncing_cube_flip bouncing_cube.lua ARGS --set transfer=FLIP LABELS long)
+moraine_deck_test(bouncing_cube_pic_family bouncing_cube_strategies.lua ARGS --set strategies=PIC,APIC,TPIC,AFLIP LABELS long)
 moraine_deck_test(bouncing_cube_flip_family bouncing_cube_strategies.lua
-                  ARGS --set strategies=PIC,FLIP,TFLIP,XPIC\(2\),XPIC\(3\),XPIC\(4\))
+                  ARGS --set strategies=PIC,FLIP,TFLIP,XPIC\(2\),XPIC\(3\),XPIC\(4\) LABELS long)
 moraine_deck_test(rotating_disk rotating_disk.lua)
 moraine_deck_test(simple_shear simple_shear.lua)
 moraine_deck_test(settling settling.lua)
