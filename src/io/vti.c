@@ -10,48 +10,9 @@
 
 #include "core/error.h"
 #include "io/atomic_file.h"
+#include "io/xml_writer.h"
 
 /* ---- a stream that remembers its first failure ------------------------- */
-
-/* As in the .vtp writer: the first failing call keeps its errno (ENOSPC,
- * EDQUOT, ...) for the message and later calls are skipped. */
-typedef struct vti_writer {
-  mrn_atomic_file file;
-  int err;
-} vti_writer;
-
-static void w_fail(vti_writer *w) {
-  if (!w->err) w->err = errno ? errno : EIO;
-}
-
-static void w_bytes(vti_writer *w, const void *data, size_t size) {
-  if (w->err || size == 0) return;
-  errno = 0;
-  if (fwrite(data, 1, size, w->file.fp) != size) w_fail(w);
-}
-
-static void w_printf(vti_writer *w, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
-static void w_printf(vti_writer *w, const char *fmt, ...) {
-  if (w->err) return;
-  va_list ap;
-  va_start(ap, fmt);
-  errno = 0;
-  if (vfprintf(w->file.fp, fmt, ap) < 0) w_fail(w);
-  va_end(ap);
-}
-
-/* an attribute value with the XML special characters escaped */
-static void w_attr(vti_writer *w, const char *s) {
-  for (; *s && !w->err; s++) {
-    switch (*s) {
-      case '&': w_printf(w, "&amp;"); break;
-      case '<': w_printf(w, "&lt;"); break;
-      case '>': w_printf(w, "&gt;"); break;
-      case '"': w_printf(w, "&quot;"); break;
-      default: w_printf(w, "%c", *s);
-    }
-  }
-}
 
 /* ---- the image's shape ------------------------------------------------- */
 
@@ -74,16 +35,6 @@ static image image_of(const mrn_grid *g) {
 /* the grid's linear index of the first node of row (j, k) */
 static size_t row_start(const mrn_grid *g, int j, int k) { return mrn_grid_index(g, 0, j, k); }
 
-static const char *type_name(mrn_vtk_type t) {
-  switch (t) {
-    case MRN_VTK_INT32: return "Int32";
-    case MRN_VTK_INT64: return "Int64";
-    default: return "Float64";
-  }
-}
-
-static size_t type_size(mrn_vtk_type t) { return t == MRN_VTK_INT32 ? 4 : 8; }
-
 static int check_input(const char *path, const mrn_grid *g, const mrn_vtk_array *arrays, int narrays) {
   if (!g || (g->dim != 2 && g->dim != 3) || g->n == 0)
     return mrn_error_code(MRN_ERR_IO, "cannot write '%s': no grid", path);
@@ -104,36 +55,36 @@ static int check_input(const char *path, const mrn_grid *g, const mrn_vtk_array 
 
 /* ---- XML structure ------------------------------------------------------ */
 
-static void w_header(vti_writer *w, const mrn_grid *g, const image *im, double time) {
+static void w_header(mrn_xml_writer *w, const mrn_grid *g, const image *im, double time) {
   /* 2D: a one-point-thick image at z = 0; a spacing of 1 rather than 0 keeps
    * VTK's filters (and its bounds) well defined */
   double spacing_z = g->dim == 3 ? g->cell : 1.0;
-  w_printf(w, "<?xml version=\"1.0\"?>\n");
-  w_printf(w, "<VTKFile type=\"ImageData\" version=\"1.0\" byte_order=\"LittleEndian\" header_type=\"UInt64\">\n");
-  w_printf(w, "  <ImageData WholeExtent=\"0 %d 0 %d 0 %d\"", im->np[0] - 1, im->np[1] - 1, im->np[2] - 1);
-  w_printf(w, " Origin=\"%.17g %.17g %.17g\"", g->origin[0], g->origin[1], g->dim == 3 ? g->origin[2] : 0.0);
-  w_printf(w, " Spacing=\"%.17g %.17g %.17g\">\n", g->cell, g->cell, spacing_z);
+  mrn_xw_printf(w, "<?xml version=\"1.0\"?>\n");
+  mrn_xw_printf(w, "<VTKFile type=\"ImageData\" version=\"1.0\" byte_order=\"LittleEndian\" header_type=\"UInt64\">\n");
+  mrn_xw_printf(w, "  <ImageData WholeExtent=\"0 %d 0 %d 0 %d\"", im->np[0] - 1, im->np[1] - 1, im->np[2] - 1);
+  mrn_xw_printf(w, " Origin=\"%.17g %.17g %.17g\"", g->origin[0], g->origin[1], g->dim == 3 ? g->origin[2] : 0.0);
+  mrn_xw_printf(w, " Spacing=\"%.17g %.17g %.17g\">\n", g->cell, g->cell, spacing_z);
   if (!isnan(time)) {
-    w_printf(w, "    <FieldData>\n");
-    w_printf(w, "      <DataArray type=\"Float64\" Name=\"TimeValue\" NumberOfTuples=\"1\" format=\"ascii\">");
-    w_printf(w, "%.17g</DataArray>\n", time);
-    w_printf(w, "    </FieldData>\n");
+    mrn_xw_printf(w, "    <FieldData>\n");
+    mrn_xw_printf(w, "      <DataArray type=\"Float64\" Name=\"TimeValue\" NumberOfTuples=\"1\" format=\"ascii\">");
+    mrn_xw_printf(w, "%.17g</DataArray>\n", time);
+    mrn_xw_printf(w, "    </FieldData>\n");
   }
-  w_printf(w, "    <Piece Extent=\"0 %d 0 %d 0 %d\">\n", im->np[0] - 1, im->np[1] - 1, im->np[2] - 1);
+  mrn_xw_printf(w, "    <Piece Extent=\"0 %d 0 %d 0 %d\">\n", im->np[0] - 1, im->np[1] - 1, im->np[2] - 1);
 }
 
-static void w_array_tag(vti_writer *w, const mrn_vtk_array *a, mrn_vtk_encoding enc, uint64_t offset) {
-  w_printf(w, "        <DataArray type=\"%s\" Name=\"", type_name(a->type));
-  w_attr(w, a->name);
-  w_printf(w, "\" NumberOfComponents=\"%d\"", a->ncomp);
+static void w_array_tag(mrn_xml_writer *w, const mrn_vtk_array *a, mrn_vtk_encoding enc, uint64_t offset) {
+  mrn_xw_printf(w, "        <DataArray type=\"%s\" Name=\"", mrn_vtk_type_name(a->type));
+  mrn_xw_attr(w, a->name);
+  mrn_xw_printf(w, "\" NumberOfComponents=\"%d\"", a->ncomp);
   if (enc == MRN_VTK_BINARY)
-    w_printf(w, " format=\"appended\" offset=\"%" PRIu64 "\"/>\n", offset);
+    mrn_xw_printf(w, " format=\"appended\" offset=\"%" PRIu64 "\"/>\n", offset);
   else
-    w_printf(w, " format=\"ascii\">\n");
+    mrn_xw_printf(w, " format=\"ascii\">\n");
 }
 
 /* one node per line */
-static void w_ascii_values(vti_writer *w, const mrn_grid *g, const image *im, const mrn_vtk_array *a) {
+static void w_ascii_values(mrn_xml_writer *w, const mrn_grid *g, const image *im, const mrn_vtk_array *a) {
   for (int k = 0; k < im->np[2]; k++)
     for (int j = 0; j < im->np[1] && !w->err; j++) {
       size_t first = row_start(g, j, k) * (size_t)a->ncomp;
@@ -141,74 +92,55 @@ static void w_ascii_values(vti_writer *w, const mrn_grid *g, const image *im, co
       for (size_t i = 0; i < count && !w->err; i++) {
         const char *sep = (i + 1) % (size_t)a->ncomp == 0 ? "\n" : " ";
         if (a->type == MRN_VTK_INT32)
-          w_printf(w, "%d%s", (int)((const int32_t *)a->data)[first + i], sep);
+          mrn_xw_printf(w, "%d%s", (int)((const int32_t *)a->data)[first + i], sep);
         else if (a->type == MRN_VTK_INT64)
-          w_printf(w, "%lld%s", (long long)((const int64_t *)a->data)[first + i], sep);
+          mrn_xw_printf(w, "%lld%s", (long long)((const int64_t *)a->data)[first + i], sep);
         else
-          w_printf(w, "%.17g%s", ((const double *)a->data)[first + i], sep);
+          mrn_xw_printf(w, "%.17g%s", ((const double *)a->data)[first + i], sep);
       }
     }
 }
 
 static uint64_t array_bytes(const image *im, const mrn_vtk_array *a) {
-  return (uint64_t)im->npoints * (uint64_t)a->ncomp * type_size(a->type);
+  return (uint64_t)im->npoints * (uint64_t)a->ncomp * mrn_vtk_type_size(a->type);
 }
 
-static void w_point_data(vti_writer *w, const mrn_grid *g, const image *im, const mrn_vtk_array *arrays, int narrays,
+static void w_point_data(mrn_xml_writer *w, const mrn_grid *g, const image *im, const mrn_vtk_array *arrays, int narrays,
                          mrn_vtk_encoding enc) {
-  w_printf(w, "      <PointData>\n");
+  mrn_xw_printf(w, "      <PointData>\n");
   uint64_t offset = 0;
   for (int i = 0; i < narrays; i++) {
     w_array_tag(w, &arrays[i], enc, offset);
     offset += sizeof(uint64_t) + array_bytes(im, &arrays[i]);
     if (enc == MRN_VTK_ASCII) {
       w_ascii_values(w, g, im, &arrays[i]);
-      w_printf(w, "        </DataArray>\n");
+      mrn_xw_printf(w, "        </DataArray>\n");
     }
   }
-  w_printf(w, "      </PointData>\n");
-  w_printf(w, "      <CellData>\n      </CellData>\n");
-  w_printf(w, "    </Piece>\n");
-  w_printf(w, "  </ImageData>\n");
+  mrn_xw_printf(w, "      </PointData>\n");
+  mrn_xw_printf(w, "      <CellData>\n      </CellData>\n");
+  mrn_xw_printf(w, "    </Piece>\n");
+  mrn_xw_printf(w, "  </ImageData>\n");
 }
 
 /* ---- appended binary data ---------------------------------------------- */
 
-static int host_is_little_endian(void) {
-  const uint16_t one = 1;
-  return *(const unsigned char *)&one == 1;
-}
-
-/* `count` values of `elem` bytes in little-endian order: one fwrite straight
- * from the grid on the usual little-endian hosts, a swap through `scratch`
- * (room for `count` values) on a big-endian one */
-static void w_le(vti_writer *w, const void *data, size_t elem, size_t count, unsigned char *scratch) {
-  if (host_is_little_endian()) {
-    w_bytes(w, data, elem * count);
-    return;
-  }
-  const unsigned char *src = data;
-  for (size_t i = 0; i < count; i++)
-    for (size_t b = 0; b < elem; b++) scratch[i * elem + b] = src[i * elem + elem - 1 - b];
-  w_bytes(w, scratch, elem * count);
-}
-
 /* Each x-row of domain nodes is contiguous in the grid's arrays, so a block
  * is written row by row without gathering the whole array first. */
-static void w_block(vti_writer *w, const mrn_grid *g, const image *im, const mrn_vtk_array *a, unsigned char *scratch) {
+static void w_block(mrn_xml_writer *w, const mrn_grid *g, const image *im, const mrn_vtk_array *a, unsigned char *scratch) {
   uint64_t nbytes = array_bytes(im, a);
-  w_le(w, &nbytes, sizeof nbytes, 1, scratch);
-  size_t elem = type_size(a->type);
+  mrn_xw_le(w, &nbytes, sizeof nbytes, 1, scratch);
+  size_t elem = mrn_vtk_type_size(a->type);
   size_t row_values = (size_t)im->np[0] * (size_t)a->ncomp;
   const unsigned char *base = a->data;
   for (int k = 0; k < im->np[2]; k++)
     for (int j = 0; j < im->np[1] && !w->err; j++)
-      w_le(w, base + row_start(g, j, k) * (size_t)a->ncomp * elem, elem, row_values, scratch);
+      mrn_xw_le(w, base + row_start(g, j, k) * (size_t)a->ncomp * elem, elem, row_values, scratch);
 }
 
-static void w_appended(vti_writer *w, const mrn_grid *g, const image *im, const mrn_vtk_array *arrays, int narrays) {
+static void w_appended(mrn_xml_writer *w, const mrn_grid *g, const image *im, const mrn_vtk_array *arrays, int narrays) {
   unsigned char *scratch = NULL;
-  if (!host_is_little_endian()) {
+  if (!mrn_host_is_little_endian()) {
     int widest = 1;
     for (int i = 0; i < narrays; i++)
       if (arrays[i].ncomp > widest) widest = arrays[i].ncomp;
@@ -218,9 +150,9 @@ static void w_appended(vti_writer *w, const mrn_grid *g, const image *im, const 
       return;
     }
   }
-  w_printf(w, "  <AppendedData encoding=\"raw\">\n   _");
+  mrn_xw_printf(w, "  <AppendedData encoding=\"raw\">\n   _");
   for (int i = 0; i < narrays && !w->err; i++) w_block(w, g, im, &arrays[i], scratch);
-  w_printf(w, "\n  </AppendedData>\n");
+  mrn_xw_printf(w, "\n  </AppendedData>\n");
   free(scratch);
 }
 
@@ -233,13 +165,13 @@ int mrn_vti_write(const char *path, const mrn_grid *g, double time, const mrn_vt
   int rc = check_input(path, g, arrays, narrays);
   if (rc != MRN_OK) return rc;
   image im = image_of(g);
-  vti_writer w = {.err = 0};
+  mrn_xml_writer w = {.err = 0};
   rc = mrn_atomic_open(&w.file, path);
   if (rc != MRN_OK) return rc;
   w_header(&w, g, &im, time);
   w_point_data(&w, g, &im, arrays, narrays, encoding);
   if (encoding == MRN_VTK_BINARY) w_appended(&w, g, &im, arrays, narrays);
-  w_printf(&w, "</VTKFile>\n");
+  mrn_xw_printf(&w, "</VTKFile>\n");
   if (w.err) {
     rc = mrn_error_code(MRN_ERR_IO, "cannot write '%s': %s", path, strerror(w.err));
     mrn_atomic_abort(&w.file);

@@ -9,95 +9,8 @@
 
 #include "core/error.h"
 #include "io/atomic_file.h"
+#include "io/xml_writer.h"
 
-/* values generated per buffer fill for the vertex cells and for byte swapping */
-#define CHUNK_VALUES 65536
-
-/* ---- a stream that remembers its first failure ------------------------- */
-
-/* Every write goes through these helpers so the first failing call keeps its
- * errno (ENOSPC, EDQUOT, ...) for the error message; later calls are skipped
- * because the file is lost anyway. */
-typedef struct vtk_writer {
-  mrn_atomic_file file;
-  int err;
-} vtk_writer;
-
-static void w_fail(vtk_writer *w) {
-  if (!w->err) w->err = errno ? errno : EIO;
-}
-
-static void w_bytes(vtk_writer *w, const void *data, size_t size) {
-  if (w->err || size == 0) return;
-  errno = 0;
-  if (fwrite(data, 1, size, w->file.fp) != size) w_fail(w);
-}
-
-static void w_printf(vtk_writer *w, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
-static void w_printf(vtk_writer *w, const char *fmt, ...) {
-  if (w->err) return;
-  va_list ap;
-  va_start(ap, fmt);
-  errno = 0;
-  if (vfprintf(w->file.fp, fmt, ap) < 0) w_fail(w);
-  va_end(ap);
-}
-
-/* an attribute value with the XML special characters escaped */
-static void w_attr(vtk_writer *w, const char *s) {
-  for (; *s && !w->err; s++) {
-    switch (*s) {
-      case '&': w_printf(w, "&amp;"); break;
-      case '<': w_printf(w, "&lt;"); break;
-      case '>': w_printf(w, "&gt;"); break;
-      case '"': w_printf(w, "&quot;"); break;
-      default:
-        errno = 0;
-        if (putc(*s, w->file.fp) == EOF) w_fail(w);
-    }
-  }
-}
-
-static int w_open(vtk_writer *w, const char *path) {
-  w->err = 0;
-  return mrn_atomic_open(&w->file, path);
-}
-
-/* commit the file, or drop it and report the first write error */
-static int w_finish(vtk_writer *w) {
-  if (w->err) {
-    int rc = mrn_error_code(MRN_ERR_IO, "cannot write '%s': %s", w->file.final_path, strerror(w->err));
-    mrn_atomic_abort(&w->file);
-    return rc;
-  }
-  return mrn_atomic_commit(&w->file);
-}
-
-/* ---- little-endian raw data -------------------------------------------- */
-
-static int host_is_little_endian(void) {
-  const uint16_t one = 1;
-  return *(const unsigned char *)&one == 1;
-}
-
-/* `count` values of `elem` bytes each, in little-endian order. On the usual
- * little-endian hosts this is one fwrite of the whole array; a big-endian
- * host swaps through a buffer in chunks. */
-static void w_le(vtk_writer *w, const void *data, size_t elem, size_t count, unsigned char *scratch) {
-  if (host_is_little_endian()) {
-    w_bytes(w, data, elem * count);
-    return;
-  }
-  const unsigned char *src = data;
-  while (count > 0 && !w->err) {
-    size_t m = count < CHUNK_VALUES ? count : CHUNK_VALUES;
-    for (size_t i = 0; i < m; i++)
-      for (size_t b = 0; b < elem; b++) scratch[i * elem + b] = src[i * elem + elem - 1 - b];
-    w_bytes(w, scratch, m * elem);
-    src += m * elem;
-    count -= m;
-  }
-}
 
 /* ---- what the file holds ------------------------------------------------ */
 
@@ -115,16 +28,6 @@ typedef struct block {
   uint64_t nbytes;
   uint64_t offset; /* position in the appended section */
 } block;
-
-static const char *type_name(mrn_vtk_type t) {
-  switch (t) {
-    case MRN_VTK_INT32: return "Int32";
-    case MRN_VTK_INT64: return "Int64";
-    default: return "Float64";
-  }
-}
-
-static size_t type_size(mrn_vtk_type t) { return t == MRN_VTK_INT32 ? 4 : 8; }
 
 /* reject arrays the file could not describe, before any file is created */
 static int check_arrays(const char *path, size_t n, const double *points, const mrn_vtk_array *arrays,
@@ -152,7 +55,7 @@ static int check_arrays(const char *path, size_t n, const double *points, const 
 static void plan_blocks(block *b, size_t n, const double *points, const mrn_vtk_array *arrays, int narrays) {
   int k = 0;
   for (int i = 0; i < narrays; i++, k++)
-    b[k] = (block){arrays[i].name, type_name(arrays[i].type), arrays[i].ncomp, type_size(arrays[i].type),
+    b[k] = (block){arrays[i].name, mrn_vtk_type_name(arrays[i].type), arrays[i].ncomp, mrn_vtk_type_size(arrays[i].type),
                    SRC_DATA, arrays[i].type, arrays[i].data, 0, 0};
   b[k++] = (block){"Points", "Float64", 3, 8, SRC_DATA, MRN_VTK_FLOAT64, points, 0, 0};
   b[k++] = (block){"connectivity", "Int64", 0, 8, SRC_CONNECTIVITY, MRN_VTK_INT64, NULL, 0, 0};
@@ -168,100 +71,100 @@ static void plan_blocks(block *b, size_t n, const double *points, const mrn_vtk_
 
 /* ---- XML structure ------------------------------------------------------ */
 
-static void w_array_open(vtk_writer *w, const block *b, mrn_vtk_encoding enc) {
-  w_printf(w, "        <DataArray type=\"%s\" Name=\"", b->type);
-  w_attr(w, b->name);
-  w_printf(w, "\"");
-  if (b->ncomp) w_printf(w, " NumberOfComponents=\"%d\"", b->ncomp);
+static void w_array_open(mrn_xml_writer *w, const block *b, mrn_vtk_encoding enc) {
+  mrn_xw_printf(w, "        <DataArray type=\"%s\" Name=\"", b->type);
+  mrn_xw_attr(w, b->name);
+  mrn_xw_printf(w, "\"");
+  if (b->ncomp) mrn_xw_printf(w, " NumberOfComponents=\"%d\"", b->ncomp);
   if (enc == MRN_VTK_BINARY)
-    w_printf(w, " format=\"appended\" offset=\"%" PRIu64 "\"/>\n", b->offset);
+    mrn_xw_printf(w, " format=\"appended\" offset=\"%" PRIu64 "\"/>\n", b->offset);
   else
-    w_printf(w, " format=\"ascii\">\n");
+    mrn_xw_printf(w, " format=\"ascii\">\n");
 }
 
 /* ASCII values of one array, one point per line (cells: 16 per line) */
-static void w_ascii_values(vtk_writer *w, const block *b, size_t n) {
+static void w_ascii_values(mrn_xml_writer *w, const block *b, size_t n) {
   size_t per_line = b->ncomp ? (size_t)b->ncomp : 16;
   size_t total = b->ncomp ? n * (size_t)b->ncomp : n;
   for (size_t i = 0; i < total && !w->err; i++) {
     int last = (i + 1) % per_line == 0 || i + 1 == total;
     const char *sep = last ? "\n" : " ";
     if (b->source == SRC_CONNECTIVITY) {
-      w_printf(w, "%" PRIu64 "%s", (uint64_t)i, sep);
+      mrn_xw_printf(w, "%" PRIu64 "%s", (uint64_t)i, sep);
     } else if (b->source == SRC_OFFSETS) {
-      w_printf(w, "%" PRIu64 "%s", (uint64_t)i + 1, sep);
+      mrn_xw_printf(w, "%" PRIu64 "%s", (uint64_t)i + 1, sep);
     } else if (b->vtype == MRN_VTK_INT32) {
-      w_printf(w, "%d%s", (int)((const int32_t *)b->data)[i], sep);
+      mrn_xw_printf(w, "%d%s", (int)((const int32_t *)b->data)[i], sep);
     } else if (b->vtype == MRN_VTK_INT64) {
-      w_printf(w, "%lld%s", (long long)((const int64_t *)b->data)[i], sep);
+      mrn_xw_printf(w, "%lld%s", (long long)((const int64_t *)b->data)[i], sep);
     } else {
-      w_printf(w, "%.17g%s", ((const double *)b->data)[i], sep);
+      mrn_xw_printf(w, "%.17g%s", ((const double *)b->data)[i], sep);
     }
   }
 }
 
-static void w_array(vtk_writer *w, const block *b, size_t n, mrn_vtk_encoding enc) {
+static void w_array(mrn_xml_writer *w, const block *b, size_t n, mrn_vtk_encoding enc) {
   w_array_open(w, b, enc);
   if (enc == MRN_VTK_ASCII) {
     w_ascii_values(w, b, n);
-    w_printf(w, "        </DataArray>\n");
+    mrn_xw_printf(w, "        </DataArray>\n");
   }
 }
 
-static void w_structure(vtk_writer *w, const block *b, int narrays, size_t n, mrn_vtk_encoding enc) {
-  w_printf(w, "<?xml version=\"1.0\"?>\n");
-  w_printf(w, "<VTKFile type=\"PolyData\" version=\"1.0\" byte_order=\"LittleEndian\" header_type=\"UInt64\">\n");
-  w_printf(w, "  <PolyData>\n");
-  w_printf(w, "    <Piece NumberOfPoints=\"%zu\" NumberOfVerts=\"%zu\" NumberOfLines=\"0\" NumberOfStrips=\"0\" "
+static void w_structure(mrn_xml_writer *w, const block *b, int narrays, size_t n, mrn_vtk_encoding enc) {
+  mrn_xw_printf(w, "<?xml version=\"1.0\"?>\n");
+  mrn_xw_printf(w, "<VTKFile type=\"PolyData\" version=\"1.0\" byte_order=\"LittleEndian\" header_type=\"UInt64\">\n");
+  mrn_xw_printf(w, "  <PolyData>\n");
+  mrn_xw_printf(w, "    <Piece NumberOfPoints=\"%zu\" NumberOfVerts=\"%zu\" NumberOfLines=\"0\" NumberOfStrips=\"0\" "
               "NumberOfPolys=\"0\">\n", n, n);
-  w_printf(w, "      <PointData>\n");
+  mrn_xw_printf(w, "      <PointData>\n");
   for (int i = 0; i < narrays; i++) w_array(w, &b[i], n, enc);
-  w_printf(w, "      </PointData>\n");
-  w_printf(w, "      <Points>\n");
+  mrn_xw_printf(w, "      </PointData>\n");
+  mrn_xw_printf(w, "      <Points>\n");
   w_array(w, &b[narrays], n, enc);
-  w_printf(w, "      </Points>\n");
-  w_printf(w, "      <Verts>\n");
+  mrn_xw_printf(w, "      </Points>\n");
+  mrn_xw_printf(w, "      <Verts>\n");
   w_array(w, &b[narrays + 1], n, enc);
   w_array(w, &b[narrays + 2], n, enc);
-  w_printf(w, "      </Verts>\n");
-  w_printf(w, "    </Piece>\n");
-  w_printf(w, "  </PolyData>\n");
+  mrn_xw_printf(w, "      </Verts>\n");
+  mrn_xw_printf(w, "    </Piece>\n");
+  mrn_xw_printf(w, "  </PolyData>\n");
 }
 
 /* ---- appended binary data ---------------------------------------------- */
 
 /* the vertex cells are generated, not stored: fill a buffer chunk by chunk
  * (connectivity 0..n-1, offsets 1..n) */
-static void w_cell_values(vtk_writer *w, int64_t first, size_t n, int64_t *buf, unsigned char *scratch) {
+static void w_cell_values(mrn_xml_writer *w, int64_t first, size_t n, int64_t *buf, unsigned char *scratch) {
   for (size_t done = 0; done < n && !w->err;) {
-    size_t m = n - done < CHUNK_VALUES ? n - done : CHUNK_VALUES;
+    size_t m = n - done < MRN_XW_CHUNK_VALUES ? n - done : MRN_XW_CHUNK_VALUES;
     for (size_t i = 0; i < m; i++) buf[i] = first + (int64_t)(done + i);
-    w_le(w, buf, sizeof(int64_t), m, scratch);
+    mrn_xw_le(w, buf, sizeof(int64_t), m, scratch);
     done += m;
   }
 }
 
-static void w_block(vtk_writer *w, const block *b, size_t n, int64_t *buf, unsigned char *scratch) {
-  w_le(w, &b->nbytes, sizeof b->nbytes, 1, scratch);
+static void w_block(mrn_xml_writer *w, const block *b, size_t n, int64_t *buf, unsigned char *scratch) {
+  mrn_xw_le(w, &b->nbytes, sizeof b->nbytes, 1, scratch);
   if (b->source == SRC_CONNECTIVITY)
     w_cell_values(w, 0, n, buf, scratch);
   else if (b->source == SRC_OFFSETS)
     w_cell_values(w, 1, n, buf, scratch);
   else
-    w_le(w, b->data, b->elem, (size_t)(b->nbytes / b->elem), scratch);
+    mrn_xw_le(w, b->data, b->elem, (size_t)(b->nbytes / b->elem), scratch);
 }
 
-static int w_appended(vtk_writer *w, const block *b, int nblocks, size_t n) {
-  int64_t *buf = malloc(CHUNK_VALUES * sizeof *buf);
-  unsigned char *scratch = host_is_little_endian() ? NULL : malloc(CHUNK_VALUES * 8);
-  if (!buf || (!host_is_little_endian() && !scratch)) {
+static int w_appended(mrn_xml_writer *w, const block *b, int nblocks, size_t n) {
+  int64_t *buf = malloc(MRN_XW_CHUNK_VALUES * sizeof *buf);
+  unsigned char *scratch = mrn_host_is_little_endian() ? NULL : malloc(MRN_XW_CHUNK_VALUES * 8);
+  if (!buf || (!mrn_host_is_little_endian() && !scratch)) {
     free(buf);
     free(scratch);
     return ENOMEM;
   }
-  w_printf(w, "  <AppendedData encoding=\"raw\">\n   _");
+  mrn_xw_printf(w, "  <AppendedData encoding=\"raw\">\n   _");
   for (int i = 0; i < nblocks && !w->err; i++) w_block(w, &b[i], n, buf, scratch);
-  w_printf(w, "\n  </AppendedData>\n");
+  mrn_xw_printf(w, "\n  </AppendedData>\n");
   free(buf);
   free(scratch);
   return 0;
@@ -280,16 +183,16 @@ int mrn_vtp_write(const char *path, size_t npoints, const double *points, const 
   if (!blocks) return mrn_error_code(MRN_ERR_IO, "cannot write '%s': out of memory", path);
   plan_blocks(blocks, npoints, points, arrays, narrays);
 
-  vtk_writer w;
-  rc = w_open(&w, path);
+  mrn_xml_writer w;
+  rc = mrn_xw_open(&w, path);
   if (rc == MRN_OK) {
     w_structure(&w, blocks, narrays, npoints, encoding);
     if (encoding == MRN_VTK_BINARY && !w.err) {
       int err = w_appended(&w, blocks, nblocks, npoints);
       if (err && !w.err) w.err = err;
     }
-    w_printf(&w, "</VTKFile>\n");
-    rc = w_finish(&w);
+    mrn_xw_printf(&w, "</VTKFile>\n");
+    rc = mrn_xw_finish(&w);
   }
   free(blocks);
   return rc;
@@ -311,20 +214,20 @@ void mrn_pvd_free(mrn_pvd *pvd) {
 }
 
 static int pvd_rewrite(const mrn_pvd *pvd) {
-  vtk_writer w;
-  int rc = w_open(&w, pvd->path);
+  mrn_xml_writer w;
+  int rc = mrn_xw_open(&w, pvd->path);
   if (rc != MRN_OK) return rc;
-  w_printf(&w, "<?xml version=\"1.0\"?>\n");
-  w_printf(&w, "<VTKFile type=\"Collection\" version=\"1.0\" byte_order=\"LittleEndian\" header_type=\"UInt64\">\n");
-  w_printf(&w, "  <Collection>\n");
+  mrn_xw_printf(&w, "<?xml version=\"1.0\"?>\n");
+  mrn_xw_printf(&w, "<VTKFile type=\"Collection\" version=\"1.0\" byte_order=\"LittleEndian\" header_type=\"UInt64\">\n");
+  mrn_xw_printf(&w, "  <Collection>\n");
   for (int i = 0; i < pvd->count; i++) {
-    w_printf(&w, "    <DataSet timestep=\"%.17g\" group=\"\" part=\"0\" file=\"", pvd->times[i]);
-    w_attr(&w, pvd->files[i]);
-    w_printf(&w, "\"/>\n");
+    mrn_xw_printf(&w, "    <DataSet timestep=\"%.17g\" group=\"\" part=\"0\" file=\"", pvd->times[i]);
+    mrn_xw_attr(&w, pvd->files[i]);
+    mrn_xw_printf(&w, "\"/>\n");
   }
-  w_printf(&w, "  </Collection>\n");
-  w_printf(&w, "</VTKFile>\n");
-  return w_finish(&w);
+  mrn_xw_printf(&w, "  </Collection>\n");
+  mrn_xw_printf(&w, "</VTKFile>\n");
+  return mrn_xw_finish(&w);
 }
 
 static int pvd_reserve(mrn_pvd *pvd) {

@@ -116,10 +116,6 @@ static void update(const mrn_material *m, mrn_material_point *pt) {
   }
 }
 
-static double wave_speed(const mrn_material *m) {
-  return sqrt((m->derived[D_LAMBDA] + 2 * m->derived[D_SHEAR]) / m->param[P_DENSITY]);
-}
-
 const mrn_material_type mrn_material_drucker_prager = {
     .name = "drucker_prager",
     .summary = "Drucker-Prager perfect plasticity, non-associated, fitted to Mohr-Coulomb (002, Eqs. 71-74)",
@@ -130,5 +126,5 @@ const mrn_material_type mrn_material_drucker_prager = {
     .rate_form = 1,
     .prepare = prepare,
     .update = update,
-    .wave_speed = wave_speed,
+    .wave_speed = mrn_material_isotropic_wave_speed,
 };

@@ -58,10 +58,6 @@ static void update(const mrn_material *m, mrn_material_point *pt) {
 }
 
 /* P-wave speed of the reference configuration */
-static double wave_speed(const mrn_material *m) {
-  return sqrt((m->derived[D_LAMBDA] + 2 * m->derived[D_SHEAR]) / m->param[P_DENSITY]);
-}
-
 const mrn_material_type mrn_material_hencky = {
     .name = "hencky",
     .summary = "Hencky hyperelasticity, stress from the logarithmic strain ln V (rotation-free)",
@@ -72,5 +68,5 @@ const mrn_material_type mrn_material_hencky = {
     .rate_form = 0,
     .prepare = prepare,
     .update = update,
-    .wave_speed = wave_speed,
+    .wave_speed = mrn_material_isotropic_wave_speed,
 };

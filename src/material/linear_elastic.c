@@ -38,11 +38,6 @@ static void update(const mrn_material *m, mrn_material_point *pt) {
   pt->dw_plastic = 0.0;
 }
 
-/* P-wave speed sqrt((lambda + 2G) / rho) */
-static double wave_speed(const mrn_material *m) {
-  return sqrt((m->derived[D_LAMBDA] + 2 * m->derived[D_SHEAR]) / m->param[P_DENSITY]);
-}
-
 const mrn_material_type mrn_material_linear_elastic = {
     .name = "linear_elastic",
     .summary = "isotropic linear elasticity, incremental with the Jaumann rate (002, Eq. 28)",
@@ -53,5 +48,5 @@ const mrn_material_type mrn_material_linear_elastic = {
     .rate_form = 1,
     .prepare = prepare,
     .update = update,
-    .wave_speed = wave_speed,
+    .wave_speed = mrn_material_isotropic_wave_speed,
 };

@@ -86,3 +86,7 @@ double mrn_material_young(const mrn_material *m) {
   double c = m->type->wave_speed ? m->type->wave_speed(m) : NAN;
   return mrn_material_density(m) * c * c;
 }
+
+double mrn_material_isotropic_wave_speed(const mrn_material *m) {
+  return sqrt((m->derived[0] + 2 * m->derived[1]) / m->param[0]);
+}

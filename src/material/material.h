@@ -80,6 +80,11 @@ double mrn_material_density(const mrn_material *m);
 /* Young's modulus used by the a_tau time step (000, Eq. 29) */
 double mrn_material_young(const mrn_material *m);
 
+/* P-wave speed sqrt((lambda + 2G) / rho) of the isotropic elastic models,
+ * which all keep density as their first parameter and lambda, G as their
+ * first two derived constants (so one function serves them all) */
+double mrn_material_isotropic_wave_speed(const mrn_material *m);
+
 /* the models */
 extern const mrn_material_type mrn_material_linear_elastic;
 extern const mrn_material_type mrn_material_mohr_coulomb;

@@ -207,10 +207,6 @@ static void update(const mrn_material *m, mrn_material_point *pt) {
   }
 }
 
-static double wave_speed(const mrn_material *m) {
-  return sqrt((m->derived[D_LAMBDA] + 2 * m->derived[D_SHEAR]) / m->param[P_DENSITY]);
-}
-
 const mrn_material_type mrn_material_mohr_coulomb = {
     .name = "mohr_coulomb",
     .summary = "Mohr-Coulomb perfect plasticity, non-associated, with tension cut-off (000 §5.1.3)",
@@ -221,5 +217,5 @@ const mrn_material_type mrn_material_mohr_coulomb = {
     .rate_form = 1,
     .prepare = prepare,
     .update = update,
-    .wave_speed = wave_speed,
+    .wave_speed = mrn_material_isotropic_wave_speed,
 };

@@ -52,10 +52,6 @@ static void update(const mrn_material *m, mrn_material_point *pt) {
 }
 
 /* P-wave speed of the reference configuration */
-static double wave_speed(const mrn_material *m) {
-  return sqrt((m->derived[D_LAMBDA] + 2 * m->derived[D_SHEAR]) / m->param[P_DENSITY]);
-}
-
 const mrn_material_type mrn_material_neo_hookean = {
     .name = "neo_hookean",
     .summary = "compressible Neo-Hookean hyperelasticity, stress from b = F F^T (rotation-free)",
@@ -66,5 +62,5 @@ const mrn_material_type mrn_material_neo_hookean = {
     .rate_form = 0,
     .prepare = prepare,
     .update = update,
-    .wave_speed = wave_speed,
+    .wave_speed = mrn_material_isotropic_wave_speed,
 };

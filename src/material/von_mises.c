@@ -56,10 +56,6 @@ static void update(const mrn_material *m, mrn_material_point *pt) {
   mrn_energy_split(m->param[P_E], m->param[P_NU], old, pt->stress, pt->dstrain, plastic, pt, NULL);
 }
 
-static double wave_speed(const mrn_material *m) {
-  return sqrt((m->derived[D_LAMBDA] + 2 * m->derived[D_SHEAR]) / m->param[P_DENSITY]);
-}
-
 const mrn_material_type mrn_material_von_mises = {
     .name = "von_mises",
     .summary = "von Mises plasticity with linear isotropic hardening, radial return (002, Eq. 66)",
@@ -70,5 +66,5 @@ const mrn_material_type mrn_material_von_mises = {
     .rate_form = 1,
     .prepare = prepare,
     .update = update,
-    .wave_speed = wave_speed,
+    .wave_speed = mrn_material_isotropic_wave_speed,
 };
