@@ -10,7 +10,6 @@
  *    leaves the target simulation as it was;
  *  - import onto a 6x wider grid keeps positions and stresses exactly. */
 #include <hdf5.h>
-#include <dirent.h>
 #include <stdlib.h>
 #include <string.h>
 #include <signal.h>
@@ -20,6 +19,7 @@
 #include <unistd.h>
 
 #include "check.h"
+#include "testfs.h"
 #include "core/error.h"
 #include "io/checkpoint.h"
 #include "solver/simulation.h"
@@ -309,7 +309,7 @@ static void test_unreadable_files(void) {
   expect_refused(tmp_path("missing.h5"), "No such file", "missing file");
 
   const char *empty = tmp_path("empty_file.h5");
-  fclose(fopen(empty, "wb"));
+  make_empty_file(empty);
   expect_refused(empty, "empty file", "empty file");
 
   const char *text = tmp_path("text.h5");
@@ -625,16 +625,6 @@ static void test_import(void) {
 
 /* ---- writing ------------------------------------------------------------------ */
 
-static int leftover_temp_files(void) {
-  DIR *dir = opendir(tmpdir);
-  int found = 0;
-  struct dirent *e;
-  while (dir && (e = readdir(dir)))
-    if (strstr(e->d_name, ".tmp.")) found++;
-  if (dir) closedir(dir);
-  return found;
-}
-
 static void test_save_errors(void) {
   case_def c = {"save", 2, MRN_SHAPE_LINEAR, "PIC", MRN_STRESS_USL, MRN_BC_SLIP, NULL, 0};
   mrn_sim *sim = make_sim(&c);
@@ -649,7 +639,7 @@ static void test_save_errors(void) {
   CHECK(mrn_checkpoint_save(sim, again) == MRN_OK);
   mrn_sim *back = mrn_checkpoint_load(again);
   CHECK(back && back->step == 2);
-  CHECK(leftover_temp_files() == 0);
+  CHECK(count_temp_files(tmpdir) == 0);
   mrn_sim_free(back);
   mrn_sim_free(sim);
 }
@@ -675,7 +665,7 @@ static void test_file_too_large(void) {
   int status = 0;
   CHECK(child > 0 && waitpid(child, &status, 0) == child);
   CHECK(WIFEXITED(status) && WEXITSTATUS(status) == 0);
-  CHECK(access(path, F_OK) != 0 && leftover_temp_files() == 0);
+  CHECK(access(path, F_OK) != 0 && count_temp_files(tmpdir) == 0);
   mrn_sim_free(sim);
 }
 
@@ -721,17 +711,11 @@ static void remove_tmpdir(void) {
     printf("files kept in %s\n", tmpdir);
     return;
   }
-  DIR *dir = opendir(tmpdir);
-  struct dirent *e;
-  while (dir && (e = readdir(dir)))
-    if (strcmp(e->d_name, ".") && strcmp(e->d_name, "..")) unlink(tmp_path(e->d_name));
-  if (dir) closedir(dir);
-  rmdir(tmpdir);
+  remove_tree(tmpdir);
 }
 
 int main(void) {
-  snprintf(tmpdir, sizeof tmpdir, "/tmp/moraine_checkpoint_XXXXXX");
-  if (!mkdtemp(tmpdir)) return 1;
+  if (make_temp_dir(tmpdir, sizeof tmpdir, "/tmp/moraine_checkpoint") != 0) return 1;
   H5Eset_auto2(H5E_DEFAULT, NULL, NULL); /* the damaging helpers delete what may not exist */
 
   const mrn_material_type *MC = &mrn_material_mohr_coulomb;

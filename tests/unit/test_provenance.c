@@ -1,5 +1,4 @@
 /* moraine: the provenance files of an output directory (io/provenance.h). */
-#include <dirent.h>
 #include <regex.h>
 #include <stdlib.h>
 #include <string.h>
@@ -7,56 +6,10 @@
 #include <unistd.h>
 
 #include "check.h"
+#include "testfs.h"
 #include "core/error.h"
 #include "io/atomic_file.h"
 #include "io/provenance.h"
-
-static char *read_all(const char *path, size_t *len) {
-  FILE *fp = fopen(path, "rb");
-  if (!fp) return NULL;
-  fseek(fp, 0, SEEK_END);
-  long size = ftell(fp);
-  fseek(fp, 0, SEEK_SET);
-  char *buf = malloc((size_t)size + 1);
-  size_t got = fread(buf, 1, (size_t)size, fp);
-  fclose(fp);
-  buf[got] = '\0';
-  if (len) *len = got;
-  return buf;
-}
-
-static int exists(const char *path) {
-  struct stat st;
-  return stat(path, &st) == 0;
-}
-
-static int count_temp_files(const char *dir) {
-  DIR *d = opendir(dir);
-  if (!d) return -1;
-  int n = 0;
-  struct dirent *e;
-  while ((e = readdir(d)) != NULL)
-    if (strstr(e->d_name, ".tmp.")) n++;
-  closedir(d);
-  return n;
-}
-
-static void remove_tree(const char *path) {
-  DIR *d = opendir(path);
-  if (!d) {
-    unlink(path);
-    return;
-  }
-  struct dirent *e;
-  while ((e = readdir(d)) != NULL) {
-    if (!strcmp(e->d_name, ".") || !strcmp(e->d_name, "..")) continue;
-    char *child = mrn_path_join(path, e->d_name);
-    remove_tree(child);
-    free(child);
-  }
-  closedir(d);
-  rmdir(path);
-}
 
 /* 1 when some whole line of text matches the extended regex */
 static int has_line(const char *text, const char *pattern) {
@@ -152,8 +105,7 @@ static void test_no_deck_and_errors(const char *dir) {
 
   /* an output directory that cannot be made */
   char *file = mrn_path_join(dir, "plain");
-  FILE *fp = fopen(file, "w");
-  if (fp) fclose(fp);
+  make_empty_file(file);
   CHECK(mrn_provenance_write(file, NULL, 0, NULL, NULL, 0) == MRN_ERR_IO);
   free(file);
   free(run2);
@@ -165,11 +117,8 @@ static void test_no_deck_and_errors(const char *dir) {
 }
 
 int main(void) {
-  char dir[] = "/tmp/moraine_test_provenance_XXXXXX";
-  if (!mkdtemp(dir)) {
-    perror("mkdtemp");
-    return 1;
-  }
+  char dir[64];
+  if (make_temp_dir(dir, sizeof dir, "/tmp/moraine_test_provenance") != 0) return 1;
   test_full(dir);
   test_no_deck_and_errors(dir);
   remove_tree(dir);

@@ -12,7 +12,6 @@
  * The series are read back here with HDF5's C library (through io/h5util.h),
  * while the writer still has the file open (h5dump, another process), and
  * after the writer was killed. */
-#include <dirent.h>
 #include <math.h>
 #include <signal.h>
 #include <stdint.h>
@@ -23,6 +22,7 @@
 #include <unistd.h>
 
 #include "check.h"
+#include "testfs.h"
 #include "core/error.h"
 #include "io/atomic_file.h"
 #include "io/h5util.h"
@@ -30,34 +30,6 @@
 #include "solver/diagnostics.h"
 
 /* ---- small helpers ------------------------------------------------------ */
-
-static int count_temp_files(const char *dir) {
-  DIR *d = opendir(dir);
-  if (!d) return -1;
-  int n = 0;
-  struct dirent *e;
-  while ((e = readdir(d)) != NULL)
-    if (strstr(e->d_name, ".tmp.")) n++;
-  closedir(d);
-  return n;
-}
-
-static void remove_tree(const char *path) {
-  DIR *d = opendir(path);
-  if (!d) {
-    unlink(path);
-    return;
-  }
-  struct dirent *e;
-  while ((e = readdir(d)) != NULL) {
-    if (!strcmp(e->d_name, ".") || !strcmp(e->d_name, "..")) continue;
-    char *child = mrn_path_join(path, e->d_name);
-    remove_tree(child);
-    free(child);
-  }
-  closedir(d);
-  rmdir(path);
-}
 
 /* NaN equals NaN; everything else exactly */
 static int same(double a, double b) { return (isnan(a) && isnan(b)) || a == b; }
@@ -345,11 +317,8 @@ static int write_for_python(const char *dir) {
 }
 
 int main(int argc, char **argv) {
-  char dir[] = "/tmp/moraine_test_series_XXXXXX";
-  if (!mkdtemp(dir)) {
-    perror("mkdtemp");
-    return 1;
-  }
+  char dir[64];
+  if (make_temp_dir(dir, sizeof dir, "/tmp/moraine_test_series") != 0) return 1;
   test_rows_and_padding(dir);
   test_many_rows(dir);
   test_errors(dir);

@@ -8,7 +8,6 @@
  *
  * The node values follow node_value() below, mirrored in check_vti.py; ghost
  * nodes hold -999 so that any of them reaching a file shows. */
-#include <dirent.h>
 #include <math.h>
 #include <stdint.h>
 #include <stdlib.h>
@@ -18,6 +17,7 @@
 #include <unistd.h>
 
 #include "check.h"
+#include "testfs.h"
 #include "core/error.h"
 #include "io/atomic_file.h"
 #include "io/vti.h"
@@ -56,71 +56,6 @@ static int make_grid(mrn_grid *g, int dim) {
   int rc = mrn_grid_init(g, dim, origin, size, 0.5);
   if (rc == MRN_OK) fill_grid(g);
   return rc;
-}
-
-/* ---- small file helpers ------------------------------------------------ */
-
-static char *read_all(const char *path, size_t *len) {
-  FILE *fp = fopen(path, "rb");
-  if (!fp) return NULL;
-  fseek(fp, 0, SEEK_END);
-  long size = ftell(fp);
-  fseek(fp, 0, SEEK_SET);
-  char *buf = malloc((size_t)size + 1);
-  size_t got = fread(buf, 1, (size_t)size, fp);
-  fclose(fp);
-  buf[got] = '\0';
-  if (len) *len = got;
-  return buf;
-}
-
-static int count_temp_files(const char *dir) {
-  DIR *d = opendir(dir);
-  if (!d) return -1;
-  int n = 0;
-  struct dirent *e;
-  while ((e = readdir(d)) != NULL)
-    if (strstr(e->d_name, ".tmp.")) n++;
-  closedir(d);
-  return n;
-}
-
-static void remove_tree(const char *path) {
-  DIR *d = opendir(path);
-  if (!d) {
-    unlink(path);
-    return;
-  }
-  struct dirent *e;
-  while ((e = readdir(d)) != NULL) {
-    if (!strcmp(e->d_name, ".") || !strcmp(e->d_name, "..")) continue;
-    char *child = mrn_path_join(path, e->d_name);
-    remove_tree(child);
-    free(child);
-  }
-  closedir(d);
-  rmdir(path);
-}
-
-/* The raw block of the DataArray named `name` (UInt64 header in *nbytes), or
- * NULL when it cannot be found. The test host is little-endian, as the file. */
-static const unsigned char *appended_block(const char *file, size_t len, const char *name, uint64_t *nbytes) {
-  char key[128];
-  snprintf(key, sizeof key, "Name=\"%s\"", name);
-  const char *tag = strstr(file, key);
-  const char *data = strstr(file, "<AppendedData encoding=\"raw\">");
-  if (!tag || !data) return NULL;
-  const char *off = strstr(tag, "offset=\"");
-  const char *end = strchr(tag, '>');
-  if (!off || !end || off > end) return NULL;
-  uint64_t offset = strtoull(off + 8, NULL, 10);
-  const char *base = strchr(data, '_');
-  if (!base) return NULL;
-  base++;
-  if ((size_t)(base - file) + offset + 8 > len) return NULL;
-  memcpy(nbytes, base + offset, 8);
-  if ((size_t)(base - file) + offset + 8 + *nbytes > len) return NULL;
-  return (const unsigned char *)base + offset + 8;
 }
 
 /* the domain nodes of array a in file order (x fastest), as the file must hold them */
@@ -312,11 +247,8 @@ int main(int argc, char **argv) {
     fprintf(stderr, "%s\n", mrn_error_message());
     return 1;
   }
-  char dir[] = "/tmp/moraine_test_vti_XXXXXX";
-  if (!mkdtemp(dir)) {
-    perror("mkdtemp");
-    return 1;
-  }
+  char dir[64];
+  if (make_temp_dir(dir, sizeof dir, "/tmp/moraine_test_vti") != 0) return 1;
   test_binary(dir, &g2, "g2.vti", "0 4 0 3 0 0", "0.5 0.5 1");
   test_binary(dir, &g3, "g3.vti", "0 4 0 3 0 2", "0.5 0.5 0.5");
   test_ascii_and_no_time(dir, &g2);

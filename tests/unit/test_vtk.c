@@ -4,7 +4,6 @@
  * the binary ones back by parsing the appended section. With a directory as
  * argv[1] it also leaves roundtrip files there for
  * tests/python/test_vtk_roundtrip.py, which reads them with VTK itself. */
-#include <dirent.h>
 #include <inttypes.h>
 #include <stdint.h>
 #include <stdlib.h>
@@ -13,6 +12,7 @@
 #include <unistd.h>
 
 #include "check.h"
+#include "testfs.h"
 #include "core/error.h"
 #include "io/atomic_file.h"
 #include "io/vtk.h"
@@ -46,84 +46,7 @@ static void make_sample(sample *s) {
   s->arrays[3] = (mrn_vtk_array){"id", 1, MRN_VTK_INT64, s->id};
 }
 
-/* ---- small file helpers ------------------------------------------------ */
-
-static char *read_all(const char *path, size_t *len) {
-  FILE *fp = fopen(path, "rb");
-  if (!fp) return NULL;
-  fseek(fp, 0, SEEK_END);
-  long size = ftell(fp);
-  fseek(fp, 0, SEEK_SET);
-  char *buf = malloc((size_t)size + 1);
-  size_t got = fread(buf, 1, (size_t)size, fp);
-  fclose(fp);
-  buf[got] = '\0';
-  if (len) *len = got;
-  return buf;
-}
-
-static int exists(const char *path) {
-  struct stat st;
-  return stat(path, &st) == 0;
-}
-
-static int count_temp_files(const char *dir) {
-  DIR *d = opendir(dir);
-  if (!d) return -1;
-  int n = 0;
-  struct dirent *e;
-  while ((e = readdir(d)) != NULL)
-    if (strstr(e->d_name, ".tmp.")) n++;
-  closedir(d);
-  return n;
-}
-
-static int count_occurrences(const char *text, const char *needle) {
-  int n = 0;
-  for (const char *p = strstr(text, needle); p; p = strstr(p + 1, needle)) n++;
-  return n;
-}
-
-/* remove a directory tree made by this test (files and subdirectories only) */
-static void remove_tree(const char *path) {
-  DIR *d = opendir(path);
-  if (!d) {
-    unlink(path);
-    return;
-  }
-  struct dirent *e;
-  while ((e = readdir(d)) != NULL) {
-    if (!strcmp(e->d_name, ".") || !strcmp(e->d_name, "..")) continue;
-    char *child = mrn_path_join(path, e->d_name);
-    remove_tree(child);
-    free(child);
-  }
-  closedir(d);
-  rmdir(path);
-}
-
 /* ---- reading the appended section back --------------------------------- */
-
-/* The raw block of the DataArray named `name`: returns a pointer to its bytes
- * and sets *nbytes from the UInt64 header, or NULL when it cannot be found. */
-static const unsigned char *appended_block(const char *file, size_t len, const char *name, uint64_t *nbytes) {
-  char key[128];
-  snprintf(key, sizeof key, "Name=\"%s\"", name);
-  const char *tag = strstr(file, key);
-  const char *data = strstr(file, "<AppendedData encoding=\"raw\">");
-  if (!tag || !data) return NULL;
-  const char *off = strstr(tag, "offset=\"");
-  const char *end = strchr(tag, '>');
-  if (!off || !end || off > end) return NULL;
-  uint64_t offset = strtoull(off + 8, NULL, 10);
-  const char *base = strchr(data, '_');
-  if (!base) return NULL;
-  base++;
-  if ((size_t)(base - file) + offset + 8 > len) return NULL;
-  memcpy(nbytes, base + offset, 8); /* the test host is little-endian, as the file */
-  if ((size_t)(base - file) + offset + 8 + *nbytes > len) return NULL;
-  return (const unsigned char *)base + offset + 8;
-}
 
 static int block_equals(const char *file, size_t len, const char *name, const void *expect, size_t size) {
   uint64_t nbytes = 0;
@@ -263,8 +186,7 @@ static void test_mkdir_p(const char *dir) {
 
   /* a component that is a file */
   char *file = mrn_path_join(dir, "a/plain");
-  FILE *fp = fopen(file, "w");
-  if (fp) fclose(fp);
+  make_empty_file(file);
   char *below = mrn_path_join(dir, "a/plain/d");
   CHECK(mrn_mkdir_p(below) == MRN_ERR_IO);
   CHECK(strstr(mrn_error_message(), below) != NULL);
@@ -316,11 +238,8 @@ static int write_roundtrip(const char *dir, const sample *s) {
 int main(int argc, char **argv) {
   static sample s;
   make_sample(&s);
-  char dir[] = "/tmp/moraine_test_vtk_XXXXXX";
-  if (!mkdtemp(dir)) {
-    perror("mkdtemp");
-    return 1;
-  }
+  char dir[64];
+  if (make_temp_dir(dir, sizeof dir, "/tmp/moraine_test_vtk") != 0) return 1;
   test_binary(dir, &s);
   test_ascii(dir, &s);
   test_empty(dir);
