@@ -150,6 +150,30 @@ static void wrap_periodic(mrn_sim *sim) {
   }
 }
 
+/* A wall (fixed, slip, friction or velocity face) holds the nodes on and
+ * beyond it, but a particle moved by the interpolated grid velocity can still
+ * step a hair past it (the nodes just inside move towards it): put such a
+ * particle back on the face, with no velocity into the wall. Free faces let
+ * material leave (the state check then stops the run). */
+static void keep_inside_walls(mrn_sim *sim) {
+  const mrn_grid *g = &sim->grid;
+  mrn_particles *ps = &sim->particles;
+  for (int d = 0; d < sim->dim; d++) {
+    for (int side = 0; side < 2; side++) {
+      mrn_bc_kind kind = sim->boundary.face[2 * d + side].kind;
+      if (kind == MRN_BC_FREE || kind == MRN_BC_PERIODIC) continue;
+      const double face = g->origin[d] + (side ? g->size[d] : 0.0);
+      for (size_t p = 0; p < ps->n; p++) {
+        double *x = ps->x + 3 * p + d, *v = ps->v + 3 * p + d;
+        if (side == 0 ? *x < face : *x > face) {
+          *x = face;
+          if (side == 0 ? *v < 0 : *v > 0) *v = 0.0;
+        }
+      }
+    }
+  }
+}
+
 /* grid velocity from the particles, and XPIC's smoothed velocity when needed */
 static int grid_velocity_stage(mrn_sim *sim) {
   grid_velocity(sim);
@@ -216,6 +240,7 @@ int mrn_sim_step_dt(mrn_sim *sim, double dt) {
   }
   }
   wrap_periodic(sim);
+  keep_inside_walls(sim);
   sim->time += dt;
   sim->step++;
   return mrn_sim_check_state(sim);
