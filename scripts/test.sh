@@ -17,8 +17,8 @@ cmake --build build -j "$jobs"
 if [ "$sanitize" = 1 ]; then
   cmake -S . -B build-asan -DCMAKE_BUILD_TYPE=RelWithDebInfo -DMORAINE_SANITIZE=ON
   cmake --build build-asan -j "$jobs"
-  # the suite again, sanitised; tests labelled "long" (minute-long physics runs
+  # the suite again, sanitised; tests labelled "long" or "slow" (minute-long physics runs
   # whose code paths the shorter tests cover) are left to the release pass
   (cd build-asan && ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 \
-     ctest --output-on-failure -j "$jobs" -LE long)
+     ctest --output-on-failure -j "$jobs" -LE "long|slow")
 fi
