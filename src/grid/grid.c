@@ -5,6 +5,7 @@
 #include <string.h>
 
 #include "core/error.h"
+#include "transfer/blocks.h"
 
 int mrn_grid_init(mrn_grid *g, int dim, const double origin[3], const double size[3], double cell) {
   memset(g, 0, sizeof *g);
@@ -55,6 +56,11 @@ int mrn_grid_init(mrn_grid *g, int dim, const double origin[3], const double siz
     mrn_grid_free(g);
     return mrn_error("grid: out of memory for %zu nodes", (size_t)total);
   }
+  g->blocks = mrn_blocks_new(g);
+  if (!g->blocks) {
+    mrn_grid_free(g);
+    return mrn_error("grid: out of memory for %zu nodes", (size_t)total);
+  }
   return MRN_OK;
 }
 
@@ -68,6 +74,8 @@ void mrn_grid_free(mrn_grid *g) {
   free(g->vel_star);
   free(g->work);
   g->mass = g->mom = g->vel = g->vel_new = g->force = g->acc = g->vel_star = g->work = NULL;
+  mrn_blocks_free(g->blocks);
+  g->blocks = NULL;
 }
 
 void mrn_grid_clear(mrn_grid *g) {

@@ -32,6 +32,11 @@ typedef struct mrn_grid {
   double *acc;      /* 3n acceleration actually applied, (V~ - V)/dt after BCs */
   double *vel_star; /* 3n XPIC(m) smoothed velocity V* (see transfer/xpic.c) */
   double *work;     /* 3n scratch for the XPIC iterations */
+
+  /* particles binned by block and the node spans that can be nonzero
+   * (transfer/blocks.h): outside them every array above except vel_star and
+   * work is zero */
+  struct mrn_blocks *blocks;
 } mrn_grid;
 
 /* size[d] is rounded to a whole number of cells (error if the rounding is off

@@ -19,21 +19,26 @@
 #include "core/tensor.h"
 #include "material/advance.h"
 #include "solver/simulation.h"
+#include "transfer/blocks.h"
 #include "transfer/kernels.h"
+#include "transfer/profile.h"
 #include "transfer/xpic.h"
 
 /* nodal velocity from momentum, for nodes above the mass floor */
 static void grid_velocity(mrn_sim *sim) {
+  const double t0 = mrn_phase_begin();
   mrn_grid *g = &sim->grid;
   const double floor_mass = sim->mass_floor;
-  const long n = (long)g->n;
-#pragma omp parallel for schedule(static) if (n > MRN_OMP_MIN_ITEMS)
-  for (long i = 0; i < n; i++) {
-    double m = g->mass[i];
-    for (int d = 0; d < 3; d++) g->vel[3 * i + d] = m > floor_mass ? g->mom[3 * i + d] / m : 0.0;
-  }
+  const mrn_node_ranges r = mrn_grid_active_ranges(g); /* every nodal array is zero elsewhere */
+#pragma omp parallel for schedule(static) if (r.nodes > MRN_OMP_MIN_NODES)
+  for (long k = 0; k < r.count; k++)
+    for (long i = r.lo[k]; i < r.hi[k]; i++) {
+      double m = g->mass[i];
+      for (int d = 0; d < 3; d++) g->vel[3 * i + d] = m > floor_mass ? g->mom[3 * i + d] / m : 0.0;
+    }
   mrn_boundary_apply(&sim->boundary, g, g->vel, 0);
   for (int c = 0; c < sim->nconstraints; c++) mrn_constraint_apply(&sim->constraints[c], g, g->vel, floor_mass, 0.0);
+  mrn_phase_end(MRN_PHASE_GRID, t0);
 }
 
 /* Damping force on a node with total force f and velocity v:
@@ -51,34 +56,42 @@ static inline double damping_force(double D, double alpha, double f, double v, d
  * boundary conditions with friction, and the acceleration the particles will
  * see, a = (V~ - V) / dt. The damping work is f_damp . (V + V~) / 2 dt. */
 static void grid_update(mrn_sim *sim, double dt) {
+  const double t0 = mrn_phase_begin();
   mrn_grid *g = &sim->grid;
   const double floor_mass = sim->mass_floor;
   const double D = sim->damping_cundall, alpha = sim->damping_viscous;
   const int damped = D > 0.0 || alpha > 0.0;
-  const long n = (long)g->n;
-  double work = 0.0;
-#pragma omp parallel for schedule(static) if (n > MRN_OMP_MIN_ITEMS) reduction(+ : work)
-  for (long i = 0; i < n; i++) {
-    double m = g->mass[i];
-    for (int d = 0; d < 3; d++) {
-      if (!(m > floor_mass)) {
-        g->vel_new[3 * i + d] = 0.0;
-        continue;
+  const mrn_node_ranges r = mrn_grid_active_ranges(g); /* every nodal array is zero elsewhere */
+#pragma omp parallel for schedule(static) if (r.nodes > MRN_OMP_MIN_NODES)
+  for (long k = 0; k < r.count; k++) {
+    double work = 0.0;
+    for (long i = r.lo[k]; i < r.hi[k]; i++) {
+      double m = g->mass[i];
+      for (int d = 0; d < 3; d++) {
+        if (!(m > floor_mass)) {
+          g->vel_new[3 * i + d] = 0.0;
+          continue;
+        }
+        double v = g->vel[3 * i + d];
+        double f = g->force[3 * i + d] + m * sim->gravity[d];
+        double fd = damped ? damping_force(D, alpha, f, v, m) : 0.0;
+        double v_new = v + dt * (f + fd) / m;
+        g->vel_new[3 * i + d] = v_new;
+        work += fd * 0.5 * (v + v_new) * dt;
       }
-      double v = g->vel[3 * i + d];
-      double f = g->force[3 * i + d] + m * sim->gravity[d];
-      double fd = damped ? damping_force(D, alpha, f, v, m) : 0.0;
-      double v_new = v + dt * (f + fd) / m;
-      g->vel_new[3 * i + d] = v_new;
-      work += fd * 0.5 * (v + v_new) * dt;
     }
+    r.sum[k] = work;
   }
+  double work = 0.0;
+  for (long k = 0; k < r.count; k++) work += r.sum[k]; /* fixed order: the same for any thread count */
   sim->work_damping += work;
   sim->work_friction += mrn_boundary_apply(&sim->boundary, g, g->vel_new, 1);
   for (int c = 0; c < sim->nconstraints; c++) mrn_constraint_apply(&sim->constraints[c], g, g->vel_new, floor_mass, dt);
-#pragma omp parallel for schedule(static) if (n > MRN_OMP_MIN_ITEMS)
-  for (long i = 0; i < n; i++)
-    for (int d = 0; d < 3; d++) g->acc[3 * i + d] = (g->vel_new[3 * i + d] - g->vel[3 * i + d]) / dt;
+#pragma omp parallel for schedule(static) if (r.nodes > MRN_OMP_MIN_NODES)
+  for (long k = 0; k < r.count; k++)
+    for (long i = r.lo[k]; i < r.hi[k]; i++)
+      for (int d = 0; d < 3; d++) g->acc[3 * i + d] = (g->vel_new[3 * i + d] - g->vel[3 * i + d]) / dt;
+  mrn_phase_end(MRN_PHASE_GRID, t0);
 }
 
 /* Kinematics and constitutive update of one particle from its velocity
@@ -101,6 +114,7 @@ static int update_particle_stress(mrn_sim *sim, size_t p, double dt) {
 }
 
 static int update_stresses(mrn_sim *sim, double dt) {
+  const double t0 = mrn_phase_begin();
   mrn_particles *ps = &sim->particles;
   const long n = (long)ps->n;
   long first_bad = -1;
@@ -111,6 +125,7 @@ static int update_stresses(mrn_sim *sim, double dt) {
       if (first_bad < 0 || p < first_bad) first_bad = p;
     }
   }
+  mrn_phase_end(MRN_PHASE_STRESS, t0);
   if (first_bad >= 0) {
     const double *x = ps->x + 3 * first_bad;
     return mrn_error_code(MRN_ERR_STATE,
@@ -204,8 +219,7 @@ int mrn_sim_step_dt(mrn_sim *sim, double dt) {
     mrn_p2g(sim, dim, 1, 1);
     if ((rc = grid_velocity_stage(sim))) return rc;
     grid_update(sim, dt);
-    mrn_gradient(sim, dim, sim->grid.vel_new);
-    mrn_g2p(sim, dim, dt, NULL);
+    mrn_g2p_gradient(sim, dim, dt, NULL); /* grad v from V~, then G2P */
     if ((rc = update_stresses(sim, dt))) return rc;
     break;
   case MRN_STRESS_USAVG:
@@ -217,8 +231,7 @@ int mrn_sim_step_dt(mrn_sim *sim, double dt) {
     if ((rc = update_stresses(sim, 0.5 * dt))) return rc;
     mrn_p2g(sim, dim, 0, 1);
     grid_update(sim, dt);
-    mrn_gradient(sim, dim, sim->grid.vel_new);
-    mrn_g2p(sim, dim, dt, NULL);
+    mrn_g2p_gradient(sim, dim, dt, NULL); /* grad v from V~, then G2P */
     if ((rc = update_stresses(sim, 0.5 * dt))) return rc;
     break;
   case MRN_STRESS_MUSL: {

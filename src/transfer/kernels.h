@@ -10,7 +10,11 @@ struct mrn_sim;
 /* P2G: nodal mass and momentum (000, Eqs. 6, 16), with the affine (000,
  * Eqs. 23-24) or Taylor (000, Eqs. 19-20) term of the scheme, when
  * `momentum` is set; internal force -sum V sigma . grad N (002, Fig. 1 step 3)
- * when `force` is set. The grid arrays touched are cleared first. */
+ * when `force` is set. The grid arrays touched are cleared first (only where
+ * particles can reach: see transfer/blocks.h; every nodal array stays zero
+ * outside the active spans). Bitwise the same result for any thread count.
+ * With particle sorting enabled (mrn_blocks_set_sort_every) the first P2G of
+ * a step that is a multiple of the interval reorders the particles. */
 void mrn_p2g_2d(struct mrn_sim *sim, int momentum, int force);
 void mrn_p2g_3d(struct mrn_sim *sim, int momentum, int force);
 
@@ -25,6 +29,10 @@ void mrn_gradient_3d(struct mrn_sim *sim, const double *gvel);
  * otherwise the increments are stored there (3 per particle). */
 void mrn_g2p_2d(struct mrn_sim *sim, double dt, double *dx);
 void mrn_g2p_3d(struct mrn_sim *sim, double dt, double *dx);
+/* mrn_gradient from the updated grid velocity (grid.vel_new) followed by
+ * mrn_g2p, in one pass over the particles (the same stencil serves both) */
+void mrn_g2p_gradient_2d(struct mrn_sim *sim, double dt, double *dx);
+void mrn_g2p_gradient_3d(struct mrn_sim *sim, double dt, double *dx);
 
 /* G = interpolation of a nodal field to the particles (000, Eq. 11), 3 per particle */
 void mrn_grid_to_particles_2d(struct mrn_sim *sim, const double *gvel, double *pvel);
@@ -44,6 +52,9 @@ static inline void mrn_gradient(struct mrn_sim *sim, int dim, const double *gvel
 }
 static inline void mrn_g2p(struct mrn_sim *sim, int dim, double dt, double *dx) {
   MRN_DISPATCH(mrn_g2p, dim, sim, dt, dx);
+}
+static inline void mrn_g2p_gradient(struct mrn_sim *sim, int dim, double dt, double *dx) {
+  MRN_DISPATCH(mrn_g2p_gradient, dim, sim, dt, dx);
 }
 static inline void mrn_grid_to_particles(struct mrn_sim *sim, int dim, const double *gvel, double *pvel) {
   MRN_DISPATCH(mrn_grid_to_particles, dim, sim, gvel, pvel);

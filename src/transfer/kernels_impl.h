@@ -1,12 +1,29 @@
 /* moraine: body of the transfer kernels; included with DIM = 2 or 3 and
- * KNAME(x) naming the specialised functions. See kernels.h. */
+ * KNAME(x) naming the specialised functions. See kernels.h.
+ *
+ * Each kernel exists in a general form, which builds a particle's full
+ * stencil (stencil_build: any shape, face treatment, periodic axes, MLS
+ * gradient), and in fast forms for plain quadratic and cubic B-splines away
+ * from adjusted faces, which keep the stencil as its per-axis factors and are
+ * instantiated for each support size and scheme choice so that every loop
+ * bound and branch in the node loops is a compile-time constant. Both forms
+ * form the same products in the same order.
+ *
+ * P2G runs over the particles binned by blocks of cells (transfer/blocks.h):
+ * colour by colour, the blocks of one colour in parallel. The other kernels
+ * run over the particles in index order, in parallel, each particle on its
+ * own. Neither depends on the number of threads for its result. */
 #include <string.h>
 
 #include "core/parallel.h"
 #include "core/tensor.h"
 #include "solver/simulation.h"
+#include "transfer/blocks.h"
 #include "transfer/kernels.h"
+#include "transfer/profile.h"
 #include "transfer/stencil.h"
+
+#define MRN_INLINE static inline __attribute__((always_inline))
 
 static inline mrn_kernel_options KNAME(kernel_options)(const mrn_sim *sim) {
   mrn_kernel_options o = {sim->shape, sim->kernel_boundary, sim->scheme.mls_gradient, 0};
@@ -15,79 +32,495 @@ static inline mrn_kernel_options KNAME(kernel_options)(const mrn_sim *sim) {
   return o;
 }
 
-void KNAME(mrn_p2g)(mrn_sim *sim, int momentum, int force) {
-  mrn_grid *g = &sim->grid;
-  const mrn_particles *ps = &sim->particles;
-  const mrn_kernel_options ko = KNAME(kernel_options)(sim);
-  const int affine = sim->scheme.grid_velocity != MRN_VGRID_PLAIN;
-  if (momentum) {
-    memset(g->mass, 0, g->n * sizeof(double));
-    memset(g->mom, 0, 3 * g->n * sizeof(double));
-  }
-  if (force) memset(g->force, 0, 3 * g->n * sizeof(double));
+/* support of the fast path for these options, or 0 for the general stencil */
+static inline int KNAME(fast_support)(const mrn_kernel_options *o) {
+  if (o->periodic || o->mls_gradient) return 0;
+  return o->shape == MRN_SHAPE_QUADRATIC_BSPLINE ? 3 : o->shape == MRN_SHAPE_CUBIC_BSPLINE ? 4 : 0;
+}
+
+/* ---- P2G -------------------------------------------------------------------- */
+
+typedef struct KNAME(p2g_args) {
+  mrn_grid *g;
+  const mrn_particles *ps;
+  mrn_kernel_options ko;
+} KNAME(p2g_args);
+
+/* one particle, general stencil */
+static void KNAME(p2g_general)(const KNAME(p2g_args) *ar, size_t p, int momentum, int force, int affine) {
+  mrn_grid *g = ar->g;
+  const mrn_particles *ps = ar->ps;
   KNAME(stencil) s;
-  for (size_t p = 0; p < ps->n; p++) {
-    KNAME(stencil_build)(g, &ko, ps->x + 3 * p, ps->vol0[p], &s);
-    const double m = ps->mass[p];
-    const double *v = ps->v + 3 * p;
-    const double *A = ps->affine + 9 * p;
-    const double *sig = ps->stress + 6 * p;
-    const double vol = ps->vol[p];
-    for (int c = 0; c < s.count; c++) {
-      const size_t n = s.node[c];
+  KNAME(stencil_build)(g, &ar->ko, ps->x + 3 * p, ps->vol0[p], &s);
+  const double m = ps->mass[p];
+  const double *v = ps->v + 3 * p;
+  const double *A = ps->affine + 9 * p;
+  const double *sig = ps->stress + 6 * p;
+  const double vol = ps->vol[p];
+  for (int c = 0; c < s.count; c++) {
+    const size_t n = s.node[c];
+    if (momentum) {
+      const double wm = s.N[c] * m;
+      g->mass[n] += wm;
+      for (int a = 0; a < DIM; a++) {
+        double va = v[a];
+        /* (000, Eqs. 19-20 and 23-24): v_p + A_p (x_i - x_p), A = grad v or C */
+        if (affine)
+          for (int b = 0; b < DIM; b++) va += A[3 * a + b] * s.offset[c][b];
+        g->mom[3 * n + a] += wm * va;
+      }
+    }
+    if (force) {
+      /* f_a = -V sigma_ab dN/dx_b */
+      for (int a = 0; a < DIM; a++) {
+        double f = 0.0;
+        for (int b = 0; b < DIM; b++) f += sig[sym_index(a, b)] * s.dN[c][b];
+        g->force[3 * n + a] -= vol * f;
+      }
+    }
+  }
+}
+
+/* The per-particle factors both fast P2G forms start from: m v, m A (APIC's
+ * affine matrix, zero when off) and V sigma; components beyond DIM stay 0. */
+MRN_INLINE void KNAME(p2g_particle_terms)(const mrn_particles *ps, size_t p, int affine, double mv[3],
+                                          double MA[3][3], double VS[3][3]) {
+  const double m = ps->mass[p], vol = ps->vol[p];
+  const double *v = ps->v + 3 * p, *A = ps->affine + 9 * p, *sig = ps->stress + 6 * p;
+  for (int a = 0; a < 3; a++) {
+    mv[a] = a < DIM ? m * v[a] : 0.0;
+    for (int b = 0; b < 3; b++) {
+      MA[a][b] = (affine && a < DIM && b < DIM) ? m * A[3 * a + b] : 0.0;
+      VS[a][b] = (a < DIM && b < DIM) ? vol * sig[sym_index(a, b)] : 0.0;
+    }
+  }
+}
+
+#if DIM == 3
+/* Short vectors for the rows of nodes: a row holds 3 sup contiguous values
+ * (9 or 12), handled as 4-wide vectors plus a scalar tail; never a value
+ * beyond the row (the next node may belong to another thread's block). */
+#ifndef MRN_KERNEL_V4
+#define MRN_KERNEL_V4
+/* 4 doubles at any 8-byte aligned address, aliasing plain doubles (macros,
+ * so no function passes a vector by value: the ABI then does not depend on
+ * the instruction set) */
+typedef double mrn_v4 __attribute__((vector_size(32), aligned(8), may_alias));
+#define mrn_v4_load(p) (*(const mrn_v4 *)(p))
+#define mrn_v4_store(p, v) (*(mrn_v4 *)(p) = (v))
+#endif
+
+/* One particle, plain B-spline factors. The nodes are visited by rows (the
+ * `sup` nodes along x at one y, z), whose 3 sup nodal values are contiguous
+ * in memory; each row gets a combination of per-particle vectors set up
+ * once. With N = w_x w_y w_z, the branch x_i - x_p = (o_x, o_y, o_z) and A_b
+ * the column b of A:
+ *   m N (v + A (x_i - x_p)) = w_y w_z Q + w_y o_y w_z MY + w_y w_z o_z MZ,
+ *        Q = w_x m (v + A_x o_x), MY = w_x m A_y, MZ = w_x m A_z;
+ *   -V sigma grad N = -(w_y w_z FX + dw_y w_z FY + w_y dw_z FZ),
+ *        FX = dw_x V sigma_x, FY = w_x V sigma_y, FZ = w_x V sigma_z.
+ * Components beyond DIM are zero. */
+MRN_INLINE void KNAME(p2g_fast)(const KNAME(p2g_args) *ar, const KNAME(axes) *ax, size_t p, const int sup,
+                                const int momentum, const int force, const int affine) {
+  mrn_grid *g = ar->g;
+  const mrn_particles *ps = ar->ps;
+  const double m = ps->mass[p];
+  const int T = 3 * sup, NV = T / 4;
+  double Q[12] __attribute__((aligned(32))), MY[12] __attribute__((aligned(32))), MZ[12] __attribute__((aligned(32)));
+  double FX[12] __attribute__((aligned(32))), FY[12] __attribute__((aligned(32))), FZ[12] __attribute__((aligned(32)));
+  double MW[4];
+  double mv[3], MA[3][3], VS[3][3];
+  KNAME(p2g_particle_terms)(ps, p, affine, mv, MA, VS);
+#pragma GCC unroll 4
+  for (int i = 0; i < sup; i++) {
+    const double wx = ax->w[0][i], dwx = ax->dw[0][i], ox = ax->off[0][i];
+    MW[i] = m * wx;
+#pragma GCC unroll 3
+    for (int a = 0; a < 3; a++) {
+      const int t = 3 * i + a;
       if (momentum) {
-        const double wm = s.N[c] * m;
-        g->mass[n] += wm;
-        for (int a = 0; a < DIM; a++) {
-          double va = v[a];
-          /* (000, Eqs. 19-20 and 23-24): v_p + A_p (x_i - x_p), A = grad v or C */
-          if (affine)
-            for (int b = 0; b < DIM; b++) va += A[3 * a + b] * s.offset[c][b];
-          g->mom[3 * n + a] += wm * va;
+        Q[t] = wx * (mv[a] + MA[a][0] * ox);
+        MY[t] = wx * MA[a][1];
+        MZ[t] = wx * MA[a][2];
+      }
+      if (force) {
+        FX[t] = dwx * VS[a][0];
+        FY[t] = wx * VS[a][1];
+        FZ[t] = wx * VS[a][2];
+      }
+    }
+  }
+  double *restrict mass = g->mass, *restrict mom = g->mom, *restrict frc = g->force;
+  const long s1 = g->stride[1];
+  const long s2 = g->stride[2];
+  for (int k = 0; k < sup; k++)
+    for (int j = 0; j < sup; j++) {
+      const double wy = ax->w[1][j];
+      const double wz = ax->w[2][k], wr = wy * wz, cy = wy * ax->off[1][j] * wz, cz = wr * ax->off[2][k];
+      const double fy = ax->dw[1][j] * wz, fz = wy * ax->dw[2][k];
+      const size_t row = ax->node0 + (size_t)(j * s1) + (size_t)(k * s2);
+      if (momentum) {
+        for (int i = 0; i < sup; i++) mass[row + (size_t)i] += wr * MW[i];
+        double *mr = mom + 3 * row;
+        for (int c = 0; c < NV; c++) {
+          mrn_v4 add = wr * mrn_v4_load(Q + 4 * c);
+          if (affine) add += cy * mrn_v4_load(MY + 4 * c);
+          if (affine) add += cz * mrn_v4_load(MZ + 4 * c);
+          mrn_v4_store(mr + 4 * c, mrn_v4_load(mr + 4 * c) + add);
+        }
+        for (int t = 4 * NV; t < T; t++) {
+          double add = wr * Q[t];
+          if (affine) add += cy * MY[t];
+          if (affine) add += cz * MZ[t];
+          mr[t] += add;
         }
       }
       if (force) {
-        /* f_a = -V sigma_ab dN/dx_b */
-        for (int a = 0; a < DIM; a++) {
-          double f = 0.0;
-          for (int b = 0; b < DIM; b++) f += sig[sym_index(a, b)] * s.dN[c][b];
-          g->force[3 * n + a] -= vol * f;
+        double *fr = frc + 3 * row;
+        for (int c = 0; c < NV; c++) {
+          mrn_v4 f = wr * mrn_v4_load(FX + 4 * c) + fy * mrn_v4_load(FY + 4 * c);
+          f += fz * mrn_v4_load(FZ + 4 * c);
+          mrn_v4_store(fr + 4 * c, mrn_v4_load(fr + 4 * c) - f);
+        }
+        for (int t = 4 * NV; t < T; t++) {
+          double f = wr * FX[t] + fy * FY[t];
+          f += fz * FZ[t];
+          fr[t] -= f;
         }
       }
     }
+}
+
+#else
+/* One particle, plain B-spline factors, in 2D. The node values are formed
+ * row by row (a row: the nodes along x at one y): with N = w_x w_y, the
+ * branch x_i - x_p = (o_x, o_y) and A_x, A_y the columns of A,
+ *   m N (v + A (x_i - x_p)) = w_x (c + s o_x),  c = m w_y (v + A_y o_y), s = m w_y A_x
+ *   -V sigma grad N         = -(r dw_x + q w_x), r = V sigma_x w_y,      q = V sigma_y dw_y
+ * so a node costs two multiply-adds per component and term. (Short vectors
+ * over a whole row, as in 3D, waste a third of every vector on the z
+ * components in 2D and measured slower.) */
+MRN_INLINE void KNAME(p2g_fast)(const KNAME(p2g_args) *ar, const KNAME(axes) *ax, size_t p, const int sup,
+                                const int momentum, const int force, const int affine) {
+  mrn_grid *g = ar->g;
+  const mrn_particles *ps = ar->ps;
+  const double m = ps->mass[p];
+  double mv[3], MA[3][3], VS[3][3];
+  KNAME(p2g_particle_terms)(ps, p, affine, mv, MA, VS);
+  double *restrict mass = g->mass, *restrict mom = g->mom, *restrict frc = g->force;
+  const long s1 = g->stride[1];
+  for (int j = 0; j < sup; j++) {
+    const double wr = ax->w[1][j];
+    const size_t row = ax->node0 + (size_t)(j * s1);
+    double c[DIM], sl[DIM], r[DIM], q[DIM];
+    const double mr = m * wr;
+    for (int a = 0; a < DIM; a++) {
+      if (momentum) {
+        c[a] = wr * (affine ? mv[a] + MA[a][1] * ax->off[1][j] : mv[a]);
+        sl[a] = affine ? wr * MA[a][0] : 0.0;
+      }
+      if (force) {
+        r[a] = VS[a][0] * wr;
+        q[a] = VS[a][1] * ax->dw[1][j];
+      }
+    }
+    for (int i = 0; i < sup; i++) {
+      const size_t n = row + (size_t)i;
+      const double wx = ax->w[0][i];
+      if (momentum) {
+        mass[n] += wx * mr;
+        for (int a = 0; a < DIM; a++) mom[3 * n + a] += wx * (affine ? c[a] + sl[a] * ax->off[0][i] : c[a]);
+      }
+      if (force)
+        for (int a = 0; a < DIM; a++) frc[3 * n + a] -= r[a] * ax->dw[0][i] + q[a] * wx;
+    }
   }
 }
+
+#endif
+
+/* the particles order[from .. to) (or from .. to when order is NULL) */
+MRN_INLINE void KNAME(p2g_range)(const KNAME(p2g_args) *ar, const uint32_t *order, size_t from, size_t to,
+                                 const int sup, const int momentum, const int force, const int affine) {
+  for (size_t q = from; q < to; q++) {
+    const size_t p = order ? order[q] : q;
+    KNAME(axes) ax;
+    if (sup && KNAME(axes_build)(ar->g, sup, ar->ko.boundary, ar->ps->x + 3 * p, &ax))
+      KNAME(p2g_fast)(ar, &ax, p, sup, momentum, force, affine);
+    else
+      KNAME(p2g_general)(ar, p, momentum, force, affine);
+  }
+}
+
+typedef void (*KNAME(p2g_range_fn))(const KNAME(p2g_args) *, const uint32_t *, size_t, size_t);
+
+#define MRN_P2G_VARIANT(SUP, MOM, FRC, AFF)                                                                       \
+  static void KNAME(p2g_##SUP##_##MOM##FRC##AFF)(const KNAME(p2g_args) * ar, const uint32_t *order, size_t from, \
+                                                 size_t to) {                                                     \
+    KNAME(p2g_range)(ar, order, from, to, SUP, MOM, FRC, AFF);                                                    \
+  }
+#define MRN_P2G_VARIANTS(SUP)                                                                                      \
+  MRN_P2G_VARIANT(SUP, 1, 0, 0) MRN_P2G_VARIANT(SUP, 1, 0, 1) MRN_P2G_VARIANT(SUP, 0, 1, 0)                        \
+      MRN_P2G_VARIANT(SUP, 1, 1, 0) MRN_P2G_VARIANT(SUP, 1, 1, 1)
+MRN_P2G_VARIANTS(0)
+MRN_P2G_VARIANTS(3)
+MRN_P2G_VARIANTS(4)
+#undef MRN_P2G_VARIANTS
+#undef MRN_P2G_VARIANT
+
+static KNAME(p2g_range_fn) KNAME(p2g_pick)(int sup, int momentum, int force, int affine) {
+  affine = affine && momentum;
+#define MRN_PICK(SUP)                                                                                \
+  if (sup == SUP) {                                                                                  \
+    if (!force) return affine ? KNAME(p2g_##SUP##_101) : KNAME(p2g_##SUP##_100);                      \
+    if (!momentum) return KNAME(p2g_##SUP##_010);                                                    \
+    return affine ? KNAME(p2g_##SUP##_111) : KNAME(p2g_##SUP##_110);                                  \
+  }
+  MRN_PICK(3)
+  MRN_PICK(4)
+  MRN_PICK(0)
+#undef MRN_PICK
+  return KNAME(p2g_0_110);
+}
+
+/* time spent sorting inside a P2G, which the profile books apart */
+static inline double KNAME(sort_seconds)(void) { return mrn_profile_seconds ? mrn_profile_seconds[MRN_PHASE_SORT] : 0.0; }
+
+void KNAME(mrn_p2g)(mrn_sim *sim, int momentum, int force) {
+  const double t0 = mrn_phase_begin(), sort0 = KNAME(sort_seconds)();
+  if (!momentum && !force) return;
+  const unsigned clear = (momentum ? MRN_CLEAR_MASS_MOM : 0u) | (force ? MRN_CLEAR_FORCE : 0u);
+  mrn_blocks *b = mrn_blocks_prepare(sim, clear); /* may reorder the particles */
+  KNAME(p2g_args) ar = {&sim->grid, &sim->particles, KNAME(kernel_options)(sim)};
+  const int affine = sim->scheme.grid_velocity != MRN_VGRID_PLAIN;
+  const KNAME(p2g_range_fn) run = KNAME(p2g_pick)(KNAME(fast_support)(&ar.ko), momentum, force, affine);
+  if (!b) {
+    run(&ar, NULL, 0, sim->particles.n);
+  } else {
+    const int threads = !b->dense && sim->particles.n > MRN_OMP_MIN_ITEMS;
+#pragma omp parallel if (threads)
+    for (int c = 0; c < b->colours; c++) {
+      const long first = (long)b->colour_first[c], count = (long)b->colour_first[c + 1] - first;
+#pragma omp for schedule(dynamic, 1)
+      for (long k = 0; k < count; k++) {
+        const uint32_t blk = b->list[first + k];
+        run(&ar, b->order, b->start[blk], b->start[blk + 1]);
+      }
+    }
+  }
+  if (mrn_profile_seconds) mrn_phase_end(MRN_PHASE_P2G, t0 + (KNAME(sort_seconds)() - sort0));
+}
+
+/* ---- gathers ------------------------------------------------------------------ */
+
+#if DIM == 3
+/* Sums over a fast stencil, factor by factor: the rows of nodes (the `sup`
+ * nodes along x at one y, z; 3 sup contiguous values) are added up with the
+ * weights of y and z as whole vectors, and the x factors applied once at
+ * the end:
+ *   vpic = sum N v, ap = sum N a           (000, Eq. 31)
+ *   B    = sum N v (x) (x_i - x_p)         (000, Eq. 26) when want_b
+ *   L    = sum v (x) grad N                (000, Eqs. 44-45) when want_l
+ * Every output is added to. */
+MRN_INLINE void KNAME(gather_fast)(const KNAME(axes) *ax, const double *restrict gvel, const double *restrict gacc,
+                                   long s1, long s2, const int sup, const int want_pic, const int want_b,
+                                   const int want_l, double vpic[DIM], double ap[DIM], double B[DIM][DIM],
+                                   double L[DIM][DIM]) {
+  const int T = 3 * sup, NV = T / 4;
+  mrn_v4 R[3] = {{0}}, RA[3] = {{0}}, RY[3] = {{0}}, RZ[3] = {{0}}, RDY[3] = {{0}}, RDZ[3] = {{0}};
+  double r[12] = {0}, ra[12] = {0}, ry[12] = {0}, rz[12] = {0}, rdy[12] = {0}, rdz[12] = {0}; /* tails */
+  for (int k = 0; k < sup; k++)
+    for (int j = 0; j < sup; j++) {
+      const double wy = ax->w[1][j];
+      const double wz = ax->w[2][k], wr = wy * wz, cy = wy * ax->off[1][j] * wz, cz = wr * ax->off[2][k];
+      const double dy = ax->dw[1][j] * wz, dz = wy * ax->dw[2][k];
+      const size_t row = ax->node0 + (size_t)(j * s1) + (size_t)(k * s2);
+      const double *vr = gvel + 3 * row;
+      const double *arow = want_pic ? gacc + 3 * row : NULL;
+      for (int c = 0; c < NV; c++) {
+        const mrn_v4 vv = mrn_v4_load(vr + 4 * c);
+        R[c] += wr * vv;
+        if (want_pic) RA[c] += wr * mrn_v4_load(arow + 4 * c);
+        if (want_b) {
+          RY[c] += cy * vv;
+          RZ[c] += cz * vv;
+        }
+        if (want_l) {
+          RDY[c] += dy * vv;
+          RDZ[c] += dz * vv;
+        }
+      }
+      for (int t = 4 * NV; t < T; t++) {
+        r[t] += wr * vr[t];
+        if (want_pic) ra[t] += wr * arow[t];
+        if (want_b) {
+          ry[t] += cy * vr[t];
+          rz[t] += cz * vr[t];
+        }
+        if (want_l) {
+          rdy[t] += dy * vr[t];
+          rdz[t] += dz * vr[t];
+        }
+      }
+    }
+  for (int c = 0; c < NV; c++) {
+    mrn_v4_store(r + 4 * c, R[c]);
+    if (want_pic) mrn_v4_store(ra + 4 * c, RA[c]);
+    if (want_b) {
+      mrn_v4_store(ry + 4 * c, RY[c]);
+      mrn_v4_store(rz + 4 * c, RZ[c]);
+    }
+    if (want_l) {
+      mrn_v4_store(rdy + 4 * c, RDY[c]);
+      mrn_v4_store(rdz + 4 * c, RDZ[c]);
+    }
+  }
+  for (int a = 0; a < DIM; a++)
+    for (int i = 0; i < sup; i++) {
+      const int t = 3 * i + a;
+      const double wx = ax->w[0][i];
+      if (want_pic) {
+        vpic[a] += wx * r[t];
+        ap[a] += wx * ra[t];
+      }
+      if (want_b) {
+        B[a][0] += wx * ax->off[0][i] * r[t];
+        B[a][1] += wx * ry[t];
+        B[a][2] += wx * rz[t];
+      }
+      if (want_l) {
+        L[a][0] += ax->dw[0][i] * r[t];
+        L[a][1] += wx * rdy[t];
+        L[a][2] += wx * rdz[t];
+      }
+    }
+}
+
+#else
+/* Sums over a fast stencil, factor by factor, in 2D: along each row of nodes
+ * the sums of w_x v, w_x a, w_x o_x v and dw_x v, then those of the rows
+ * weighted by w_y, w_y o_y or dw_y:
+ *   vpic = sum N v, ap = sum N a           (000, Eq. 31)
+ *   B    = sum N v (x) (x_i - x_p)         (000, Eq. 26) when want_b
+ *   L    = sum v (x) grad N                (000, Eqs. 44-45) when want_l
+ * Every output is added to. */
+MRN_INLINE void KNAME(gather_fast)(const KNAME(axes) *ax, const double *restrict gvel, const double *restrict gacc,
+                                   long s1, long s2, const int sup, const int want_pic, const int want_b,
+                                   const int want_l, double vpic[DIM], double ap[DIM], double B[DIM][DIM],
+                                   double L[DIM][DIM]) {
+  (void)s2;
+  double wox[4];
+  for (int i = 0; i < sup; i++) wox[i] = ax->w[0][i] * ax->off[0][i];
+  for (int j = 0; j < sup; j++) {
+    const size_t row = ax->node0 + (size_t)(j * s1);
+    double rv[DIM] = {0}, ra[DIM] = {0}, rvx[DIM] = {0}, rdv[DIM] = {0};
+    for (int i = 0; i < sup; i++) {
+      const double *vi = gvel + 3 * (row + (size_t)i);
+      for (int a = 0; a < DIM; a++) {
+        rv[a] += ax->w[0][i] * vi[a];
+        if (want_pic) ra[a] += ax->w[0][i] * gacc[3 * (row + (size_t)i) + a];
+        if (want_b) rvx[a] += wox[i] * vi[a];
+        if (want_l) rdv[a] += ax->dw[0][i] * vi[a];
+      }
+    }
+    const double wy = ax->w[1][j], woy = wy * ax->off[1][j], dwy = ax->dw[1][j];
+    for (int a = 0; a < DIM; a++) {
+      if (want_pic) {
+        vpic[a] += wy * rv[a];
+        ap[a] += wy * ra[a];
+      }
+      if (want_b) {
+        B[a][0] += wy * rvx[a];
+        B[a][1] += woy * rv[a];
+      }
+      if (want_l) {
+        L[a][0] += wy * rdv[a];
+        L[a][1] += dwy * rv[a];
+      }
+    }
+  }
+}
+#endif
+
+/* the same sums over a general stencil */
+static inline void KNAME(gather_general)(const KNAME(stencil) *s, const double *gvel, const double *gacc,
+                                         const double *gstar, int want_pic, int want_bd, int want_l, double vpic[DIM],
+                                         double ap[DIM], double vstar[DIM], double B[DIM][DIM], double D[DIM][DIM],
+                                         double L[DIM][DIM]) {
+  for (int c = 0; c < s->count; c++) {
+    const size_t node = s->node[c];
+    const double *vi = gvel + 3 * node;
+    if (want_pic)
+      for (int d = 0; d < DIM; d++) {
+        vpic[d] += s->N[c] * vi[d];
+        ap[d] += s->N[c] * gacc[3 * node + d];
+        if (gstar) vstar[d] += s->N[c] * gstar[3 * node + d];
+      }
+    if (want_bd)
+      for (int a = 0; a < DIM; a++)
+        for (int b = 0; b < DIM; b++) {
+          B[a][b] += s->N[c] * vi[a] * s->offset[c][b];
+          D[a][b] += s->N[c] * s->offset[c][a] * s->offset[c][b];
+        }
+    if (want_l)
+      for (int a = 0; a < DIM; a++)
+        for (int b = 0; b < DIM; b++) L[a][b] += vi[a] * s->dN[c][b];
+  }
+}
+
+static inline void KNAME(store_matrix)(const double M[DIM][DIM], double *out) {
+  memset(out, 0, 9 * sizeof(double));
+  for (int a = 0; a < DIM; a++)
+    for (int b = 0; b < DIM; b++) out[3 * a + b] = M[a][b];
+}
+
+/* ---- velocity gradient ---------------------------------------------------------- */
+
+/* one particle; `sup` is a constant at every call */
+MRN_INLINE void KNAME(gradient_particle)(const mrn_grid *g, mrn_particles *ps, const mrn_kernel_options *ko,
+                                         const double *gvel, size_t p, const int sup) {
+  double L[DIM][DIM] = {{0}}, none[DIM][DIM] = {{0}}, nv[DIM] = {0};
+  KNAME(axes) ax;
+  if (sup && KNAME(axes_build)(g, sup, ko->boundary, ps->x + 3 * p, &ax)) {
+    KNAME(gather_fast)(&ax, gvel, NULL, g->stride[1], g->stride[2], sup, 0, 0, 1, nv, nv, none, L);
+  } else {
+    KNAME(stencil) s;
+    KNAME(stencil_build)(g, ko, ps->x + 3 * p, ps->vol0[p], &s);
+    KNAME(gather_general)(&s, gvel, NULL, NULL, 0, 0, 1, nv, nv, nv, none, none, L);
+  }
+  KNAME(store_matrix)(L, ps->gradv + 9 * p);
+}
+
+/* The parallel loop sits in each instance (not in an inlined helper), so the
+ * outlined loop body sees the constants. */
+#define MRN_GRADIENT_VARIANT(SUP)                                                                        \
+  static void KNAME(gradient_##SUP)(mrn_sim * sim, const mrn_kernel_options *ko, const double *gvel) { \
+    const mrn_grid *g = &sim->grid;                                                                      \
+    mrn_particles *ps = &sim->particles;                                                                 \
+    const long n = (long)ps->n;                                                                          \
+    _Pragma("omp parallel for schedule(static) if (n > MRN_OMP_MIN_ITEMS)")                              \
+    for (long p = 0; p < n; p++) KNAME(gradient_particle)(g, ps, ko, gvel, (size_t)p, SUP);              \
+  }
+MRN_GRADIENT_VARIANT(0)
+MRN_GRADIENT_VARIANT(3)
+MRN_GRADIENT_VARIANT(4)
+#undef MRN_GRADIENT_VARIANT
 
 void KNAME(mrn_gradient)(mrn_sim *sim, const double *gvel) {
-  const mrn_grid *g = &sim->grid;
-  mrn_particles *ps = &sim->particles;
+  const double t0 = mrn_phase_begin();
   const mrn_kernel_options ko = KNAME(kernel_options)(sim);
-  const long n = (long)ps->n;
-#pragma omp parallel for schedule(static) if (n > MRN_OMP_MIN_ITEMS)
-  for (long p = 0; p < n; p++) {
-    KNAME(stencil) s;
-    KNAME(stencil_build)(g, &ko, ps->x + 3 * p, ps->vol0[p], &s);
-    double L[9] = {0};
-    for (int c = 0; c < s.count; c++) {
-      const double *vi = gvel + 3 * s.node[c];
-      for (int a = 0; a < DIM; a++)
-        for (int b = 0; b < DIM; b++) L[3 * a + b] += vi[a] * s.dN[c][b];
-    }
-    memcpy(ps->gradv + 9 * p, L, sizeof L);
+  switch (KNAME(fast_support)(&ko)) {
+  case 3: KNAME(gradient_3)(sim, &ko, gvel); break;
+  case 4: KNAME(gradient_4)(sim, &ko, gvel); break;
+  default: KNAME(gradient_0)(sim, &ko, gvel); break;
   }
+  mrn_phase_end(MRN_PHASE_G2P, t0);
 }
 
-/* C = B D^-1 (000, Eqs. 25-27) from the stencil and the updated velocities */
-static inline void KNAME(apic_matrix)(const KNAME(stencil) *s, const double *gvel, double C[9]) {
-  double B[DIM][DIM] = {{0}}, D[DIM][DIM] = {{0}};
-  for (int c = 0; c < s->count; c++) {
-    const double *vi = gvel + 3 * s->node[c];
-    for (int a = 0; a < DIM; a++)
-      for (int b = 0; b < DIM; b++) {
-        B[a][b] += s->N[c] * vi[a] * s->offset[c][b];
-        D[a][b] += s->N[c] * s->offset[c][a] * s->offset[c][b];
-      }
-  }
+/* ---- G2P ------------------------------------------------------------------------ */
+
+/* C = B D^-1 (000, Eqs. 25-27) */
+static inline void KNAME(apic_matrix)(const double B[DIM][DIM], const double D[DIM][DIM], double C[9]) {
   double Di[DIM][DIM];
 #if DIM == 2
   double det = D[0][0] * D[1][1] - D[0][1] * D[1][0];
@@ -117,67 +550,127 @@ static inline void KNAME(apic_matrix)(const KNAME(stencil) *s, const double *gve
     }
 }
 
-void KNAME(mrn_g2p)(mrn_sim *sim, double dt, double *dx) {
-  const mrn_grid *g = &sim->grid;
-  mrn_particles *ps = &sim->particles;
-  const mrn_scheme *sc = &sim->scheme;
-  const mrn_kernel_options ko = KNAME(kernel_options)(sim);
-  const mrn_velocity_update_kind vu = sc->velocity_update;
-  const mrn_position_update_kind xu = sc->position_update;
-  const double X = vu == MRN_VUPDATE_FLIP ? 1.0 : vu == MRN_VUPDATE_BLEND ? sc->flip_fraction : 0.0;
-  const mrn_grid_velocity_kind gv = sc->grid_velocity;
-  const long n = (long)ps->n;
-#pragma omp parallel for schedule(static) if (n > MRN_OMP_MIN_ITEMS)
-  for (long p = 0; p < n; p++) {
+/* what G2P needs that does not change from particle to particle */
+typedef struct KNAME(g2p_args) {
+  const mrn_grid *g;
+  mrn_particles *ps;
+  const mrn_kernel_options *ko;
+  double dt, X;
+  double *dx;
+  const double *gstar;
+  mrn_velocity_update_kind vu;
+  mrn_position_update_kind xu;
+} KNAME(g2p_args);
+
+/* G2P of one particle; with `fused` the velocity gradient from the updated
+ * grid velocity is stored in gradv on the way (the same stencil). `sup`,
+ * `gvk` and `fused` are constants at every call. */
+MRN_INLINE void KNAME(g2p_particle)(const KNAME(g2p_args) *ar, size_t p, const int sup, const int gvk,
+                                    const int fused) {
+  const mrn_grid *g = ar->g;
+  mrn_particles *ps = ar->ps;
+  const double dt = ar->dt, X = ar->X;
+  const mrn_velocity_update_kind vu = ar->vu;
+  const int want_bd = gvk == MRN_VGRID_AFFINE, want_l = gvk == MRN_VGRID_TAYLOR || fused;
+  double *x = ps->x + 3 * p;
+  double *v = ps->v + 3 * p;
+  double v_pic[3] = {0, 0, 0}, a_p[3] = {0, 0, 0}, v_star[3] = {0, 0, 0};
+  double B[DIM][DIM] = {{0}}, D[DIM][DIM] = {{0}}, L[DIM][DIM] = {{0}};
+  KNAME(axes) ax;
+  if (sup && KNAME(axes_build)(g, sup, ar->ko->boundary, x, &ax)) {
+    KNAME(gather_fast)(&ax, g->vel_new, g->acc, g->stride[1], g->stride[2], sup, 1, want_bd, want_l, v_pic, a_p, B, L);
+    if (gvk == MRN_VGRID_AFFINE) {
+      /* the full B-spline's D = sum N (x_i - x_p) (x)(x_i - x_p) is h^2/4 I
+       * (quadratic) or h^2/3 I (cubic) wherever the particle is */
+      const double dinv = (sup == 3 ? 4.0 : 3.0) * g->inv_cell * g->inv_cell;
+      double *C = ps->affine + 9 * p;
+      memset(C, 0, 9 * sizeof(double));
+      for (int a = 0; a < DIM; a++)
+        for (int b = 0; b < DIM; b++) C[3 * a + b] = B[a][b] * dinv;
+    }
+  } else {
     KNAME(stencil) s;
-    double *x = ps->x + 3 * p;
-    double *v = ps->v + 3 * p;
-    KNAME(stencil_build)(g, &ko, x, ps->vol0[p], &s);
-    double v_pic[3] = {0, 0, 0}, a_p[3] = {0, 0, 0}, v_star[3] = {0, 0, 0};
-    for (int c = 0; c < s.count; c++) {
-      const size_t node = s.node[c];
-      for (int d = 0; d < DIM; d++) {
-        v_pic[d] += s.N[c] * g->vel_new[3 * node + d]; /* (000, Eq. 31) */
-        a_p[d] += s.N[c] * g->acc[3 * node + d];
-        if (vu == MRN_VUPDATE_XPIC) v_star[d] += s.N[c] * g->vel_star[3 * node + d];
-      }
-    }
-    if (gv == MRN_VGRID_AFFINE) {
-      KNAME(apic_matrix)(&s, g->vel_new, ps->affine + 9 * p);
-    } else if (gv == MRN_VGRID_TAYLOR) {
-      double *Lp = ps->affine + 9 * p; /* (000, Eq. 22) with the updated velocities */
-      memset(Lp, 0, 9 * sizeof(double));
-      for (int c = 0; c < s.count; c++) {
-        const double *vi = g->vel_new + 3 * s.node[c];
-        for (int a = 0; a < DIM; a++)
-          for (int b = 0; b < DIM; b++) Lp[3 * a + b] += vi[a] * s.dN[c][b];
-      }
-    }
-    double step[3] = {0, 0, 0};
-    for (int d = 0; d < DIM; d++) {
-      double v_new;
-      if (vu == MRN_VUPDATE_XPIC) {
-        v_new = v_star[d] + a_p[d] * dt; /* (000, Eq. 40): V - (I - G P)^m V = G V* */
-      } else {
-        double v_flip = v[d] + a_p[d] * dt;              /* (000, Eq. 33) */
-        v_new = X * v_flip + (1.0 - X) * v_pic[d];       /* (000, Eqs. 31, 37) */
-      }
-      switch (xu) {
-      case MRN_XUPDATE_GRID: step[d] = v_pic[d] * dt; break;    /* (000, Eq. 32) */
-      case MRN_XUPDATE_PARTICLE: step[d] = v_new * dt; break;   /* (000, Eqs. 36, 38) */
-      case MRN_XUPDATE_XPIC:                                     /* (000, Eq. 41) */
-        step[d] = dt * (v_pic[d] - 0.5 * a_p[d] * dt - 0.5 * (v[d] - v_star[d]));
-        break;
-      }
-      v[d] = v_new;
-    }
-    if (dx) {
-      for (int d = 0; d < 3; d++) dx[3 * p + d] = step[d];
+    KNAME(stencil_build)(g, ar->ko, x, ps->vol0[p], &s);
+    KNAME(gather_general)(&s, g->vel_new, g->acc, ar->gstar, 1, want_bd, want_l, v_pic, a_p, v_star, B, D, L);
+    if (gvk == MRN_VGRID_AFFINE) KNAME(apic_matrix)(B, D, ps->affine + 9 * p);
+  }
+  if (fused) KNAME(store_matrix)(L, ps->gradv + 9 * p);
+  if (gvk == MRN_VGRID_TAYLOR) KNAME(store_matrix)(L, ps->affine + 9 * p); /* (000, Eq. 22), updated V */
+  double step[3] = {0, 0, 0};
+  for (int d = 0; d < DIM; d++) {
+    double v_new;
+    if (vu == MRN_VUPDATE_XPIC) {
+      v_new = v_star[d] + a_p[d] * dt; /* (000, Eq. 40): V - (I - G P)^m V = G V* */
     } else {
-      for (int d = 0; d < DIM; d++) x[d] += step[d];
+      double v_flip = v[d] + a_p[d] * dt;        /* (000, Eq. 33) */
+      v_new = X * v_flip + (1.0 - X) * v_pic[d]; /* (000, Eqs. 31, 37) */
     }
+    switch (ar->xu) {
+    case MRN_XUPDATE_GRID: step[d] = v_pic[d] * dt; break;  /* (000, Eq. 32) */
+    case MRN_XUPDATE_PARTICLE: step[d] = v_new * dt; break; /* (000, Eqs. 36, 38) */
+    case MRN_XUPDATE_XPIC:                                  /* (000, Eq. 41) */
+      step[d] = dt * (v_pic[d] - 0.5 * a_p[d] * dt - 0.5 * (v[d] - v_star[d]));
+      break;
+    }
+    v[d] = v_new;
+  }
+  if (ar->dx) {
+    for (int d = 0; d < 3; d++) ar->dx[3 * p + d] = step[d];
+  } else {
+    for (int d = 0; d < DIM; d++) x[d] += step[d];
   }
 }
+
+typedef void (*KNAME(g2p_fn))(const KNAME(g2p_args) *);
+#define MRN_G2P_VARIANT(SUP, GV, FUSED)                                                  \
+  static void KNAME(g2p_##SUP##_##GV##FUSED)(const KNAME(g2p_args) * ar) {               \
+    const long n = (long)ar->ps->n;                                                      \
+    _Pragma("omp parallel for schedule(static) if (n > MRN_OMP_MIN_ITEMS)")              \
+    for (long p = 0; p < n; p++) KNAME(g2p_particle)(ar, (size_t)p, SUP, GV, FUSED);     \
+  }
+#define MRN_G2P_VARIANTS(SUP)                                                                                  \
+  MRN_G2P_VARIANT(SUP, 0, 0) MRN_G2P_VARIANT(SUP, 1, 0) MRN_G2P_VARIANT(SUP, 2, 0) MRN_G2P_VARIANT(SUP, 0, 1) \
+      MRN_G2P_VARIANT(SUP, 1, 1) MRN_G2P_VARIANT(SUP, 2, 1)
+MRN_G2P_VARIANTS(0)
+MRN_G2P_VARIANTS(3)
+MRN_G2P_VARIANTS(4)
+#undef MRN_G2P_VARIANTS
+#undef MRN_G2P_VARIANT
+
+static KNAME(g2p_fn) KNAME(g2p_pick)(int sup, mrn_grid_velocity_kind gv, int fused) {
+  const int k = (gv == MRN_VGRID_AFFINE ? 1 : gv == MRN_VGRID_TAYLOR ? 2 : 0) + 3 * (fused != 0);
+#define MRN_PICK(SUP)                                                                                           \
+  if (sup == SUP) {                                                                                             \
+    static const KNAME(g2p_fn) fns[6] = {KNAME(g2p_##SUP##_00), KNAME(g2p_##SUP##_10), KNAME(g2p_##SUP##_20),  \
+                                         KNAME(g2p_##SUP##_01), KNAME(g2p_##SUP##_11), KNAME(g2p_##SUP##_21)}; \
+    return fns[k];                                                                                              \
+  }
+  MRN_PICK(3)
+  MRN_PICK(4)
+  MRN_PICK(0)
+#undef MRN_PICK
+  return NULL;
+}
+
+static void KNAME(g2p_any)(mrn_sim *sim, double dt, double *dx, int fused) {
+  const double t0 = mrn_phase_begin();
+  const mrn_kernel_options ko = KNAME(kernel_options)(sim);
+  /* XPIC's smoothed velocity is gathered by the general form only */
+  const int sup = sim->scheme.velocity_update == MRN_VUPDATE_XPIC ? 0 : KNAME(fast_support)(&ko);
+  const mrn_scheme *sc = &sim->scheme;
+  const mrn_velocity_update_kind vu = sc->velocity_update;
+  KNAME(g2p_args) ar = {&sim->grid, &sim->particles, &ko, dt,
+                        vu == MRN_VUPDATE_FLIP ? 1.0 : vu == MRN_VUPDATE_BLEND ? sc->flip_fraction : 0.0, dx,
+                        vu == MRN_VUPDATE_XPIC ? sim->grid.vel_star : NULL, vu, sc->position_update};
+  KNAME(g2p_pick)(sup, sc->grid_velocity, fused)(&ar);
+  mrn_phase_end(MRN_PHASE_G2P, t0);
+}
+
+void KNAME(mrn_g2p)(mrn_sim *sim, double dt, double *dx) { KNAME(g2p_any)(sim, dt, dx, 0); }
+
+void KNAME(mrn_g2p_gradient)(mrn_sim *sim, double dt, double *dx) { KNAME(g2p_any)(sim, dt, dx, 1); }
+
+/* ---- XPIC's projections -------------------------------------------------------------- */
 
 void KNAME(mrn_grid_to_particles)(mrn_sim *sim, const double *gvel, double *pvel) {
   const mrn_grid *g = &sim->grid;
@@ -213,3 +706,5 @@ void KNAME(mrn_particles_to_grid)(mrn_sim *sim, const double *pvel, double *gvel
     for (int d = 0; d < 3; d++) gvel[3 * i + d] = m > sim->mass_floor ? gvel[3 * i + d] / m : 0.0;
   }
 }
+
+#undef MRN_INLINE

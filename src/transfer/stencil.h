@@ -125,3 +125,58 @@ static inline void KNAME(stencil_build)(const mrn_grid *g, const mrn_kernel_opti
   if (correct_values || opt->mls_gradient)
     mrn_wls_correct(DIM, c, s->N, &s->dN[0][0], &s->offset[0][0], correct_values, 1);
 }
+
+/* ---- plain B-splines one axis at a time (the fast path of the kernels) ---- */
+#ifndef MRN_STENCIL_BSPLINE_AXIS
+#define MRN_STENCIL_BSPLINE_AXIS
+/* cubic B-spline weights and d/dxi of the 4 nodes from floor(xi) - 1, the
+ * same values as mrn_shape_cubic_1d without its branches (the node distances
+ * fall in fixed intervals: [1, 2), [0, 1), [-1, 0), [-2, -1)) */
+static inline int mrn_bspline_cubic_axis(double xi, double *w, double *dw) {
+  const int base = (int)floor(xi) - 1;
+  const double r0 = xi - (double)base, r1 = xi - (double)(base + 1);
+  const double a2 = -(xi - (double)(base + 2)), a3 = -(xi - (double)(base + 3));
+  const double t0 = 2.0 - r0, t3 = 2.0 - a3;
+  w[0] = t0 * t0 * t0 / 6.0;
+  dw[0] = -0.5 * t0 * t0;
+  w[1] = 0.5 * r1 * r1 * r1 - r1 * r1 + 2.0 / 3.0;
+  dw[1] = 1.5 * r1 * r1 - 2.0 * r1;
+  w[2] = 0.5 * a2 * a2 * a2 - a2 * a2 + 2.0 / 3.0;
+  dw[2] = -(1.5 * a2 * a2 - 2.0 * a2);
+  w[3] = t3 * t3 * t3 / 6.0;
+  dw[3] = 0.5 * t3 * t3;
+  return base;
+}
+#endif
+
+/* A plain quadratic (sup = 3) or cubic (sup = 4) B-spline stencil kept as
+ * its factors: the node of the first corner and, per axis, the weights,
+ * their derivatives d/dx (1/m) and the branch components x_i - x_p. Products
+ * are formed in the same order as stencil_build, so both give the same bits. */
+typedef struct KNAME(axes) {
+  size_t node0;
+  double w[DIM][4];
+  double dw[DIM][4];
+  double off[DIM][4];
+} KNAME(axes);
+
+/* Returns 0 when the particle needs the general stencil: its support crosses
+ * a face and the kernel is adjusted there. `sup` is a constant at every call. */
+static inline __attribute__((always_inline)) int KNAME(axes_build)(const mrn_grid *g, const int sup,
+                                                                   const mrn_kernel_boundary mode, const double *x,
+                                                                   KNAME(axes) *a) {
+  size_t node0 = 0;
+  for (int d = 0; d < DIM; d++) {
+    const double xi = (x[d] - g->origin[d]) * g->inv_cell;
+    double *w = a->w[d], *dw = a->dw[d];
+    const int base = sup == 3 ? mrn_shape_quadratic_1d(xi, w, dw) : mrn_bspline_cubic_axis(xi, w, dw);
+    if (mode != MRN_KERNEL_EXTENDED && (base < 0 || base + sup - 1 > g->ncell[d])) return 0;
+    for (int k = 0; k < sup; k++) {
+      dw[k] *= g->inv_cell;
+      a->off[d][k] = g->origin[d] + (base + k) * g->cell - x[d];
+    }
+    node0 += (size_t)(base + g->pad) * (size_t)g->stride[d];
+  }
+  a->node0 = node0;
+  return 1;
+}

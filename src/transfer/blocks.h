@@ -1,0 +1,100 @@
+/* moraine: particles binned by blocks of cells, and the active part of the grid.
+ *
+ * P2G scatters every particle's contributions into the nodes around it. To
+ * do that on several threads without races and without per-thread grids,
+ * the padded cell range is cut into blocks of size[d] cells along axis d
+ * (32 x 4 in 2D, 16 x 4 x 4 in 3D); a particle in cell c only touches the
+ * nodes c-1 .. c+2 along each axis (support of at most 4 nodes), so two
+ * blocks whose indices differ by 2 along an axis never touch the same node
+ * once every size[d] >= 3. Blocks are coloured by
+ * the parity of their indices (4 colours in 2D, 8 in 3D); the blocks of one
+ * colour are processed in parallel, the colours one after the other, and
+ * the particles of a block in increasing index. Every node therefore adds
+ * its contributions in the same order whatever the number of threads: the
+ * result is bitwise identical for 1, 2 or more threads.
+ *
+ * The same binning tells which node rows (x-lines of nodes) can receive
+ * anything: each row keeps a span [lo, hi) of x indices outside which every
+ * nodal array (mass, momentum, force, velocities, acceleration) is zero.
+ * P2G clears only the spans, and the grid loops of the step visit only them,
+ * so an empty part of the grid costs next to nothing.
+ *
+ * Optionally the particles themselves are reordered by block every
+ * `sort_every` steps (counted from step 0, at the first P2G of the step), so
+ * that the particles of a block are contiguous in memory. This changes
+ * particle indices (ids are kept); it is off unless asked for, because the
+ * Lua API documents particle indices in order of creation. */
+#ifndef MRN_TRANSFER_BLOCKS_H
+#define MRN_TRANSFER_BLOCKS_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+struct mrn_grid;
+struct mrn_sim;
+
+/* nodal arrays P2G may accumulate into */
+enum { MRN_CLEAR_MASS_MOM = 1u, MRN_CLEAR_FORCE = 2u };
+
+typedef struct mrn_blocks {
+  int size[3];     /* cells per block along each axis, 1 << shift (>= 3 for the colouring) */
+  int shift[3];
+  int ncell[3];    /* padded cells per axis (nodes - 1; 1 along unused axes) */
+  int nb[3];       /* blocks per axis (1 along unused axes) */
+  size_t nblocks;
+  int colours;     /* 2^dim */
+  int dense;       /* periodic axes: every row is fully active, one thread scatters */
+
+  /* particles grouped by block: order[start[b] .. start[b + 1]) */
+  size_t np, cap;
+  uint32_t *order;
+  uint32_t *key;   /* block of each particle */
+  size_t *start;   /* nblocks + 1 */
+  uint32_t *hist;  /* per-thread block counts, hist_threads * nblocks */
+  int hist_threads;
+  uint32_t *list;  /* non-empty blocks, by colour */
+  size_t colour_first[9];
+
+  /* node rows (j + nnode[1] k): span [lo, hi) of x indices that may be nonzero */
+  size_t nrows;
+  int *lo, *hi;
+  int *new_lo, *new_hi;
+  /* the spans as linear node ranges, non-empty rows only */
+  size_t nranges;
+  long *range_lo, *range_hi;
+  double *range_sum; /* one value per range, for deterministic reductions */
+  long active_nodes;
+
+  long sort_every; /* > 0: reorder the particles by block every this many steps */
+  long sorted_step;
+} mrn_blocks;
+
+/* allocated with the grid (mrn_grid_init); NULL on failure (message set) */
+mrn_blocks *mrn_blocks_new(const struct mrn_grid *g);
+void mrn_blocks_free(mrn_blocks *b);
+/* bytes held, for memory reports */
+size_t mrn_blocks_bytes(const struct mrn_grid *g);
+
+/* reorder the particles by block every `every` steps (0: never) */
+void mrn_blocks_set_sort_every(struct mrn_grid *g, long every);
+
+/* Bin the particles by block, reorder them when a sort is due, work out the
+ * new active spans, clear every nodal array where the old spans reach beyond
+ * the new ones and the arrays named in `clear` on the new spans. Returns the
+ * binning, or NULL when memory ran out: then every nodal array named in
+ * `clear` was cleared everywhere, every row is marked active, and the caller
+ * must scatter the particles in index order on one thread. */
+mrn_blocks *mrn_blocks_prepare(struct mrn_sim *sim, unsigned clear);
+
+/* Node index ranges [lo[k], hi[k]) outside which every nodal array is zero;
+ * `sum` has room for one double per range. */
+typedef struct mrn_node_ranges {
+  long count;
+  const long *lo, *hi;
+  double *sum;
+  long nodes; /* total nodes in the ranges */
+} mrn_node_ranges;
+
+mrn_node_ranges mrn_grid_active_ranges(const struct mrn_grid *g);
+
+#endif

@@ -1,0 +1,5 @@
+#include "transfer/profile.h"
+
+#include <stddef.h>
+
+double *mrn_profile_seconds = NULL;
