@@ -3,6 +3,7 @@
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
 #include "core/error.h"
 #include "transfer/blocks.h"
@@ -21,12 +22,14 @@ int mrn_grid_init(mrn_grid *g, int dim, const double origin[3], const double siz
       if (!(size[d] > 0) || !isfinite(size[d]))
         return mrn_error("grid: size[%d] must be > 0, got %g", d + 1, size[d]);
       double cells = size[d] / cell;
+      /* both bounds before rounding: lround of a huge or infinite count is undefined */
+      if (cells < 1 - 1e-6)
+        return mrn_error("grid: cell size %g is larger than the domain size %g along axis %d", cell, size[d], d + 1);
+      if (!(cells <= 1000000.5)) return mrn_error("grid: %g cells along axis %d is more than 1e6", cells, d + 1);
       long nc = lround(cells);
-      if (nc < 1) return mrn_error("grid: cell size %g is larger than the domain size %g along axis %d", cell, size[d], d + 1);
       if (fabs(cells - (double)nc) > 1e-6)
         return mrn_error("grid: size %g along axis %d is not a whole number of cells of %g (%.6f cells)",
                          size[d], d + 1, cell, cells);
-      if (nc > 1000000) return mrn_error("grid: %ld cells along axis %d is more than 1e6", nc, d + 1);
       g->ncell[d] = (int)nc;
       g->origin[d] = origin[d];
       g->size[d] = nc * cell;
@@ -43,6 +46,14 @@ int mrn_grid_init(mrn_grid *g, int dim, const double origin[3], const double siz
   g->stride[2] = (long)g->nnode[0] * g->nnode[1];
   total = (long)g->nnode[0] * g->nnode[1] * g->nnode[2];
   if (total > 400000000L) return mrn_error("grid: %ld nodes is more than this build allows (4e8)", total);
+  /* a grid whose arrays alone exceed the machine's memory (a cell size typed
+   * a hundred times too small) is refused with the figures, rather than
+   * swapping or being killed by the kernel half-way: 22 doubles per node */
+  double need = (double)total * 22 * sizeof(double);
+  long pages = sysconf(_SC_PHYS_PAGES), page = sysconf(_SC_PAGESIZE);
+  if (pages > 0 && page > 0 && need > (double)pages * (double)page)
+    return mrn_error("grid: %ld nodes need %.1f GB, more than this machine's %.1f GB of memory (is the cell size right?)",
+                     total, need / 1e9, (double)pages * (double)page / 1e9);
   g->n = (size_t)total;
   g->mass = calloc(g->n, sizeof(double));
   g->mom = calloc(3 * g->n, sizeof(double));
@@ -99,8 +110,3 @@ void mrn_grid_node_position(const mrn_grid *g, size_t idx, double x[3]) {
   for (int d = 0; d < 3; d++) x[d] = d < g->dim ? g->origin[d] + ijk[d] * g->cell : 0.0;
 }
 
-int mrn_grid_contains(const mrn_grid *g, const double x[3]) {
-  for (int d = 0; d < g->dim; d++)
-    if (!(x[d] >= g->origin[d] && x[d] <= g->origin[d] + g->size[d])) return 0;
-  return 1;
-}

@@ -56,7 +56,12 @@ static inline size_t mrn_grid_index(const mrn_grid *g, int i, int j, int k) {
 void mrn_grid_node_position(const mrn_grid *g, size_t idx, double x[3]);
 /* integer node indices (domain numbering) of a linear index */
 void mrn_grid_node_ijk(const mrn_grid *g, size_t idx, int ijk[3]);
-/* 1 when the point lies inside the domain [origin, origin + size] */
-int mrn_grid_contains(const mrn_grid *g, const double x[3]);
+/* 1 when the point lies inside the domain [origin, origin + size] (inline:
+ * the end-of-step state check asks it of every particle) */
+static inline int mrn_grid_contains(const mrn_grid *g, const double x[3]) {
+  for (int d = 0; d < g->dim; d++)
+    if (!(x[d] >= g->origin[d] && x[d] <= g->origin[d] + g->size[d])) return 0;
+  return 1;
+}
 
 #endif

@@ -5,47 +5,171 @@
 
 #include "core/tensor.h"
 
-int mrn_material_advance(const mrn_material *mat, const double L[9], double dt, mrn_f_update f_update, double F[9],
-                         double stress[6], double strain[6], double *state, mrn_point_result *out) {
-  double inc[9], Fn[9];
-  if (f_update == MRN_F_UPDATE_MIDPOINT) {
-    double P[9], M[9], Mi[9];
-    for (int k = 0; k < 9; k++) {
-      double I = k % 4 == 0 ? 1.0 : 0.0;
-      P[k] = I + 0.5 * dt * L[k];
-      M[k] = I - 0.5 * dt * L[k];
-    }
-    if (mat_inverse(M, Mi)) return 1;
-    mat_mul(Mi, P, inc);
-  } else {
-    for (int k = 0; k < 9; k++) inc[k] = (k % 4 == 0 ? 1.0 : 0.0) + dt * L[k]; /* (002, Eq. 27) */
+#define MRN_ALWAYS_INLINE static inline __attribute__((always_inline))
+
+/* Increment A of the deformation gradient, F_new = A F (002, Eq. 27). With
+ * h = dt/2 and M = I - h L, the mid-point rule's A = M^-1 (I + h L) is
+ * 2 M^-1 - I, since I + h L = 2 I - M. In plane strain (dim 2) L has no z row
+ * or column, so only the in-plane 2x2 block of A differs from I. Returns 1
+ * when M is singular. */
+MRN_ALWAYS_INLINE int increment(const int dim, const double L[9], double dt, mrn_f_update f_update, double A[9]) {
+  if (f_update != MRN_F_UPDATE_MIDPOINT) {
+    for (int k = 0; k < 9; k++) A[k] = (k % 4 == 0 ? 1.0 : 0.0) + dt * L[k]; /* A = I + L dt */
+    return 0;
   }
-  mat_mul(inc, F, Fn);
+  const double h = 0.5 * dt;
+  if (dim == 2) {
+    const double m00 = 1.0 - h * L[0], m01 = -h * L[1], m10 = -h * L[3], m11 = 1.0 - h * L[4];
+    const double det = m00 * m11 - m01 * m10;
+    if (!(fabs(det) > 0.0)) return 1;
+    const double r = 2.0 / det; /* 2 M^-1 = (2 / det M) adj M */
+    A[0] = r * m11 - 1.0;
+    A[1] = -r * m01;
+    A[3] = -r * m10;
+    A[4] = r * m00 - 1.0;
+    A[2] = A[5] = A[6] = A[7] = 0.0;
+    A[8] = 1.0;
+    return 0;
+  }
+  double M[9];
+  for (int k = 0; k < 9; k++) M[k] = (k % 4 == 0 ? 1.0 : 0.0) - h * L[k];
+  const double c0 = M[4] * M[8] - M[5] * M[7], c1 = M[5] * M[6] - M[3] * M[8], c2 = M[3] * M[7] - M[4] * M[6];
+  const double det = M[0] * c0 + M[1] * c1 + M[2] * c2;
+  if (!(fabs(det) > 0.0)) return 1;
+  const double r = 2.0 / det; /* 2 M^-1 = (2 / det M) adj M, adj M the transposed cofactors */
+  A[0] = r * c0 - 1.0;
+  A[1] = r * (M[2] * M[7] - M[1] * M[8]);
+  A[2] = r * (M[1] * M[5] - M[2] * M[4]);
+  A[3] = r * c1;
+  A[4] = r * (M[0] * M[8] - M[2] * M[6]) - 1.0;
+  A[5] = r * (M[2] * M[3] - M[0] * M[5]);
+  A[6] = r * c2;
+  A[7] = r * (M[1] * M[6] - M[0] * M[7]);
+  A[8] = r * (M[0] * M[4] - M[1] * M[3]) - 1.0;
+  return 0;
+}
+
+/* Fn = A F; in plane strain the z row of F is kept (A's is e_z) */
+MRN_ALWAYS_INLINE void apply_increment(const int dim, const double A[9], const double F[9], double Fn[9]) {
+  if (dim == 3) {
+    mat_mul(A, F, Fn);
+    return;
+  }
+  for (int b = 0; b < 3; b++) {
+    Fn[b] = A[0] * F[b] + A[1] * F[3 + b];
+    Fn[3 + b] = A[3] * F[b] + A[4] * F[3 + b];
+    Fn[6 + b] = F[6 + b];
+  }
+}
+
+/* Jaumann co-rotation s <- s + dW s - s dW over the step (002, Eq. 28), dW
+ * the spin increment skew(L) dt (002, Eq. 30). dW s - s dW = T + T^T with
+ * T = dW s, as dW is skew and s symmetric; dW = [[0, w01, w02], [-w01, 0,
+ * w12], [-w02, -w12, 0]], and in plane strain only w01 is nonzero. */
+MRN_ALWAYS_INLINE void jaumann_rotate(const int dim, const double L[9], double dt, double s[6]) {
+  const double w01 = 0.5 * dt * (L[1] - L[3]);
+  const double sxx = s[SXX], syy = s[SYY], szz = s[SZZ], sxy = s[SXY], syz = s[SYZ], sxz = s[SXZ];
+  if (dim == 2) {
+    s[SXX] += 2.0 * w01 * sxy;
+    s[SYY] -= 2.0 * w01 * sxy;
+    s[SXY] += w01 * (syy - sxx);
+    s[SYZ] -= w01 * sxz;
+    s[SXZ] += w01 * syz;
+    return;
+  }
+  const double w02 = 0.5 * dt * (L[2] - L[6]), w12 = 0.5 * dt * (L[5] - L[7]);
+  /* T = dW s, row by row */
+  const double t00 = w01 * sxy + w02 * sxz, t01 = w01 * syy + w02 * syz, t02 = w01 * syz + w02 * szz;
+  const double t10 = -w01 * sxx + w12 * sxz, t11 = -w01 * sxy + w12 * syz, t12 = -w01 * sxz + w12 * szz;
+  const double t20 = -w02 * sxx - w12 * sxy, t21 = -w02 * sxy - w12 * syy, t22 = -w02 * sxz - w12 * syz;
+  s[SXX] += 2.0 * t00;
+  s[SYY] += 2.0 * t11;
+  s[SZZ] += 2.0 * t22;
+  s[SXY] += t01 + t10;
+  s[SYZ] += t12 + t21;
+  s[SXZ] += t02 + t20;
+}
+
+/* The kinematics of one point: F advanced, and the model's input (rotated
+ * start-of-step stress, strain increment, J) set in pt. Returns 1 (F
+ * unchanged) when the increment would invert F. */
+MRN_ALWAYS_INLINE int kinematics(const int dim, const mrn_material *mat, const double L[9], double dt,
+                                 mrn_f_update f_update, double F[9], const double stress[6], double *state,
+                                 mrn_material_point *pt) {
+  double A[9], Fn[9];
+  if (increment(dim, L, dt, f_update, A)) return 1;
+  apply_increment(dim, A, F, Fn);
   const double J_old = mat_det(F), J = mat_det(Fn);
   if (!(J > 0.0)) return 1;
-  memcpy(F, Fn, sizeof Fn);
-
-  mrn_material_point pt;
-  memcpy(pt.stress, stress, sizeof pt.stress);
-  mat_sym_part(L, dt, pt.dstrain); /* (002, Eq. 29) */
-  if (mat->type->rate_form) {
-    double W[9];
-    mat_skew_part(L, dt, W); /* (002, Eq. 30) */
-    sym_jaumann_rotate(pt.stress, W);
-  }
-  pt.F = F;
-  pt.J = J;
-  pt.J_old = J_old;
-  pt.dt = dt;
-  pt.state = mat->type->nstate ? state : NULL;
-  pt.de_elastic = pt.dw_plastic = 0.0;
-  mat->type->update(mat, &pt);
-  memcpy(stress, pt.stress, sizeof pt.stress);
-  if (strain)
-    for (int k = 0; k < 6; k++) strain[k] += pt.dstrain[k];
-  out->J_old = J_old;
-  out->J = J;
-  out->de_elastic = pt.de_elastic;
-  out->dw_plastic = pt.dw_plastic;
+  memcpy(F, Fn, (dim == 3 ? 9 : 6) * sizeof(double)); /* plane strain: the z row is unchanged */
+  memcpy(pt->stress, stress, sizeof pt->stress);
+  mat_sym_part(L, dt, pt->dstrain); /* (002, Eq. 29) */
+  if (mat->type->rate_form) jaumann_rotate(dim, L, dt, pt->stress);
+  pt->F = F;
+  pt->J = J;
+  pt->J_old = J_old;
+  pt->dt = dt;
+  pt->state = state;
+  pt->de_elastic = pt->dw_plastic = 0.0;
   return 0;
+}
+
+enum { BATCH = 32 }; /* points per call of the model's update */
+
+MRN_ALWAYS_INLINE long advance_points(const int dim, const mrn_material *mat, mrn_f_update f_update, double dt,
+                                      size_t n, const double *L, double *F, double *stress, double *strain,
+                                      double *state, int state_stride, mrn_point_result *out) {
+  long first_bad = -1;
+  if (!mat->type->nstate) state = NULL;
+  for (size_t lo = 0; lo < n; lo += BATCH) {
+    const size_t hi = n - lo < BATCH ? n : lo + BATCH;
+    mrn_material_point pts[BATCH];
+    size_t idx[BATCH];
+    int k = 0;
+    for (size_t i = lo; i < hi; i++) {
+      double *st = state ? state + (size_t)state_stride * i : NULL;
+      if (kinematics(dim, mat, L + 9 * i, dt, f_update, F + 9 * i, stress + 6 * i, st, &pts[k])) {
+        out[i].inverted = 1;
+        if (first_bad < 0) first_bad = (long)i;
+        continue;
+      }
+      idx[k++] = i;
+    }
+    if (k) mat->type->update(mat, pts, k);
+    for (int j = 0; j < k; j++) {
+      const size_t i = idx[j];
+      const mrn_material_point *pt = &pts[j];
+      memcpy(stress + 6 * i, pt->stress, sizeof pt->stress);
+      if (strain) {
+        double *restrict e = strain + 6 * i;
+        for (int c = 0; c < 6; c++) e[c] += pt->dstrain[c];
+      }
+      out[i] = (mrn_point_result){pt->J_old, pt->J, pt->de_elastic, pt->dw_plastic, 0};
+    }
+  }
+  return first_bad;
+}
+
+static long advance_points_2d(const mrn_material *mat, mrn_f_update f_update, double dt, size_t n, const double *L,
+                              double *F, double *stress, double *strain, double *state, int state_stride,
+                              mrn_point_result *out) {
+  return advance_points(2, mat, f_update, dt, n, L, F, stress, strain, state, state_stride, out);
+}
+
+static long advance_points_3d(const mrn_material *mat, mrn_f_update f_update, double dt, size_t n, const double *L,
+                              double *F, double *stress, double *strain, double *state, int state_stride,
+                              mrn_point_result *out) {
+  return advance_points(3, mat, f_update, dt, n, L, F, stress, strain, state, state_stride, out);
+}
+
+long mrn_material_advance_points(const mrn_material *mat, int dim, mrn_f_update f_update, double dt, size_t n,
+                                 const double *L, double *F, double *stress, double *strain, double *state,
+                                 int state_stride, mrn_point_result *out) {
+  return (dim == 2 ? advance_points_2d : advance_points_3d)(mat, f_update, dt, n, L, F, stress, strain, state,
+                                                            state_stride, out);
+}
+
+int mrn_material_advance(const mrn_material *mat, const double L[9], double dt, mrn_f_update f_update, double F[9],
+                         double stress[6], double strain[6], double *state, mrn_point_result *out) {
+  return mrn_material_advance_points(mat, 3, f_update, dt, 1, L, F, stress, strain, state, 0, out) >= 0;
 }

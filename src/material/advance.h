@@ -1,4 +1,4 @@
-/* moraine: one material point through one step, from its velocity gradient.
+/* moraine: material points through one step, from their velocity gradients.
  *
  * The single place where a point's kinematics and constitutive update meet;
  * the explicit step (solver/step.c) and the single-point driver
@@ -7,9 +7,14 @@
  *           a rigid spin stays a pure rotation) or A = I + L dt (002, Eq. 27);
  *   rate-form models get the stress co-rotated by the Jaumann spin
  *   (002, Eqs. 28-30) and the strain increment sym(L) dt;
- *   the energies per unit volume are returned for the caller to weight. */
+ *   the energies per unit volume are returned for the caller to weight.
+ * Points are advanced in batches of one material: the kinematics are
+ * specialised by dimension (in plane strain L and A have no z coupling) and
+ * the model's update is called once per batch, not once per point. */
 #ifndef MRN_MATERIAL_ADVANCE_H
 #define MRN_MATERIAL_ADVANCE_H
+
+#include <stddef.h>
 
 #include "material/material.h"
 
@@ -19,10 +24,23 @@ typedef struct mrn_point_result {
   double J_old, J;        /* det F before and after */
   double de_elastic;      /* per unit volume, see mrn_material_point */
   double dw_plastic;
+  int inverted;           /* 1: the increment would invert F; the point was left unchanged */
 } mrn_point_result;
 
-/* Updates F, stress, strain (may be NULL) and state in place. Returns 0, or 1
- * when the increment would invert F (nothing is changed then). */
+/* Advances n points of one material whose data lie in the particle arrays'
+ * layout: L and F 9 values per point, stress and strain 6 (strain may be
+ * NULL), state `state_stride` (may be NULL). dim 2 is plane strain: L must
+ * have no z row or column (as the 2D gradient kernels store it); dim 3 is
+ * general. out[i] receives point i's result. Returns the index of the first
+ * point whose increment would invert F, or -1; such points are left
+ * unchanged, the others are advanced. */
+long mrn_material_advance_points(const mrn_material *mat, int dim, mrn_f_update f_update, double dt, size_t n,
+                                 const double *L, double *F, double *stress, double *strain, double *state,
+                                 int state_stride, mrn_point_result *out);
+
+/* One point (3D, general L). Updates F, stress, strain (may be NULL) and
+ * state in place. Returns 0, or 1 when the increment would invert F
+ * (nothing is changed then). */
 int mrn_material_advance(const mrn_material *mat, const double L[9], double dt, mrn_f_update f_update, double F[9],
                          double stress[6], double strain[6], double *state, mrn_point_result *out);
 

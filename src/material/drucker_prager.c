@@ -82,7 +82,7 @@ static int prepare(mrn_material *m) {
   return MRN_OK;
 }
 
-static void update(const mrn_material *m, mrn_material_point *pt) {
+static inline void update_point(const mrn_material *m, mrn_material_point *pt) {
   const double *d = m->derived;
   const double G = d[D_SHEAR], K = d[D_BULK], alpha = d[D_ALPHA], kappa = d[D_KAPPA], beta = d[D_BETA];
   double old[6], trial[6], ds[6], s[6];
@@ -115,6 +115,8 @@ static void update(const mrn_material *m, mrn_material_point *pt) {
     pt->state[S_EPS_V] += sym_trace(dp);
   }
 }
+
+MRN_MATERIAL_BATCH_UPDATE(update_point)
 
 const mrn_material_type mrn_material_drucker_prager = {
     .name = "drucker_prager",

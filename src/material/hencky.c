@@ -37,7 +37,7 @@ static int prepare(mrn_material *m) {
   return 0;
 }
 
-static void update(const mrn_material *m, mrn_material_point *pt) {
+static inline void update_point(const mrn_material *m, mrn_material_point *pt) {
   const double lambda = m->derived[D_LAMBDA], G = m->derived[D_SHEAR];
   double Ft[9], B[9], b[6], l2[3], V[9], e[3];
   for (int a = 0; a < 3; a++)
@@ -56,6 +56,8 @@ static void update(const mrn_material *m, mrn_material_point *pt) {
   pt->de_elastic = (psi - psi_old) / (0.5 * (pt->J_old + pt->J));
   pt->dw_plastic = 0.0;
 }
+
+MRN_MATERIAL_BATCH_UPDATE(update_point)
 
 /* P-wave speed of the reference configuration */
 const mrn_material_type mrn_material_hencky = {

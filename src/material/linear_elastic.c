@@ -26,7 +26,7 @@ static int prepare(mrn_material *m) {
   return MRN_OK;
 }
 
-static void update(const mrn_material *m, mrn_material_point *pt) {
+static inline void update_point(const mrn_material *m, mrn_material_point *pt) {
   double ds[6], old[6];
   for (int k = 0; k < 6; k++) old[k] = pt->stress[k];
   mrn_hooke_increment(m->derived[D_LAMBDA], m->derived[D_SHEAR], pt->dstrain, ds);
@@ -37,6 +37,8 @@ static void update(const mrn_material *m, mrn_material_point *pt) {
   pt->de_elastic = sym_ddot(mid, pt->dstrain);
   pt->dw_plastic = 0.0;
 }
+
+MRN_MATERIAL_BATCH_UPDATE(update_point)
 
 const mrn_material_type mrn_material_linear_elastic = {
     .name = "linear_elastic",

@@ -2,9 +2,10 @@
  *
  * A model is an mrn_material_type: its parameters (mrn_spec, with units and
  * ranges), the number of history variables it keeps per particle, and an
- * update function called once per particle per step. A model is added by
- * writing one file that defines its type and listing it in material.c's
- * registry. A deck creates an mrn_material (a type plus parameter values)
+ * update function called once per batch of particles of that material per
+ * step (the model writes its one-point update; MRN_MATERIAL_BATCH_UPDATE
+ * makes the batch loop). A model is added by writing one file that defines
+ * its type and listing it in material.c's registry. A deck creates an mrn_material (a type plus parameter values)
  * through mpm.material.<name>{...}. */
 #ifndef MRN_MATERIAL_MATERIAL_H
 #define MRN_MATERIAL_MATERIAL_H
@@ -46,7 +47,9 @@ typedef struct mrn_material_type {
   /* derive constants from the parameters and check their consistency;
    * return 0 or an error (message set) */
   int (*prepare)(struct mrn_material *m);
-  void (*update)(const struct mrn_material *m, mrn_material_point *pt);
+  /* the update of n points of this material (one call per batch of points,
+   * so that the per-point work is a loop the compiler sees whole) */
+  void (*update)(const struct mrn_material *m, mrn_material_point *pt, int n);
   /* speed of the fastest elastic wave (m/s), for time-step estimates */
   double (*wave_speed)(const struct mrn_material *m);
   /* viscous time-step limit (s) for a grid spacing h, h^2 / nu (002, Eq. 36);
@@ -93,6 +96,12 @@ extern const mrn_material_type mrn_material_von_mises;
 extern const mrn_material_type mrn_material_newtonian;
 extern const mrn_material_type mrn_material_hencky;
 extern const mrn_material_type mrn_material_neo_hookean;
+
+/* defines a model's batch `update` from its one-point update `point_fn` */
+#define MRN_MATERIAL_BATCH_UPDATE(point_fn)                                    \
+  static void update(const mrn_material *m, mrn_material_point *pt, int n) { \
+    for (int i = 0; i < n; i++) point_fn(m, pt + i);                           \
+  }
 
 /* Isotropic linear elasticity shared by every small-strain model:
  * ds = lambda tr(de) I + 2 G de. */

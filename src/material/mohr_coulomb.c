@@ -167,10 +167,12 @@ static int try_return(const mrn_material *m, const plane pl[NPLANES], int c, con
 /* Principal-stress return map; returns 0 when the trial is admissible. */
 static int return_map(const mrn_material *m, double s[3]) {
   const double T = m->derived[D_TENSION];
+  int tension = isfinite(T);
+  /* the main plane PM, k s1 - s3 <= sc, tested before the planes are built:
+   * most points of a flow are inside */
+  if (m->derived[D_K] * s[0] - s[2] - m->derived[D_SC] <= 0.0 && (!tension || s[0] <= T)) return 0;
   plane pl[NPLANES];
   make_planes(m, pl);
-  int tension = isfinite(T);
-  if (dot3(pl[PM].a, s) - pl[PM].r <= 0.0 && (!tension || s[0] <= T)) return 0;
   double scale = fmax(fmax(fabs(s[0]), fabs(s[2])), m->derived[D_SC]);
   if (tension) scale = fmax(scale, fabs(T));
   const double tol = 1e-12 * scale;
@@ -187,7 +189,7 @@ static int return_map(const mrn_material *m, double s[3]) {
   return 1;
 }
 
-static void update(const mrn_material *m, mrn_material_point *pt) {
+static inline void update_point(const mrn_material *m, mrn_material_point *pt) {
   double old[6], trial[6], ds[6], lam[3], V[9];
   for (int k = 0; k < 6; k++) old[k] = pt->stress[k];
   mrn_hooke_increment(m->derived[D_LAMBDA], m->derived[D_SHEAR], pt->dstrain, ds);
@@ -206,6 +208,8 @@ static void update(const mrn_material *m, mrn_material_point *pt) {
     pt->state[S_EPS_V] += sym_trace(dp);
   }
 }
+
+MRN_MATERIAL_BATCH_UPDATE(update_point)
 
 const mrn_material_type mrn_material_mohr_coulomb = {
     .name = "mohr_coulomb",

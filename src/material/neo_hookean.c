@@ -35,7 +35,7 @@ static int prepare(mrn_material *m) {
   return 0;
 }
 
-static void update(const mrn_material *m, mrn_material_point *pt) {
+static inline void update_point(const mrn_material *m, mrn_material_point *pt) {
   const double lambda = m->derived[D_LAMBDA], G = m->derived[D_SHEAR], J = pt->J;
   const double *F = pt->F;
   double b[6];
@@ -50,6 +50,8 @@ static void update(const mrn_material *m, mrn_material_point *pt) {
   pt->de_elastic = (psi - psi_old) / (0.5 * (pt->J_old + J));
   pt->dw_plastic = 0.0;
 }
+
+MRN_MATERIAL_BATCH_UPDATE(update_point)
 
 /* P-wave speed of the reference configuration */
 const mrn_material_type mrn_material_neo_hookean = {

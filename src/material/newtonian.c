@@ -33,7 +33,7 @@ static double stored_energy(const mrn_material *m, double J) {
   return m->param[P_DENSITY] * c * c * (J - 1 - log(J));
 }
 
-static void update(const mrn_material *m, mrn_material_point *pt) {
+static inline void update_point(const mrn_material *m, mrn_material_point *pt) {
   const double rho0 = m->param[P_DENSITY], mu = m->param[P_VISCOSITY], c = m->param[P_SOUND];
   double p = c * c * (rho0 / pt->J - rho0); /* (002, Eq. 70) */
   double dev[6];
@@ -42,6 +42,8 @@ static void update(const mrn_material *m, mrn_material_point *pt) {
   pt->de_elastic = (stored_energy(m, pt->J) - stored_energy(m, pt->J_old)) / (0.5 * (pt->J_old + pt->J));
   pt->dw_plastic = -2 * mu * sym_ddot(dev, dev) / pt->dt;
 }
+
+MRN_MATERIAL_BATCH_UPDATE(update_point)
 
 static double wave_speed(const mrn_material *m) { return m->param[P_SOUND]; }
 

@@ -33,7 +33,7 @@ static int prepare(mrn_material *m) {
   return 0;
 }
 
-static void update(const mrn_material *m, mrn_material_point *pt) {
+static inline void update_point(const mrn_material *m, mrn_material_point *pt) {
   const double G = m->derived[D_SHEAR], H = m->param[P_HARDENING];
   double old[6], trial[6], ds[6], s[6];
   for (int k = 0; k < 6; k++) old[k] = pt->stress[k];
@@ -55,6 +55,8 @@ static void update(const mrn_material *m, mrn_material_point *pt) {
   }
   mrn_energy_split(m->param[P_E], m->param[P_NU], old, pt->stress, pt->dstrain, plastic, pt, NULL);
 }
+
+MRN_MATERIAL_BATCH_UPDATE(update_point)
 
 const mrn_material_type mrn_material_von_mises = {
     .name = "von_mises",

@@ -52,32 +52,52 @@ int mrn_sim_add_material(mrn_sim *sim, mrn_material *m) {
   return sim->nmaterials++;
 }
 
+/* Sums over the particles are formed in DIAG_PIECES fixed pieces (bounds set
+ * by the particle count alone), in parallel, and the pieces added in order:
+ * the diagnostics are bitwise the same for any number of threads. */
+enum { DIAG_PIECES = 64, DIAG_SUMS = 14 };
+
+static void piece_bounds(long n, int k, long *lo, long *hi) {
+  *lo = n * k / DIAG_PIECES;
+  *hi = n * (k + 1) / DIAG_PIECES;
+}
+
+static void add_pieces(double part[DIAG_PIECES][DIAG_SUMS], int nsums, double *total) {
+  for (int j = 0; j < nsums; j++) total[j] = 0.0;
+  for (int k = 0; k < DIAG_PIECES; k++)
+    for (int j = 0; j < nsums; j++) total[j] += part[k][j];
+}
+
+enum { S_EK, S_EG, S_EEL, S_WPL, S_MASS, S_MOM, S_ANG = S_MOM + 3, S_MX = S_ANG + 3 };
+
 void mrn_sim_diagnostics(const mrn_sim *sim, mrn_diagnostics *out) {
   const mrn_particles *ps = &sim->particles;
-  double ek = 0, eg = 0, eel = 0, wpl = 0, mass = 0;
-  double mom0 = 0, mom1 = 0, mom2 = 0, ang0 = 0, ang1 = 0, ang2 = 0, mx0 = 0, mx1 = 0, mx2 = 0;
   const double *g = sim->gravity;
   const long n = (long)ps->n;
-#pragma omp parallel for schedule(static) if (n > MRN_OMP_MIN_ITEMS) reduction(+ : ek, eg, eel, wpl, mass, mom0, mom1, mom2, ang0, ang1, \
-                                                        ang2, mx0, mx1, mx2)
-  for (long p = 0; p < n; p++) {
-    const double m = ps->mass[p];
-    const double *x = ps->x + 3 * p, *v = ps->v + 3 * p;
-    ek += 0.5 * m * (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]); /* (000, Eq. 47) */
-    eg -= m * (g[0] * x[0] + g[1] * x[1] + g[2] * x[2]);      /* (000, Eq. 48) */
-    eel += ps->e_elastic[p];
-    wpl += ps->w_plastic[p];
-    mass += m;
-    mom0 += m * v[0];
-    mom1 += m * v[1];
-    mom2 += m * v[2];
-    ang0 += m * (x[1] * v[2] - x[2] * v[1]);
-    ang1 += m * (x[2] * v[0] - x[0] * v[2]);
-    ang2 += m * (x[0] * v[1] - x[1] * v[0]);
-    mx0 += m * x[0];
-    mx1 += m * x[1];
-    mx2 += m * x[2];
+  double part[DIAG_PIECES][DIAG_SUMS], t[DIAG_SUMS];
+#pragma omp parallel for schedule(static) if (n > MRN_OMP_MIN_ITEMS)
+  for (int k = 0; k < DIAG_PIECES; k++) {
+    long lo, hi;
+    piece_bounds(n, k, &lo, &hi);
+    double s[DIAG_SUMS] = {0};
+    for (long p = lo; p < hi; p++) {
+      const double m = ps->mass[p];
+      const double *x = ps->x + 3 * p, *v = ps->v + 3 * p;
+      s[S_EK] += 0.5 * m * (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]); /* (000, Eq. 47) */
+      s[S_EG] -= m * (g[0] * x[0] + g[1] * x[1] + g[2] * x[2]);      /* (000, Eq. 48) */
+      s[S_EEL] += ps->e_elastic[p];
+      s[S_WPL] += ps->w_plastic[p];
+      s[S_MASS] += m;
+      for (int d = 0; d < 3; d++) s[S_MOM + d] += m * v[d];
+      s[S_ANG] += m * (x[1] * v[2] - x[2] * v[1]);
+      s[S_ANG + 1] += m * (x[2] * v[0] - x[0] * v[2]);
+      s[S_ANG + 2] += m * (x[0] * v[1] - x[1] * v[0]);
+      for (int d = 0; d < 3; d++) s[S_MX + d] += m * x[d];
+    }
+    for (int j = 0; j < DIAG_SUMS; j++) part[k][j] = s[j];
   }
+  add_pieces(part, DIAG_SUMS, t);
+  const double ek = t[S_EK], eg = t[S_EG], eel = t[S_EEL], wpl = t[S_WPL], mass = t[S_MASS];
   memset(out, 0, sizeof *out);
   out->kinetic = ek;
   out->gravity = eg;
@@ -89,65 +109,74 @@ void mrn_sim_diagnostics(const mrn_sim *sim, mrn_diagnostics *out) {
   /* (000, Eq. 68) summed over the steps since the balance started */
   out->mpm_error = sim->energy_ref_set ? out->total - sim->energy_ref - wpl - sim->work_friction - sim->work_damping : 0.0;
   out->mass = mass;
-  out->momentum[0] = mom0;
-  out->momentum[1] = mom1;
-  out->momentum[2] = mom2;
-  out->angular[0] = ang0;
-  out->angular[1] = ang1;
-  out->angular[2] = ang2;
-  if (mass > 0) {
-    out->com[0] = mx0 / mass;
-    out->com[1] = mx1 / mass;
-    out->com[2] = mx2 / mass;
-    for (int d = 0; d < 3; d++) out->com_velocity[d] = out->momentum[d] / mass;
+  for (int d = 0; d < 3; d++) {
+    out->momentum[d] = t[S_MOM + d];
+    out->angular[d] = t[S_ANG + d];
   }
-  out->particles = n;
-  /* angular momentum about the unweighted centroid (000, Eqs. 54 and 56) */
-  double c0 = 0, c1 = 0, c2 = 0;
-#pragma omp parallel for schedule(static) if (n > MRN_OMP_MIN_ITEMS) reduction(+ : c0, c1, c2)
-  for (long p = 0; p < n; p++) {
-    c0 += ps->x[3 * p];
-    c1 += ps->x[3 * p + 1];
-    c2 += ps->x[3 * p + 2];
-  }
-  if (n > 0) {
-    c0 /= n, c1 /= n, c2 /= n;
-    double l0 = 0, l1 = 0, l2 = 0;
-#pragma omp parallel for schedule(static) if (n > MRN_OMP_MIN_ITEMS) reduction(+ : l0, l1, l2)
-    for (long p = 0; p < n; p++) {
-      const double m = ps->mass[p], *v = ps->v + 3 * p;
-      const double r0 = ps->x[3 * p] - c0, r1 = ps->x[3 * p + 1] - c1, r2 = ps->x[3 * p + 2] - c2;
-      l0 += m * (r1 * v[2] - r2 * v[1]);
-      l1 += m * (r2 * v[0] - r0 * v[2]);
-      l2 += m * (r0 * v[1] - r1 * v[0]);
+  if (mass > 0)
+    for (int d = 0; d < 3; d++) {
+      out->com[d] = t[S_MX + d] / mass;
+      out->com_velocity[d] = out->momentum[d] / mass;
     }
-    out->L_centroid = sqrt(l0 * l0 + l1 * l1 + l2 * l2);
+  out->particles = n;
+  if (n == 0) return;
+  /* angular momentum about the unweighted centroid (000, Eqs. 54 and 56) */
+  double c[DIAG_SUMS];
+#pragma omp parallel for schedule(static) if (n > MRN_OMP_MIN_ITEMS)
+  for (int k = 0; k < DIAG_PIECES; k++) {
+    long lo, hi;
+    piece_bounds(n, k, &lo, &hi);
+    double s[3] = {0};
+    for (long p = lo; p < hi; p++)
+      for (int d = 0; d < 3; d++) s[d] += ps->x[3 * p + d];
+    for (int d = 0; d < 3; d++) part[k][d] = s[d];
   }
+  add_pieces(part, 3, c);
+  for (int d = 0; d < 3; d++) c[d] /= n;
+#pragma omp parallel for schedule(static) if (n > MRN_OMP_MIN_ITEMS)
+  for (int k = 0; k < DIAG_PIECES; k++) {
+    long lo, hi;
+    piece_bounds(n, k, &lo, &hi);
+    double s[3] = {0};
+    for (long p = lo; p < hi; p++) {
+      const double m = ps->mass[p], *v = ps->v + 3 * p;
+      const double r0 = ps->x[3 * p] - c[0], r1 = ps->x[3 * p + 1] - c[1], r2 = ps->x[3 * p + 2] - c[2];
+      s[0] += m * (r1 * v[2] - r2 * v[1]);
+      s[1] += m * (r2 * v[0] - r0 * v[2]);
+      s[2] += m * (r0 * v[1] - r1 * v[0]);
+    }
+    for (int d = 0; d < 3; d++) part[k][d] = s[d];
+  }
+  double l[DIAG_SUMS];
+  add_pieces(part, 3, l);
+  out->L_centroid = sqrt(l[0] * l[0] + l[1] * l[1] + l[2] * l[2]);
+}
+
+int mrn_sim_particle_error(const mrn_sim *sim, size_t p) {
+  const mrn_particles *ps = &sim->particles;
+  const mrn_grid *g = &sim->grid;
+  const double *x = ps->x + 3 * p, *v = ps->v + 3 * p;
+  if (!mrn_sim_particle_finite(sim, p))
+    return mrn_error_code(MRN_ERR_STATE,
+                          "step %ld (t = %g s): particle %lld has a non-finite position, velocity or stress "
+                          "(x = (%g, %g, %g), v = (%g, %g, %g)); the time step %g s is probably above the "
+                          "stability limit",
+                          sim->step, sim->time, (long long)ps->id[p], x[0], x[1], x[2], v[0], v[1], v[2], sim->dt);
+  return mrn_error_code(MRN_ERR_STATE,
+                        "step %ld (t = %g s): particle %lld left the grid at (%g, %g, %g) with velocity "
+                        "(%g, %g, %g); the domain is [%g, %g] x [%g, %g]%s",
+                        sim->step, sim->time, (long long)ps->id[p], x[0], x[1], x[2], v[0], v[1], v[2],
+                        g->origin[0], g->origin[0] + g->size[0], g->origin[1], g->origin[1] + g->size[1],
+                        g->dim == 3 ? " x [z range]" : "");
 }
 
 int mrn_sim_check_state(const mrn_sim *sim) {
-  const mrn_particles *ps = &sim->particles;
-  const mrn_grid *g = &sim->grid;
-  for (size_t p = 0; p < ps->n; p++) {
-    const double *x = ps->x + 3 * p, *v = ps->v + 3 * p;
-    int finite = 1;
-    for (int d = 0; d < 3; d++) finite &= isfinite(x[d]) && isfinite(v[d]);
-    for (int k = 0; k < 6; k++) finite &= isfinite(ps->stress[6 * p + k]);
-    if (!finite)
-      return mrn_error_code(MRN_ERR_STATE,
-                            "step %ld (t = %g s): particle %lld has a non-finite position, velocity or stress "
-                            "(x = (%g, %g, %g), v = (%g, %g, %g)); the time step %g s is probably above the "
-                            "stability limit",
-                            sim->step, sim->time, (long long)ps->id[p], x[0], x[1], x[2], v[0], v[1], v[2], sim->dt);
-    if (!mrn_grid_contains(g, x))
-      return mrn_error_code(MRN_ERR_STATE,
-                            "step %ld (t = %g s): particle %lld left the grid at (%g, %g, %g) with velocity "
-                            "(%g, %g, %g); the domain is [%g, %g] x [%g, %g]%s",
-                            sim->step, sim->time, (long long)ps->id[p], x[0], x[1], x[2], v[0], v[1], v[2],
-                            g->origin[0], g->origin[0] + g->size[0], g->origin[1], g->origin[1] + g->size[1],
-                            g->dim == 3 ? " x [z range]" : "");
-  }
-  return MRN_OK;
+  const long n = (long)sim->particles.n;
+  long first_bad = n;
+#pragma omp parallel for schedule(static) if (n > MRN_OMP_MIN_ITEMS) reduction(min : first_bad)
+  for (long p = 0; p < n; p++)
+    if (p < first_bad && !mrn_sim_particle_ok(sim, (size_t)p)) first_bad = p;
+  return first_bad < n ? mrn_sim_particle_error(sim, (size_t)first_bad) : MRN_OK;
 }
 
 double mrn_sim_slowness(const mrn_sim *sim) {

@@ -114,8 +114,33 @@ void mrn_sim_diagnostics(const mrn_sim *sim, mrn_diagnostics *d);
  * mrn_run() does it before the first step of a simulation */
 void mrn_sim_energy_balance_start(mrn_sim *sim);
 
-/* Check particle state after a step: finite values, inside the grid, J > 0. */
+/* Check particle state after a step: finite position, velocity and stress,
+ * inside the grid. Returns 0, or an error (message set) naming the first bad
+ * particle (the lowest index, for any thread count). */
 int mrn_sim_check_state(const mrn_sim *sim);
+
+/* The tests of mrn_sim_check_state for particle p (1: fine): finite values,
+ * and those inside the grid. Quiet, so that a parallel pass can ask them of
+ * every particle. */
+static inline int mrn_sim_particle_finite(const mrn_sim *sim, size_t p) {
+  const mrn_particles *ps = &sim->particles;
+  const double *x = ps->x + 3 * p, *v = ps->v + 3 * p, *s = ps->stress + 6 * p;
+  /* a * 0 is (+-)0 for every finite a and NaN for an infinite or NaN one, so
+   * the sum below is 0 exactly when all twelve values are finite (and the
+   * test vectorises) */
+  double z = 0.0;
+  for (int d = 0; d < 3; d++) z += x[d] * 0.0 + v[d] * 0.0;
+  for (int k = 0; k < 6; k++) z += s[k] * 0.0;
+  return z == 0.0;
+}
+
+static inline int mrn_sim_particle_ok(const mrn_sim *sim, size_t p) {
+  /* the finite test first: a NaN position is reported as such */
+  return mrn_sim_particle_finite(sim, p) && mrn_grid_contains(&sim->grid, sim->particles.x + 3 * p);
+}
+
+/* The error of mrn_sim_check_state for a particle that failed the test */
+int mrn_sim_particle_error(const mrn_sim *sim, size_t p);
 
 /* smallest sqrt(rho/E) over the materials in use, for the a_tau step */
 double mrn_sim_slowness(const mrn_sim *sim);

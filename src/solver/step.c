@@ -94,35 +94,50 @@ static void grid_update(mrn_sim *sim, double dt) {
   mrn_phase_end(MRN_PHASE_GRID, t0);
 }
 
-/* Kinematics and constitutive update of one particle from its velocity
- * gradient (particles.gradv), volume from J, and its energies weighted by the
- * mid-step volume (000, Eqs. 64-65). Returns 0, or 1 when F would invert. */
-static int update_particle_stress(mrn_sim *sim, size_t p, double dt) {
+enum { STRESS_CHUNK = 256 }; /* particles per task of the stress update */
+
+/* Kinematics and constitutive update of particles [lo, hi) (hi - lo <=
+ * STRESS_CHUNK) from their velocity gradients (particles.gradv), in runs of
+ * one material; volume from J, and the energies weighted by the mid-step
+ * volume (000, Eqs. 64-65). Returns the first particle whose F would invert,
+ * or -1. */
+static long update_chunk(mrn_sim *sim, size_t lo, size_t hi, double dt) {
   mrn_particles *ps = &sim->particles;
-  const mrn_material *mat = sim->materials[ps->material[p]];
-  double *state = ps->state_stride ? ps->state + (size_t)ps->state_stride * p : NULL;
-  mrn_point_result r;
-  if (mrn_material_advance(mat, ps->gradv + 9 * p, dt, MRN_F_UPDATE_MIDPOINT, ps->F + 9 * p, ps->stress + 6 * p,
-                           ps->strain + 6 * p, state, &r))
-    return 1;
-  double vol_old = ps->vol[p];
-  ps->vol[p] = ps->vol0[p] * r.J;
-  double vol_mid = 0.5 * (vol_old + ps->vol[p]);
-  ps->e_elastic[p] += vol_mid * r.de_elastic;
-  ps->w_plastic[p] += vol_mid * r.dw_plastic;
-  return 0;
+  const int stride = ps->state_stride;
+  mrn_point_result r[STRESS_CHUNK];
+  long first_bad = -1;
+  for (size_t a = lo, b; a < hi; a = b) {
+    for (b = a + 1; b < hi && ps->material[b] == ps->material[a];) b++;
+    long bad = mrn_material_advance_points(sim->materials[ps->material[a]], sim->dim, MRN_F_UPDATE_MIDPOINT, dt,
+                                           b - a, ps->gradv + 9 * a, ps->F + 9 * a, ps->stress + 6 * a,
+                                           ps->strain + 6 * a, stride ? ps->state + (size_t)stride * a : NULL,
+                                           stride, r + (a - lo));
+    if (bad >= 0 && first_bad < 0) first_bad = (long)a + bad;
+  }
+  for (size_t p = lo; p < hi; p++) {
+    const mrn_point_result *rp = &r[p - lo];
+    if (rp->inverted) continue;
+    double vol_old = ps->vol[p];
+    ps->vol[p] = ps->vol0[p] * rp->J;
+    double vol_mid = 0.5 * (vol_old + ps->vol[p]);
+    ps->e_elastic[p] += vol_mid * rp->de_elastic;
+    ps->w_plastic[p] += vol_mid * rp->dw_plastic;
+  }
+  return first_bad;
 }
 
 static int update_stresses(mrn_sim *sim, double dt) {
   const double t0 = mrn_phase_begin();
   mrn_particles *ps = &sim->particles;
-  const long n = (long)ps->n;
+  const long n = (long)ps->n, nchunks = (n + STRESS_CHUNK - 1) / STRESS_CHUNK;
   long first_bad = -1;
 #pragma omp parallel for schedule(static) if (n > MRN_OMP_MIN_ITEMS)
-  for (long p = 0; p < n; p++) {
-    if (update_particle_stress(sim, (size_t)p, dt)) {
+  for (long c = 0; c < nchunks; c++) {
+    const long lo = c * STRESS_CHUNK, hi = lo + STRESS_CHUNK < n ? lo + STRESS_CHUNK : n;
+    long bad = update_chunk(sim, (size_t)lo, (size_t)hi, dt);
+    if (bad >= 0) {
 #pragma omp critical(mrn_bad_particle)
-      if (first_bad < 0 || p < first_bad) first_bad = p;
+      if (first_bad < 0 || bad < first_bad) first_bad = bad; /* the lowest index, whatever the threads */
     }
   }
   mrn_phase_end(MRN_PHASE_STRESS, t0);
@@ -146,47 +161,55 @@ static double *scratch(mrn_sim *sim, size_t count) {
   return sim->scratch;
 }
 
-/* particles that left through a periodic face re-enter through the other */
-static void wrap_periodic(mrn_sim *sim) {
+/* The end of the step, in one parallel pass over the particles:
+ * - a particle that left through a periodic face re-enters through the other;
+ * - a wall (fixed, slip, friction or velocity face) holds the nodes on and
+ *   beyond it, but a particle moved by the interpolated grid velocity can
+ *   still step a hair past it (the nodes just inside move towards it): such a
+ *   particle is put back on the face, with no velocity into the wall; free
+ *   faces let material leave (and the state check then stops the run);
+ * - the state check of mrn_sim_check_state, reporting the first bad particle
+ *   (the lowest index, for any thread count). */
+static int end_of_step(mrn_sim *sim) {
   const mrn_grid *g = &sim->grid;
   mrn_particles *ps = &sim->particles;
-  for (int d = 0; d < sim->dim; d++) {
-    if (!mrn_boundary_periodic(&sim->boundary, d)) continue;
-    const double lo = g->origin[d], L = g->size[d];
-    for (size_t p = 0; p < ps->n; p++) {
-      double *x = ps->x + 3 * p + d;
-      if (*x < lo || *x >= lo + L) {
-        double shift = L * floor((*x - lo) / L);
-        *x -= shift;
-        ps->x0[3 * p + d] -= shift; /* the displacement stays continuous */
-        if (*x >= lo + L) *x = lo; /* round-off at the seam */
-      }
-    }
-  }
-}
-
-/* A wall (fixed, slip, friction or velocity face) holds the nodes on and
- * beyond it, but a particle moved by the interpolated grid velocity can still
- * step a hair past it (the nodes just inside move towards it): put such a
- * particle back on the face, with no velocity into the wall. Free faces let
- * material leave (the state check then stops the run). */
-static void keep_inside_walls(mrn_sim *sim) {
-  const mrn_grid *g = &sim->grid;
-  mrn_particles *ps = &sim->particles;
-  for (int d = 0; d < sim->dim; d++) {
+  const int dim = sim->dim;
+  int periodic[3] = {0}, wall[3][2] = {{0}};
+  double lo[3], hi[3], len[3];
+  for (int d = 0; d < dim; d++) {
+    periodic[d] = mrn_boundary_periodic(&sim->boundary, d);
     for (int side = 0; side < 2; side++) {
       mrn_bc_kind kind = sim->boundary.face[2 * d + side].kind;
-      if (kind == MRN_BC_FREE || kind == MRN_BC_PERIODIC) continue;
-      const double face = g->origin[d] + (side ? g->size[d] : 0.0);
-      for (size_t p = 0; p < ps->n; p++) {
-        double *x = ps->x + 3 * p + d, *v = ps->v + 3 * p + d;
-        if (side == 0 ? *x < face : *x > face) {
-          *x = face;
-          if (side == 0 ? *v < 0 : *v > 0) *v = 0.0;
-        }
+      wall[d][side] = kind != MRN_BC_FREE && kind != MRN_BC_PERIODIC;
+    }
+    lo[d] = g->origin[d];
+    len[d] = g->size[d];
+    hi[d] = g->origin[d] + g->size[d];
+  }
+  const long n = (long)ps->n;
+  long first_bad = n;
+#pragma omp parallel for schedule(static) if (n > MRN_OMP_MIN_ITEMS) reduction(min : first_bad)
+  for (long p = 0; p < n; p++) {
+    for (int d = 0; d < dim; d++) {
+      double *x = ps->x + 3 * p + d, *v = ps->v + 3 * p + d;
+      if (periodic[d] && (*x < lo[d] || *x >= hi[d])) {
+        double shift = len[d] * floor((*x - lo[d]) / len[d]);
+        *x -= shift;
+        ps->x0[3 * p + d] -= shift; /* the displacement stays continuous */
+        if (*x >= hi[d]) *x = lo[d]; /* round-off at the seam */
+      }
+      if (wall[d][0] && *x < lo[d]) {
+        *x = lo[d];
+        if (*v < 0) *v = 0.0;
+      }
+      if (wall[d][1] && *x > hi[d]) {
+        *x = hi[d];
+        if (*v > 0) *v = 0.0;
       }
     }
+    if (p < first_bad && !mrn_sim_particle_ok(sim, (size_t)p)) first_bad = p;
   }
+  return first_bad < n ? mrn_sim_particle_error(sim, (size_t)first_bad) : MRN_OK;
 }
 
 /* grid velocity from the particles, and XPIC's smoothed velocity when needed */
@@ -252,11 +275,9 @@ int mrn_sim_step_dt(mrn_sim *sim, double dt) {
     break;
   }
   }
-  wrap_periodic(sim);
-  keep_inside_walls(sim);
   sim->time += dt;
   sim->step++;
-  return mrn_sim_check_state(sim);
+  return end_of_step(sim);
 }
 
 int mrn_sim_step(mrn_sim *sim) {

@@ -33,7 +33,7 @@ static void stress_at(const mrn_material *m, const double F[9], double s[6]) {
   pt.J_old = 1.0;
   pt.dt = 1.0;
   pt.state = state;
-  m->type->update(m, &pt);
+  m->type->update(m, &pt, 1);
   memcpy(s, pt.stress, sizeof pt.stress);
 }
 
