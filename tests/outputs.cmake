@@ -14,6 +14,10 @@
 #   plot.*                    scripts/moraine-plot draws those series, from
 #                             CSV and from HDF5, with each drawing tool found
 #   python.png                every PNG drawn is a valid, non-empty image
+#   python.outputs_roundtrip  every .vtp/.vti/.pvd of a 2D and a 3D run equals the
+#                             checkpoint of the same state; Lua reductions = numpy
+#   robust.sigkill            files left by runs killed with SIGKILL are whole
+#   python.example_pngs       the examples' own PNG plots are valid images
 if(NOT DEFINED MORAINE_TEST_OUT)
   set(MORAINE_TEST_OUT ${CMAKE_CURRENT_BINARY_DIR}/out)
 endif()
@@ -78,3 +82,49 @@ set_tests_properties(plot.unknown_column PROPERTIES LABELS plot FIXTURES_REQUIRE
 
 add_test(NAME python.png COMMAND ${MORAINE_PYTHON} ${CMAKE_CURRENT_SOURCE_DIR}/python/check_png.py ${plot_files})
 set_tests_properties(python.png PROPERTIES LABELS "python;plot" FIXTURES_REQUIRED "outputs_series;outputs_plots")
+
+# ---- every output against the checkpoint of the same state (must-show 1 and 4) --
+# a 2D and a 3D run: each .vtp, .vti and .pvd read by VTK's readers equals the
+# checkpoint saved at that snapshot (h5py), .pvd times equal the model times,
+# and sim:reduce over all particles, a material, a region and a predicate
+# equals numpy over the last .vtp
+moraine_deck_test(outputs_roundtrip outputs_roundtrip.lua)
+set_tests_properties(deck.outputs_roundtrip PROPERTIES FIXTURES_SETUP outputs_roundtrip)
+add_test(NAME python.outputs_roundtrip
+         COMMAND ${MORAINE_PYTHON} ${CMAKE_CURRENT_SOURCE_DIR}/python/check_outputs_roundtrip.py
+                 ${MORAINE_TEST_OUT}/outputs_roundtrip run2d run3d)
+set_tests_properties(python.outputs_roundtrip PROPERTIES LABELS python FIXTURES_REQUIRED outputs_roundtrip)
+
+# registered per-particle fields (set, read, reduced, written, checkpointed)
+# and grid probes (tests/decks/particle_fields.lua); the storage itself is
+# unit.test_user_fields
+moraine_deck_test(particle_fields particle_fields.lua)
+
+# ---- SIGKILL in the middle of writing (must-show 5) ----------------------------
+# 14 kills at random moments of a run writing 11 MB .vtp files, .vti, .pvd, an
+# HDF5 series, a CSV and a checkpoint every step (about 15 s); every file left
+# is read back whole. "long": the sanitizer pass leaves it to the release pass.
+add_test(NAME robust.sigkill COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/robust/sigkill.sh $<TARGET_FILE:moraine>
+                                     ${MORAINE_TEST_OUT}/robust_sigkill 14)
+set_tests_properties(robust.sigkill PROPERTIES LABELS "robust;long" ENVIRONMENT OMP_WAIT_POLICY=PASSIVE TIMEOUT 120)
+
+# ---- the examples' own plots (must-show 6) --------------------------------------
+# the column collapse (its gnuplot script) and the bouncing cube (moraine.plot,
+# lua/moraine/plot.lua) in their quick form with plot=true; every PNG they
+# announce must be a valid, non-empty image
+set(example_plot_dir ${MORAINE_OUTPUTS_DIR}/example_plots)
+add_test(NAME plot.example_column_collapse
+         COMMAND moraine ${CMAKE_SOURCE_DIR}/examples/column_collapse/deck.lua -q -o ${example_plot_dir}/column_collapse
+                 --set quick=true --set plot=true)
+add_test(NAME plot.example_bouncing_cube
+         COMMAND moraine ${CMAKE_SOURCE_DIR}/examples/bouncing_cube/deck.lua -q -o ${example_plot_dir}/bouncing_cube
+                 --set quick=true --set plot=true)
+set_tests_properties(plot.example_column_collapse plot.example_bouncing_cube PROPERTIES
+                     LABELS "plot;example" FIXTURES_SETUP example_plots ENVIRONMENT OMP_WAIT_POLICY=PASSIVE)
+set(collapse_pngs runout kinetic w_mpm lube AR1_FLIP_energies)
+list(TRANSFORM collapse_pngs PREPEND ${example_plot_dir}/column_collapse/)
+list(TRANSFORM collapse_pngs APPEND .png)
+add_test(NAME python.example_pngs
+         COMMAND ${MORAINE_PYTHON} ${CMAKE_CURRENT_SOURCE_DIR}/python/check_png.py ${collapse_pngs}
+                 ${example_plot_dir}/bouncing_cube/energies.png ${example_plot_dir}/bouncing_cube/momentum.png)
+set_tests_properties(python.example_pngs PROPERTIES LABELS "python;plot" FIXTURES_REQUIRED example_plots)

@@ -5,8 +5,15 @@
 -- FLIP keeps the total energy (about 25.7 kJ); PIC loses most of it at the
 -- first impact (000 Fig. 3).
 --
+-- The run draws energies.png (energies against time) and momentum.png
+-- (vertical momentum) from its diagnostics CSV with moraine-plot
+-- (lua/moraine/plot.lua); --set plot=false skips them (default: true, false
+-- in quick runs unless --set plot=true).
+--
 --   moraine examples/bouncing_cube/deck.lua -o out/cube --set transfer=PIC
+local plot = require "moraine.plot"
 local quick = mpm.param("quick", false)
+local draw = mpm.param("plot", not quick)
 local transfer = mpm.param("transfer", "FLIP")
 local cube_material = mpm.material.linear_elastic{ density = 1748, E = 12.84e6, nu = 0.16 }
 
@@ -28,3 +35,14 @@ sim:run{ time = quick and 0.1 or mpm.param("time", 2.0) }
 local e = sim:energy().total
 print(string.format("bouncing cube (%s): total energy %.5g J -> %.5g J (%.2f %%)", transfer, e0, e,
                     100 * (e - e0) / e0))
+
+if draw then
+  local ok, err = plot.series{ png = "energies.png", file = "diagnostics.csv",
+                               columns = { "E_kinetic", "E_gravity", "E_elastic", "E_total" },
+                               title = "Bouncing cube (" .. transfer .. "): energies", ylabel = "energy (J)" }
+  if ok then
+    ok, err = plot.series{ png = "momentum.png", file = "diagnostics.csv", columns = { "momentum_z" },
+                           title = "Bouncing cube (" .. transfer .. "): vertical momentum", ylabel = "momentum (kg m/s)" }
+  end
+  print(ok and "plots: energies.png momentum.png" or err)
+end

@@ -197,6 +197,57 @@ static void save_particles(mrn_h5w *w, const mrn_sim *sim) {
   H5Gclose(g);
 }
 
+/* The fields a deck registered: /particles/user/<name>, (n) or (n, ncomp),
+ * and on the group their order (`names`, comma-separated), `count`,
+ * `components` and `init`. */
+static void save_user_fields(mrn_h5w *w, const mrn_particles *ps) {
+  if (ps->nuser == 0) return;
+  hid_t g = mrn_h5w_group(w, w->file, "particles/user");
+  if (g < 0) return;
+  char names[MRN_USER_FIELDS_MAX * MRN_USER_FIELD_NAME] = "";
+  int comps[MRN_USER_FIELDS_MAX];
+  double init[MRN_USER_FIELDS_MAX];
+  double *buf = malloc(sizeof(double) * (ps->n ? ps->n : 1) * (size_t)(ps->user_stride ? ps->user_stride : 1));
+  for (int i = 0; i < ps->nuser; i++) {
+    const mrn_user_field *f = &ps->user_fields[i];
+    if (i) strcat(names, ",");
+    strcat(names, f->name);
+    comps[i] = f->ncomp;
+    init[i] = f->init;
+    if (!buf) continue;
+    for (size_t p = 0; p < ps->n; p++)
+      memcpy(buf + p * f->ncomp, ps->user + p * ps->user_stride + f->offset, sizeof(double) * f->ncomp);
+    mrn_h5w_dataset(w, g, f->name, H5T_NATIVE_DOUBLE, buf, ps->n, f->ncomp == 1 ? MRN_H5_RANK1 : f->ncomp, f->unit,
+                    "per-particle value registered by the deck (sim:particle_field), in particle order");
+  }
+  if (!buf && !w->failed) {
+    w->failed = 1;
+    snprintf(w->what, sizeof w->what, "/particles/user (out of memory)");
+  }
+  free(buf);
+  mrn_h5w_int32(w, g, "count", ps->nuser);
+  mrn_h5w_string(w, g, "names", names);
+  mrn_h5w_int32s(w, g, "components", comps, ps->nuser);
+  mrn_h5w_doubles(w, g, "init", init, ps->nuser);
+  H5Gclose(g);
+}
+
+/* The nodal values of the last step, as the .vti snapshots hold them: for
+ * post-processing only (a load does not read them; the next step recomputes
+ * every nodal value), over every node including the ghost layers, x fastest. */
+static void save_grid_nodes(mrn_h5w *w, const mrn_grid *grid) {
+  hid_t g = mrn_h5w_group(w, w->file, "grid/nodes");
+  if (g < 0) return;
+  mrn_h5w_int32s(w, g, "nnode", grid->nnode, 3);
+  mrn_h5w_dataset(w, g, "mass", H5T_NATIVE_DOUBLE, grid->mass, grid->n, MRN_H5_RANK1, "kg",
+                  "nodal mass of the last step (kg/m in 2D)");
+  mrn_h5w_dataset(w, g, "velocity", H5T_NATIVE_DOUBLE, grid->vel, grid->n, 3, "m/s",
+                  "nodal velocity V of the last step, after the boundary conditions");
+  mrn_h5w_dataset(w, g, "force", H5T_NATIVE_DOUBLE, grid->force, grid->n, 3, "N",
+                  "total nodal force of the last step (N/m in 2D)");
+  H5Gclose(g);
+}
+
 static void save_all(mrn_h5w *w, const mrn_sim *sim) {
   save_root(w);
   save_simulation(w, sim);
@@ -206,56 +257,135 @@ static void save_all(mrn_h5w *w, const mrn_sim *sim) {
   save_dt_policy(w, &sim->dt_policy);
   save_materials(w, sim);
   save_particles(w, sim);
+  save_user_fields(w, &sim->particles);
+  save_grid_nodes(w, &sim->grid);
 }
 
-/* HDF5 writes the temporary file by name; mrn_atomic_file reserved that name
- * and, on commit, fsyncs it (fsync covers every descriptor of the file) and
- * renames it into place, so a crash leaves the old checkpoint or the new one,
- * never half of one. */
-static int write_file(const mrn_sim *sim, const char *temp_path, const char *final_path) {
-  mrn_h5w w = {.file = H5I_INVALID_HID};
-  hid_t fapl = H5Pcreate(H5P_FILE_ACCESS);
-  if (fapl >= 0) H5Pset_fclose_degree(fapl, H5F_CLOSE_STRONG);
-  /* The HDF5 1.8 file format: its metadata (superblock, object headers with
-   * the attributes, B-trees) carries checksums, so a damaged file is refused
-   * by HDF5 instead of being decoded; every HDF5 since 1.8 and h5py read it. */
-  if (fapl >= 0) H5Pset_libver_bounds(fapl, H5F_LIBVER_V18, H5F_LIBVER_V18);
-  errno = 0;
-  w.file = H5Fcreate(temp_path, H5F_ACC_TRUNC, H5P_DEFAULT, fapl >= 0 ? fapl : H5P_DEFAULT);
-  if (fapl >= 0) H5Pclose(fapl);
-  if (w.file < 0) {
-    w.failed = 1;
-    w.err = errno;
-    snprintf(w.what, sizeof w.what, "the file");
-  } else {
-    save_all(&w, sim);
-    errno = 0;
-    /* the data only has to be complete once the file is closed */
-    if (H5Fclose(w.file) < 0 && !w.failed) {
-      w.failed = 1;
-      w.err = errno;
-      snprintf(w.what, sizeof w.what, "the file (closing it)");
-    }
+/* The file is built in memory (HDF5's core driver without a backing store)
+ * and its bytes are then written through mrn_atomic_file, which fsyncs the
+ * temporary file and renames it into place: a crash leaves the old checkpoint
+ * or the new one, never half of one. A full disk, a quota or a file-size
+ * limit thus fails an ordinary write() that is reported with the path and
+ * the reason; HDF5 never meets the failure itself (HDF5 1.10 keeps a file
+ * whose flush failed half-closed and crashes on it at exit).
+ *
+ * The image is taken when the in-memory file is closed, complete: the core
+ * driver hands its buffer to these callbacks, and the one for freeing it at
+ * close keeps it instead. (An image taken from the open file carries a
+ * superblock that HDF5 1.10 leaves with a wrong checksum.) */
+typedef struct image_catch {
+  void *buf;      /* the buffer allocated last */
+  size_t size;
+  void *kept_buf; /* the buffer of the last image closed */
+  int kept;
+} image_catch;
+
+static void *image_malloc(size_t size, H5FD_file_image_op_t op, void *udata) {
+  (void)op;
+  image_catch *c = udata;
+  void *p = malloc(size);
+  if (p) {
+    c->buf = p;
+    c->size = size;
   }
-  if (!w.failed) return MRN_OK;
-  if (w.err)
-    return mrn_error_code(MRN_ERR_IO, "cannot write '%s': %s (writing %s)", final_path, strerror(w.err), w.what);
-  return mrn_error_code(MRN_ERR_IO, "cannot write '%s': HDF5 could not write %s", final_path, w.what);
+  return p;
+}
+
+static void *image_realloc(void *ptr, size_t size, H5FD_file_image_op_t op, void *udata) {
+  (void)op;
+  image_catch *c = udata;
+  void *p = realloc(ptr, size);
+  if (p) {
+    c->buf = p;
+    c->size = size;
+  }
+  return p;
+}
+
+static void *image_memcpy(void *dest, const void *src, size_t size, H5FD_file_image_op_t op, void *udata) {
+  (void)op;
+  (void)udata;
+  return memcpy(dest, src, size);
+}
+
+/* HDF5 also opens and closes a short-lived image of its own through these
+ * callbacks; the file's buffer is the last one closed, and any buffer kept
+ * before it is released. */
+static herr_t image_free(void *ptr, H5FD_file_image_op_t op, void *udata) {
+  image_catch *c = udata;
+  if (op == H5FD_FILE_IMAGE_OP_FILE_CLOSE && ptr && ptr == c->buf) {
+    if (c->kept && c->kept_buf != ptr) free(c->kept_buf);
+    c->kept_buf = ptr;
+    c->kept = 1;
+    return 0;
+  }
+  if (ptr == c->buf) c->buf = NULL;
+  free(ptr);
+  return 0;
+}
+
+static void *image_udata_copy(void *udata) { return udata; }
+static herr_t image_udata_free(void *udata) {
+  (void)udata;
+  return 0;
+}
+
+static int build_image(const mrn_sim *sim, const char *final_path, void **image, size_t *size) {
+  mrn_h5w w = {.file = H5I_INVALID_HID};
+  image_catch c = {NULL, 0, NULL, 0};
+  H5FD_file_image_callbacks_t callbacks = {image_malloc, image_memcpy, image_realloc, image_free,
+                                           image_udata_copy, image_udata_free, &c};
+  hid_t fapl = H5Pcreate(H5P_FILE_ACCESS);
+  int ok = fapl >= 0 && H5Pset_fclose_degree(fapl, H5F_CLOSE_STRONG) >= 0 &&
+           /* The HDF5 1.8 file format: its metadata (superblock, object headers
+            * with the attributes, B-trees) carries checksums, so a damaged file
+            * is refused by HDF5 instead of being decoded; every HDF5 since 1.8
+            * and h5py read it. */
+           H5Pset_libver_bounds(fapl, H5F_LIBVER_V18, H5F_LIBVER_V18) >= 0 &&
+           H5Pset_fapl_core(fapl, 1 << 20, 0) >= 0 && H5Pset_file_image_callbacks(fapl, &callbacks) >= 0;
+  w.file = ok ? H5Fcreate(final_path, H5F_ACC_TRUNC, H5P_DEFAULT, fapl) : H5I_INVALID_HID;
+  if (fapl >= 0) H5Pclose(fapl);
+  *image = NULL;
+  *size = 0;
+  if (w.file < 0) return mrn_error_code(MRN_ERR_IO, "cannot write '%s': HDF5 could not create the file", final_path);
+  save_all(&w, sim);
+  /* the size of the file once everything is flushed (the image itself is
+   * taken from the closed file); the core driver's buffer beyond it is spare */
+  ssize_t eof = H5Fflush(w.file, H5F_SCOPE_GLOBAL) >= 0 ? H5Fget_file_image(w.file, NULL, 0) : -1;
+  if (eof <= 0) w.failed = 1;
+  if (H5Fclose(w.file) < 0) w.failed = 1;
+  if (c.kept && c.kept_buf == c.buf && !w.failed && (size_t)eof <= c.size) {
+    *image = c.buf;
+    *size = (size_t)eof;
+    return MRN_OK;
+  }
+  if (c.kept) free(c.kept_buf);
+  if (w.failed && w.what[0])
+    return mrn_error_code(MRN_ERR_IO, "cannot write '%s': HDF5 could not write %s", final_path, w.what);
+  return mrn_error_code(MRN_ERR_IO, "cannot write '%s': HDF5 could not build the file in memory", final_path);
 }
 
 int mrn_checkpoint_save(const mrn_sim *sim, const char *path) {
-  mrn_atomic_file file;
-  int rc = mrn_atomic_open(&file, path);
-  if (rc) return rc;
+  void *image;
+  size_t size;
   mrn_h5_quiet quiet;
   mrn_h5_silence(&quiet);
-  rc = write_file(sim, file.temp_path, path);
+  int rc = build_image(sim, path, &image, &size);
   mrn_h5_restore(&quiet);
-  if (rc) {
-    mrn_atomic_abort(&file);
-    return rc;
+  if (rc) return rc;
+  mrn_atomic_file file;
+  rc = mrn_atomic_open(&file, path);
+  if (rc == MRN_OK) {
+    errno = 0;
+    if (fwrite(image, 1, size, file.fp) != size) {
+      rc = mrn_error_code(MRN_ERR_IO, "cannot write '%s': %s", path, strerror(errno ? errno : EIO));
+      mrn_atomic_abort(&file);
+    } else {
+      rc = mrn_atomic_commit(&file);
+    }
   }
-  return mrn_atomic_commit(&file);
+  free(image);
+  return rc;
 }
 
 /* ---- loading ------------------------------------------------------------------ */
@@ -292,6 +422,15 @@ static int take_particles(mrn_sim *sim, const ck_data *d) {
     memcpy(ps->id, d->id, (size_t)d->n * sizeof *ps->id);
   }
   if (d->n && d->state_stride) memcpy(ps->state, d->state, (size_t)d->n * d->state_stride * sizeof(double));
+  /* the registered fields: all of them first (each widens the storage), then their values */
+  for (int i = 0; i < d->nuser; i++)
+    if (mrn_particles_add_user_field(ps, d->user[i].name, d->user[i].ncomp, d->user[i].init, d->user[i].unit))
+      return MRN_ERR;
+  for (int i = 0; i < d->nuser; i++) {
+    const mrn_user_field *f = &ps->user_fields[i];
+    for (int64_t p = 0; p < d->n; p++)
+      memcpy(ps->user + p * ps->user_stride + f->offset, d->user_values[i] + p * f->ncomp, sizeof(double) * f->ncomp);
+  }
   ps->n = (size_t)d->n;
   ps->next_id = d->next_id;
   return MRN_OK;
@@ -438,6 +577,10 @@ static void import_one(mrn_sim *sim, const ck_data *d, const import_plan *plan, 
   int target = plan->target[d->material[q]];
   ps->material[i] = target;
   ps->id[i] = ps->next_id++;
+  /* the deck's registered fields start at their initial values (a checkpoint's own are not carried over) */
+  for (int f = 0; f < ps->nuser; f++)
+    for (int k = 0; k < ps->user_fields[f].ncomp; k++)
+      ps->user[i * ps->user_stride + ps->user_fields[f].offset + k] = ps->user_fields[f].init;
   if (!ps->state_stride) return;
   /* history variables belong to a model: they carry over only to the same model */
   double *state = ps->state + i * (size_t)ps->state_stride;

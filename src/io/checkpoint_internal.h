@@ -45,6 +45,10 @@ typedef struct ck_data {
   int64_t n, next_id;
   int state_stride;
   double **field; /* one array per mrn_particle_field_at(i), n * ncomp values */
+  /* /particles/user: fields the deck registered (name, ncomp, init, unit; offset unused) */
+  int nuser;
+  mrn_user_field user[MRN_USER_FIELDS_MAX];
+  double *user_values[MRN_USER_FIELDS_MAX];
   int32_t *material;
   int64_t *id;
   double *state; /* n * state_stride */

@@ -307,6 +307,35 @@ static void read_particle_arrays(mrn_h5r *r, ck_data *d) {
   d->state = mrn_h5r_dataset(r, "/particles/state", MRN_H5_FLOAT64, d->n, d->state_stride);
 }
 
+/* /particles/user, when the deck registered fields (see save_user_fields) */
+static void read_user_fields(mrn_h5r *r, ck_data *d) {
+  const char *g = "/particles/user";
+  if (mrn_h5r_exists(r, g) != 1) return;
+  int64_t count = 0, comps[MRN_USER_FIELDS_MAX];
+  double init[MRN_USER_FIELDS_MAX];
+  char names[MRN_USER_FIELDS_MAX * MRN_USER_FIELD_NAME];
+  read_int_in(r, g, "count", 0, MRN_USER_FIELDS_MAX, &count);
+  if (r->failed || mrn_h5r_string(r, g, "names", names, sizeof names)) return;
+  if (count > 0 && (mrn_h5r_ints(r, g, "components", comps, (int)count) ||
+                    mrn_h5r_doubles(r, g, "init", init, (int)count)))
+    return;
+  char *save = NULL, *name = strtok_r(names, ",", &save);
+  for (int i = 0; i < count && !r->failed; i++, name = strtok_r(NULL, ",", &save)) {
+    if (require(r, name && strlen(name) < MRN_USER_FIELD_NAME && comps[i] >= 1 && comps[i] <= 9,
+                "%s: field %d of %lld is not named or has %lld components", g, i + 1, (long long)count,
+                (long long)comps[i]))
+      return;
+    mrn_user_field *f = &d->user[d->nuser];
+    snprintf(f->name, sizeof f->name, "%s", name);
+    f->ncomp = (int)comps[i];
+    f->init = init[i];
+    char path[128];
+    snprintf(path, sizeof path, "%s/%s", g, name);
+    if (mrn_h5r_has_attr(r, path, "units")) mrn_h5r_string(r, path, "units", f->unit, sizeof f->unit);
+    d->user_values[d->nuser++] = mrn_h5r_dataset(r, path, MRN_H5_FLOAT64, d->n, f->ncomp == 1 ? MRN_H5_RANK1 : f->ncomp);
+  }
+}
+
 static void read_particles(mrn_h5r *r, ck_data *d) {
   const char *g = "/particles";
   int64_t stride = 0;
@@ -322,6 +351,7 @@ static void read_particles(mrn_h5r *r, ck_data *d) {
               d->state_stride, max_nstate(d)))
     return;
   read_particle_arrays(r, d);
+  read_user_fields(r, d);
 }
 
 /* ---- particle values ---------------------------------------------------------- */
@@ -408,6 +438,7 @@ void ck_free(ck_data *d) {
   free(d->material);
   free(d->id);
   free(d->state);
+  for (int i = 0; i < d->nuser; i++) free(d->user_values[i]);
   memset(d, 0, sizeof *d);
 }
 

@@ -7,6 +7,7 @@
 #include <string.h>
 
 #include "core/error.h"
+#include "core/spec.h"
 #include "io/atomic_file.h"
 #include "io/particle_fields.h"
 #include "io/vti.h"
@@ -142,19 +143,35 @@ int mrn_output_write_vtk(mrn_output *o, const mrn_sim *sim) {
   int nf = 0;
   mrn_vtk_array arrays[MRN_OUTPUT_MAX_FIELDS];
   void *buffers[MRN_OUTPUT_MAX_FIELDS];
-  int count = o->nfields ? o->nfields : mrn_output_field_count();
+  /* every field by default: the built-in ones, then those the deck registered */
+  const int builtins = mrn_output_field_count();
+  int count = o->nfields ? o->nfields : builtins + sim->particles.nuser;
   int rc = MRN_OK;
   for (int i = 0; i < count && nf < MRN_OUTPUT_MAX_FIELDS; i++) {
-    const mrn_output_field *f = o->nfields ? mrn_output_field_find(o->fields[i]) : mrn_output_field_at(i);
-    if (!f) continue;
-    size_t elem = f->type == MRN_VTK_INT32 ? sizeof(int32_t) : 8;
-    buffers[nf] = malloc(elem * f->ncomp * (n ? n : 1));
+    const char *name = o->nfields      ? o->fields[i]
+                       : i < builtins ? mrn_output_field_at(i)->name
+                                      : sim->particles.user_fields[i - builtins].name;
+    mrn_field_ref f;
+    if (!mrn_field_lookup(sim, name, &f)) {
+      const char *known[MRN_OUTPUT_MAX_FIELDS + MRN_USER_FIELDS_MAX + 1];
+      int k = 0;
+      for (const char *const *b = mrn_output_field_names(); *b; b++) known[k++] = *b;
+      for (int u = 0; u < sim->particles.nuser; u++) known[k++] = sim->particles.user_fields[u].name;
+      known[k] = NULL;
+      const char *hint = mrn_suggest_from(known, name);
+      rc = mrn_error("output field '%s' is neither a built-in particle field nor one registered with "
+                     "sim:particle_field%s%s%s", name, hint ? " (did you mean '" : "", hint ? hint : "",
+                     hint ? "'?)" : "");
+      break;
+    }
+    size_t elem = f.type == MRN_VTK_INT32 ? sizeof(int32_t) : 8;
+    buffers[nf] = malloc(elem * f.ncomp * (n ? n : 1));
     if (!buffers[nf]) {
       rc = mrn_error_code(MRN_ERR_IO, "out of memory preparing '%s'", path);
       break;
     }
-    f->compute(sim, buffers[nf]);
-    arrays[nf] = (mrn_vtk_array){f->name, f->ncomp, f->type, buffers[nf]};
+    mrn_field_fill(sim, &f, buffers[nf]);
+    arrays[nf] = (mrn_vtk_array){f.name, f.ncomp, f.type, buffers[nf]};
     nf++;
   }
   if (rc == MRN_OK) rc = mrn_vtp_write(path, n, sim->particles.x, arrays, nf, o->encoding);
@@ -268,11 +285,15 @@ int mrn_output_maybe_csv(mrn_output *o, const mrn_sim *sim, const mrn_diagnostic
     return MRN_OK;
   }
   if (!o->csv && open_csv(o) != MRN_OK) return MRN_ERR_IO;
-  fprintf(o->csv, "%ld,%.17g,%.17g", sim->step, sim->time, sim->dt);
-  for (int i = 0; i < mrn_diagnostics_column_count(); i++) fprintf(o->csv, ",%.17g", values[i]);
-  fputc('\n', o->csv);
+  /* the row is formatted first and handed over in one write: with the stream
+   * flushed after every row, a kill never leaves part of a row in the file */
+  char row[64 * 26 + 64];
+  int len = snprintf(row, sizeof row, "%ld,%.17g,%.17g", sim->step, sim->time, sim->dt);
+  for (int i = 0; i < mrn_diagnostics_column_count(); i++)
+    len += snprintf(row + len, sizeof row - (size_t)len, ",%.17g", values[i]);
+  len += snprintf(row + len, sizeof row - (size_t)len, "\n");
+  fwrite(row, 1, (size_t)len, o->csv);
   o->csv_last_step = sim->step;
-  /* every row reaches the file whole, so a crash loses at most the rows not yet written */
   if (fflush(o->csv) != 0 || ferror(o->csv)) {
     char *path = mrn_path_join(o->dir, o->csv_name);
     int rc = mrn_error_code(MRN_ERR_IO, "cannot write '%s': %s", path, strerror(errno));

@@ -28,7 +28,9 @@ typedef struct mrn_output {
   int vtk_count;
   mrn_vtk_encoding encoding;
   int nfields;
-  const char *fields[MRN_OUTPUT_MAX_FIELDS];
+  /* names listed by the deck: built-in fields or fields it registered
+   * (checked when a snapshot is written); none: every field */
+  char fields[MRN_OUTPUT_MAX_FIELDS][48];
   mrn_pvd pvd;
 
   /* grid snapshots (.vti) beside the particle series, when set */

@@ -10,7 +10,8 @@
 #define FOR_PARTICLES(sim) for (size_t p = 0; p < (sim)->particles.n; p++)
 
 static void copy_field(const double *src, int ncomp, const mrn_sim *sim, void *out) {
-  memcpy(out, src, sizeof(double) * ncomp * sim->particles.n);
+  /* no particles: src may be NULL, which memcpy may not be given even for 0 bytes */
+  if (sim->particles.n) memcpy(out, src, sizeof(double) * ncomp * sim->particles.n);
 }
 
 static void f_velocity(const mrn_sim *sim, void *out) { copy_field(sim->particles.v, 3, sim, out); }
@@ -92,3 +93,25 @@ const mrn_output_field *mrn_output_field_find(const char *name) {
   return NULL;
 }
 const char *const *mrn_output_field_names(void) { return names; }
+
+int mrn_field_lookup(const mrn_sim *sim, const char *name, mrn_field_ref *out) {
+  const mrn_output_field *f = mrn_output_field_find(name);
+  if (f) {
+    *out = (mrn_field_ref){f->name, f->ncomp, f->type, f, NULL};
+    return 1;
+  }
+  const mrn_user_field *u = mrn_particles_user_field(&sim->particles, name);
+  if (!u) return 0;
+  *out = (mrn_field_ref){u->name, u->ncomp, MRN_VTK_FLOAT64, NULL, u};
+  return 1;
+}
+
+void mrn_field_fill(const mrn_sim *sim, const mrn_field_ref *f, void *out) {
+  if (f->builtin) {
+    f->builtin->compute(sim, out);
+    return;
+  }
+  const mrn_particles *ps = &sim->particles;
+  double *o = out;
+  FOR_PARTICLES(sim) memcpy(o + p * f->ncomp, ps->user + p * ps->user_stride + f->user->offset, sizeof(double) * f->ncomp);
+}

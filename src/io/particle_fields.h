@@ -26,4 +26,19 @@ const mrn_output_field *mrn_output_field_find(const char *name);
 /* NULL-terminated list of names */
 const char *const *mrn_output_field_names(void);
 
+/* A field of a given simulation by name: a built-in one of the table above,
+ * or a value the deck registered (particles/particles.h, mrn_user_field). */
+typedef struct mrn_field_ref {
+  const char *name;
+  int ncomp;
+  mrn_vtk_type type;
+  const mrn_output_field *builtin; /* NULL for a registered field */
+  const struct mrn_user_field *user;
+} mrn_field_ref;
+
+/* 1 and *out filled when `name` is a field of sim, else 0 */
+int mrn_field_lookup(const struct mrn_sim *sim, const char *name, mrn_field_ref *out);
+/* n * ncomp values of the field (of its type) into out */
+void mrn_field_fill(const struct mrn_sim *sim, const mrn_field_ref *f, void *out);
+
 #endif

@@ -7,6 +7,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <time.h>
 
 #include "core/error.h"
 #include "io/atomic_file.h"
@@ -15,29 +16,39 @@
 #define SERIES_FORMAT "moraine-series"
 #define SERIES_VERSION 1
 
-/* Rows per chunk. A flush rewrites the last chunk of every dataset, so small
- * chunks keep each append cheap; 512 rows (4 KiB) still make a long series
- * only a few thousand chunks. */
+/* Rows per chunk of the datasets in the file (4 KiB of doubles). */
 #define CHUNK_ROWS 512
 
-/* A column lives in memory until the next append (or the close) creates its
- * dataset: the file then changes only inside mrn_series_append(), and one
- * flush there takes every change to disk at once. */
+/* A publication (the whole file written under a temporary name and renamed
+ * into place) is made at an append only when the time since the last one is
+ * at least this many times what the last one cost: the rewrites then take at
+ * most 1/(1 + PUBLISH_RATIO) of the run's wall time, however long the series. */
+#define PUBLISH_RATIO 20.0
+
+/* Every value lives in memory; the file on disk is a copy, rewritten whole. */
 typedef struct column {
   char *name, *units, *description;
-  hid_t ds;       /* H5I_INVALID_HID until the dataset exists */
-  int attrs_new;  /* units/description changed after the dataset was made */
+  double *values; /* `rows` entries (NaN where the column had no value) */
   double pending; /* the value for the next row (NaN: none given) */
 } column;
 
 struct mrn_series {
   char *path;
-  hid_t file, time_ds, step_ds;
   column *cols;
   int ncol, cap;
-  long rows;
-  int broken; /* an append failed part-way: no more writes */
+  long rows, row_cap;
+  double *time;
+  int64_t *step;
+  int dirty;                   /* appended or declared since the last publication */
+  double last_end, last_cost;  /* wall clock at the end of the last publication, and its cost (s) */
+  int broken;                  /* a publication failed: no more writes */
 };
+
+static double wall_seconds(void) {
+  struct timespec ts;
+  clock_gettime(CLOCK_MONOTONIC, &ts);
+  return ts.tv_sec + 1e-9 * ts.tv_nsec;
+}
 
 /* ---- failures --------------------------------------------------------------- */
 
@@ -68,26 +79,22 @@ static int report(const mrn_h5w *w, const char *path) {
 /* ---- file and dataset properties -------------------------------------------- */
 
 /* The HDF5 1.8 file format, as the checkpoints use: checksummed metadata, and
- * readable by every HDF5 since 1.8. File locking is off: HDF5 would otherwise
- * hold an exclusive lock while the run has the file open, and every reader
- * (h5py, h5dump) would be refused until the run ends. */
+ * readable by every HDF5 since 1.8. The file is only open while a rewrite
+ * builds it under its temporary name, which no reader opens. */
 static hid_t file_access(void) {
   hid_t fapl = H5Pcreate(H5P_FILE_ACCESS);
   if (fapl < 0) return fapl;
   H5Pset_fclose_degree(fapl, H5F_CLOSE_STRONG);
   H5Pset_libver_bounds(fapl, H5F_LIBVER_V18, H5F_LIBVER_V18);
-#if H5_VERSION_GE(1, 10, 7) && !(H5_VERS_MAJOR == 1 && H5_VERS_MINOR == 12 && H5_VERS_RELEASE == 0)
-  H5Pset_file_locking(fapl, 0, 1);
-#endif
   return fapl;
 }
 
-/* A 1D dataset of `rows` entries that can grow without limit. Entries never
- * written read as the fill value, which for the columns is NaN: that is what
- * pads a column added late. */
-static hid_t make_dataset(mrn_h5w *w, hid_t file, const char *name, hid_t type, hsize_t rows, const char *units,
-                          const char *description) {
-  if (!begin(w)) return H5I_INVALID_HID;
+/* A 1D dataset of `rows` entries holding `data`, chunked with an unlimited
+ * maximum size (a reader may extend or append to a copy) and NaN as the fill
+ * value of the float columns. */
+static void write_dataset(mrn_h5w *w, hid_t file, const char *name, hid_t type, hid_t mem_type, hsize_t rows,
+                          const void *data, const char *units, const char *description) {
+  if (!begin(w)) return;
   hsize_t maxdims = H5S_UNLIMITED, chunk = CHUNK_ROWS;
   hid_t space = H5Screate_simple(1, &rows, &maxdims);
   hid_t dcpl = H5Pcreate(H5P_DATASET_CREATE);
@@ -97,21 +104,21 @@ static hid_t make_dataset(mrn_h5w *w, hid_t file, const char *name, hid_t type, 
     if (H5Tget_class(type) != H5T_FLOAT || H5Pset_fill_value(dcpl, H5T_NATIVE_DOUBLE, &nan) >= 0)
       ds = H5Dcreate2(file, name, type, space, H5P_DEFAULT, dcpl, H5P_DEFAULT);
   }
+  int ok = ds >= 0 && (rows == 0 || H5Dwrite(ds, mem_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, data) >= 0);
   if (space >= 0) H5Sclose(space);
   if (dcpl >= 0) H5Pclose(dcpl);
-  if (ds < 0) {
-    note_fail(w, "dataset /%s", name);
-    return H5I_INVALID_HID;
+  if (!ok) note_fail(w, "dataset /%s", name);
+  if (ds >= 0) {
+    mrn_h5w_string(w, ds, "units", units ? units : "");
+    mrn_h5w_string(w, ds, "description", description ? description : "");
+    H5Dclose(ds);
   }
-  mrn_h5w_string(w, ds, "units", units ? units : "");
-  mrn_h5w_string(w, ds, "description", description ? description : "");
-  return ds;
 }
 
-/* ---- creating the file ------------------------------------------------------- */
+/* ---- publishing the file ------------------------------------------------------ */
 
-/* the empty series: root attributes, /time and /step */
-static void write_skeleton(mrn_h5w *w, const char *temp_path) {
+/* the whole series into a new file at temp_path */
+static void write_all(mrn_h5w *w, const mrn_series *s, const char *temp_path) {
   hid_t fapl = file_access();
   hid_t fcpl = H5Pcreate(H5P_FILE_CREATE);
   /* datasets listed in the order added (h5dump --sort_by=creation_order) */
@@ -129,42 +136,51 @@ static void write_skeleton(mrn_h5w *w, const char *temp_path) {
   mrn_h5w_string(w, w->file, "moraine_version", MORAINE_VERSION " (" MORAINE_GIT_COMMIT ")");
   mrn_h5w_string(w, w->file, "description",
                  "time series: one entry per row in every dataset; NaN where a column had no value");
-  hid_t t = make_dataset(w, w->file, "time", H5T_IEEE_F64LE, 0, "s", "model time of the row");
-  hid_t st = make_dataset(w, w->file, "step", H5T_STD_I64LE, 0, "", "step number of the row");
-  if (t >= 0) H5Dclose(t);
-  if (st >= 0) H5Dclose(st);
+  const hsize_t rows = (hsize_t)s->rows;
+  write_dataset(w, w->file, "time", H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, rows, s->time, "s", "model time of the row");
+  write_dataset(w, w->file, "step", H5T_STD_I64LE, H5T_NATIVE_INT64, rows, s->step, "", "step number of the row");
+  for (int i = 0; i < s->ncol; i++)
+    write_dataset(w, w->file, s->cols[i].name, H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, rows, s->cols[i].values,
+                  s->cols[i].units, s->cols[i].description);
   errno = 0;
   if (H5Fclose(w->file) < 0) note_fail(w, "%s", "the file (closing it)");
   w->file = H5I_INVALID_HID;
 }
 
 /* HDF5 writes the temporary file by name; mrn_atomic_file reserved that name
- * and on commit fsyncs and renames it, so the series appears whole or not at all */
-static int create_file(const char *path) {
+ * and on commit fsyncs and renames it, so the file on disk is always a whole
+ * series: the previous publication or this one. */
+static int publish(mrn_series *s) {
+  if (s->broken) return mrn_error_code(MRN_ERR_IO, "cannot write '%s': an earlier write failed", s->path);
+  const double t0 = wall_seconds();
   mrn_atomic_file tmp;
-  int rc = mrn_atomic_open(&tmp, path);
-  if (rc != MRN_OK) return rc;
-  mrn_h5w w = {.file = H5I_INVALID_HID};
-  write_skeleton(&w, tmp.temp_path);
-  if (w.failed) {
-    rc = report(&w, path);
-    mrn_atomic_abort(&tmp);
+  int rc = mrn_atomic_open(&tmp, s->path);
+  if (rc == MRN_OK) {
+    mrn_h5w w = {.file = H5I_INVALID_HID};
+    write_all(&w, s, tmp.temp_path);
+    if (w.failed) {
+      rc = report(&w, s->path);
+      mrn_atomic_abort(&tmp);
+    } else {
+      rc = mrn_atomic_commit(&tmp);
+    }
+  }
+  if (rc != MRN_OK) {
+    s->broken = 1;
     return rc;
   }
-  return mrn_atomic_commit(&tmp);
+  s->dirty = 0;
+  s->last_end = wall_seconds();
+  s->last_cost = s->last_end - t0;
+  return MRN_OK;
 }
 
-static int open_file(mrn_series *s) {
-  hid_t fapl = file_access();
-  errno = 0;
-  s->file = H5Fopen(s->path, H5F_ACC_RDWR, fapl >= 0 ? fapl : H5P_DEFAULT);
-  if (fapl >= 0) H5Pclose(fapl);
-  if (s->file >= 0) s->time_ds = H5Dopen2(s->file, "time", H5P_DEFAULT);
-  if (s->time_ds >= 0) s->step_ds = H5Dopen2(s->file, "step", H5P_DEFAULT);
-  if (s->step_ds >= 0) return MRN_OK;
-  mrn_h5w w = {.file = s->file};
-  note_fail(&w, "%s", "the file (opening it)");
-  return report(&w, s->path);
+static int publish_quietly(mrn_series *s) {
+  mrn_h5_quiet quiet;
+  mrn_h5_silence(&quiet);
+  int rc = publish(s);
+  mrn_h5_restore(&quiet);
+  return rc;
 }
 
 static void release(mrn_series *s) {
@@ -172,8 +188,11 @@ static void release(mrn_series *s) {
     free(s->cols[i].name);
     free(s->cols[i].units);
     free(s->cols[i].description);
+    free(s->cols[i].values);
   }
   free(s->cols);
+  free(s->time);
+  free(s->step);
   free(s->path);
   free(s);
 }
@@ -186,14 +205,9 @@ int mrn_series_create(mrn_series **out, const char *path) {
     free(s);
     return mrn_error_code(MRN_ERR_IO, "cannot write '%s': out of memory", path);
   }
-  s->file = s->time_ds = s->step_ds = H5I_INVALID_HID;
-  mrn_h5_quiet quiet;
-  mrn_h5_silence(&quiet);
-  int rc = create_file(path);
-  if (rc == MRN_OK) rc = open_file(s);
-  mrn_h5_restore(&quiet);
+  int rc = publish_quietly(s); /* the empty series, so the file exists from the start */
   if (rc != MRN_OK) {
-    mrn_series_close(s); /* the file, if made, stays: it is a valid empty series */
+    release(s);
     return rc;
   }
   *out = s;
@@ -229,6 +243,26 @@ static int grow_columns(mrn_series *s) {
   return 0;
 }
 
+/* room for `rows` rows in every array; new entries of the columns are NaN */
+static int grow_rows(mrn_series *s, long rows) {
+  if (rows <= s->row_cap) return 0;
+  long cap = s->row_cap ? 2 * s->row_cap : 256;
+  while (cap < rows) cap *= 2;
+  double *time = realloc(s->time, (size_t)cap * sizeof *time);
+  if (time) s->time = time;
+  int64_t *step = realloc(s->step, (size_t)cap * sizeof *step);
+  if (step) s->step = step;
+  if (!time || !step) return -1;
+  for (int i = 0; i < s->ncol; i++) {
+    double *v = realloc(s->cols[i].values, (size_t)cap * sizeof *v);
+    if (!v) return -1;
+    for (long r = s->row_cap; r < cap; r++) v[r] = NAN;
+    s->cols[i].values = v;
+  }
+  s->row_cap = cap;
+  return 0;
+}
+
 /* replace *slot with a copy of text when text says something; 0 or -1 (memory) */
 static int take_text(char **slot, const char *text, int *changed) {
   if (!text || !*text || (*slot && strcmp(*slot, text) == 0)) return 0;
@@ -245,18 +279,20 @@ int mrn_series_add_column(mrn_series *s, const char *name, const char *units, co
   int idx = mrn_series_find(s, name);
   if (idx < 0) {
     char *copy = strdup(name);
-    if (!copy || grow_columns(s) != 0) {
+    double *values = malloc((size_t)(s->row_cap ? s->row_cap : 1) * sizeof *values);
+    if (!copy || !values || grow_columns(s) != 0) {
       free(copy);
+      free(values);
       return mrn_error_code(MRN_ERR_IO, "cannot write '%s': out of memory", s->path);
     }
+    for (long r = 0; r < s->row_cap; r++) values[r] = NAN; /* the rows before it existed */
     idx = s->ncol++;
-    s->cols[idx] = (column){copy, NULL, NULL, H5I_INVALID_HID, 0, NAN};
+    s->cols[idx] = (column){copy, NULL, NULL, values, NAN};
+    s->dirty = 1;
   }
   column *c = &s->cols[idx];
-  int changed = 0;
-  if (take_text(&c->units, units, &changed) != 0 || take_text(&c->description, description, &changed) != 0)
+  if (take_text(&c->units, units, &s->dirty) != 0 || take_text(&c->description, description, &s->dirty) != 0)
     return mrn_error_code(MRN_ERR_IO, "cannot write '%s': out of memory", s->path);
-  if (changed && c->ds >= 0) c->attrs_new = 1;
   return MRN_OK;
 }
 
@@ -280,72 +316,24 @@ int mrn_series_set_at(mrn_series *s, int column, double value) {
 
 /* ---- rows ---------------------------------------------------------------------- */
 
-/* replace an attribute's text (HDF5 attributes cannot change size in place) */
-static void rewrite_attr(mrn_h5w *w, hid_t ds, const char *attr, const char *text) {
-  if (!text || !begin(w)) return;
-  if (H5Aexists(ds, attr) > 0 && H5Adelete(ds, attr) < 0) {
-    note_fail(w, "attribute '%s'", attr);
-    return;
-  }
-  mrn_h5w_string(w, ds, attr, text);
-}
-
-/* the datasets of columns named since the last append (NaN for the rows
- * already written: the fill value), and units or descriptions given late */
-static void sync_columns(mrn_series *s, mrn_h5w *w) {
-  for (int i = 0; i < s->ncol && !w->failed; i++) {
-    column *c = &s->cols[i];
-    if (c->ds < 0) {
-      c->ds = make_dataset(w, s->file, c->name, H5T_IEEE_F64LE, (hsize_t)s->rows, c->units, c->description);
-    } else if (c->attrs_new) {
-      rewrite_attr(w, c->ds, "units", c->units);
-      rewrite_attr(w, c->ds, "description", c->description);
-      c->attrs_new = 0;
-    }
-  }
-}
-
-/* grow `ds` to row + 1 entries and write `value` (of memory type `type`) at `row` */
-static void write_entry(mrn_h5w *w, hid_t ds, const char *name, hid_t type, const void *value, hsize_t row) {
-  if (!begin(w)) return;
-  hsize_t size = row + 1, one = 1;
-  hid_t fs = H5I_INVALID_HID, ms = H5I_INVALID_HID;
-  int ok = H5Dset_extent(ds, &size) >= 0 && (fs = H5Dget_space(ds)) >= 0 &&
-           H5Sselect_hyperslab(fs, H5S_SELECT_SET, &row, NULL, &one, NULL) >= 0 &&
-           (ms = H5Screate_simple(1, &one, NULL)) >= 0 && H5Dwrite(ds, type, ms, fs, H5P_DEFAULT, value) >= 0;
-  if (fs >= 0) H5Sclose(fs);
-  if (ms >= 0) H5Sclose(ms);
-  if (!ok) note_fail(w, "dataset /%s", name);
-}
-
-static int append(mrn_series *s, long step, double time) {
-  if (s->broken) return mrn_error_code(MRN_ERR_IO, "cannot write '%s': an earlier write failed", s->path);
-  mrn_h5w w = {.file = s->file};
-  const hsize_t row = (hsize_t)s->rows;
-  const int64_t step64 = step;
-  sync_columns(s, &w);
-  write_entry(&w, s->time_ds, "time", H5T_NATIVE_DOUBLE, &time, row);
-  write_entry(&w, s->step_ds, "step", H5T_NATIVE_INT64, &step64, row);
-  for (int i = 0; i < s->ncol; i++)
-    write_entry(&w, s->cols[i].ds, s->cols[i].name, H5T_NATIVE_DOUBLE, &s->cols[i].pending, row);
-  /* the row reaches the file whole before the call returns: what makes the
-   * file readable while the run goes on, and after it is killed */
-  if (begin(&w) && H5Fflush(s->file, H5F_SCOPE_LOCAL) < 0) note_fail(&w, "%s", "the file (flushing it)");
-  if (w.failed) {
-    s->broken = 1;
-    return report(&w, s->path);
-  }
-  s->rows++;
-  for (int i = 0; i < s->ncol; i++) s->cols[i].pending = NAN;
-  return MRN_OK;
-}
-
 int mrn_series_append(mrn_series *s, long step, double time) {
-  mrn_h5_quiet quiet;
-  mrn_h5_silence(&quiet);
-  int rc = append(s, step, time);
-  mrn_h5_restore(&quiet);
-  return rc;
+  if (s->broken) return mrn_error_code(MRN_ERR_IO, "cannot write '%s': an earlier write failed", s->path);
+  if (grow_rows(s, s->rows + 1) != 0) return mrn_error_code(MRN_ERR_IO, "cannot write '%s': out of memory", s->path);
+  const long r = s->rows++;
+  s->time[r] = time;
+  s->step[r] = step;
+  for (int i = 0; i < s->ncol; i++) {
+    s->cols[i].values[r] = s->cols[i].pending;
+    s->cols[i].pending = NAN;
+  }
+  s->dirty = 1;
+  if (wall_seconds() - s->last_end < PUBLISH_RATIO * s->last_cost) return MRN_OK; /* published soon */
+  return publish_quietly(s);
+}
+
+int mrn_series_flush(mrn_series *s) {
+  if (!s || (!s->dirty && !s->broken)) return MRN_OK;
+  return publish_quietly(s);
 }
 
 /* ---- queries and closing ---------------------------------------------------------- */
@@ -358,22 +346,8 @@ const char *mrn_series_column_name(const mrn_series *s, int column) {
 
 int mrn_series_close(mrn_series *s) {
   if (!s) return MRN_OK;
-  mrn_h5_quiet quiet;
-  mrn_h5_silence(&quiet);
-  int rc = MRN_OK;
-  mrn_h5w w = {.file = s->file};
   /* columns named but never given a row still appear, empty */
-  if (s->file >= 0 && !s->broken) sync_columns(s, &w);
-  for (int i = 0; i < s->ncol; i++)
-    if (s->cols[i].ds >= 0) H5Dclose(s->cols[i].ds);
-  if (s->time_ds >= 0) H5Dclose(s->time_ds);
-  if (s->step_ds >= 0) H5Dclose(s->step_ds);
-  if (s->file >= 0) {
-    errno = 0;
-    if (H5Fclose(s->file) < 0) note_fail(&w, "%s", "the file (closing it)");
-  }
-  if (w.failed) rc = report(&w, s->path);
-  mrn_h5_restore(&quiet);
+  int rc = s->dirty && !s->broken ? publish_quietly(s) : MRN_OK;
   release(s);
   return rc;
 }

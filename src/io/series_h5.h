@@ -10,29 +10,28 @@
  *
  * Every dataset carries `units` and `description` attributes (fixed-length
  * UTF-8 strings; h5py gives bytes, .decode() gives the text); the root group
- * carries `format` = "moraine-series", `version` and `moraine_version`. The
- * datasets are chunked with an unlimited maximum size and a fill value of NaN.
+ * carries `format` = "moraine-series", `version`, `moraine_version` and
+ * `description`. The datasets are chunked (512 rows) with an unlimited
+ * maximum size and a fill value of NaN.
  *
  * Rows are staged and then appended: mrn_series_set() gives a value for the
- * next row, mrn_series_append() writes the row. A column that gets no value
+ * next row, mrn_series_append() adds the row. A column that gets no value
  * for a row holds NaN there, and a column first named after some rows exist
  * holds NaN for the earlier rows, so values recorded from Lua can come and go
- * by name. Columns are kept in memory until the next append (or the close)
- * creates their datasets: the open file changes only inside
- * mrn_series_append() and mrn_series_close().
+ * by name.
  *
- * Crash-safety: the empty file is created under a temporary name and renamed
- * into place (io/atomic_file.h), so it is never seen half made. After that
- * the file is appended in place (HDF5's single-writer/multiple-reader mode is
- * not needed): every mrn_series_append() creates the new columns, extends all
- * datasets, writes the row and flushes the file (H5Fflush), so between
- * appends the file on disk is complete and consistent, and a reader opening
- * it then (or after the run is killed) sees every appended row. A kill
- * during an append itself (an append of 30 columns takes about 0.1 ms) can
- * leave datasets of unequal length (a reader should take the shortest) or,
- * rarely, a file HDF5 cannot open; the CSV of the same values is then the
- * fallback. HDF5's file locking is turned off for this file so that readers
- * can open it while the run holds it open. */
+ * Crash-safety: the series is kept in memory and the file is a copy of it,
+ * written whole under a temporary name (`.NAME.tmp.PID`, io/atomic_file.h),
+ * fsynced and renamed over NAME. A reader, or a run killed at any instant
+ * (SIGKILL included), therefore finds either no file or a complete series
+ * that HDF5 opens, never a half-written one; a kill during a rewrite can
+ * leave the hidden temporary file, which no reader looks at. The file is
+ * rewritten at an append when the wall time since the last rewrite is at
+ * least 20 times what that rewrite cost (so rewriting costs at most about 5 %
+ * of the run, however long the series grows), at mrn_series_flush() and at
+ * the close: while a run goes on, the file may lag the appended rows by that
+ * interval (a few milliseconds for a short series; the CSV beside it is
+ * written row by row). Memory: 8 bytes per value, rows x (columns + 2). */
 #ifndef MRN_IO_SERIES_H5_H
 #define MRN_IO_SERIES_H5_H
 
@@ -45,7 +44,7 @@ int mrn_series_create(mrn_series **out, const char *path);
 
 /* Declare a column before any value is set for it, so it has units, a
  * description and its place in the order (its dataset appears with the next
- * append, or at the close). Declaring a name that exists updates its units
+ * rewrite of the file). Declaring a name that exists updates its units
  * and description where these are given (non-NULL, non-empty). Names are
  * non-empty, contain no '/', and are neither "time", "step" nor ".".
  * 0, MRN_ERR (bad name, message set) or MRN_ERR_IO (out of memory). */
@@ -58,11 +57,15 @@ int mrn_series_set(mrn_series *s, const char *name, double value);
 /* the same by column index (0 = the first column added); MRN_ERR if out of range */
 int mrn_series_set_at(mrn_series *s, int column, double value);
 
-/* Append the staged row at (step, time): every dataset grows by one entry,
- * columns without a value get NaN, and the file is flushed. The staged values
- * are cleared. 0 or MRN_ERR_IO; after a failure the series refuses further
- * appends (the file may have been left part-way). */
+/* Append the staged row at (step, time): every column grows by one entry,
+ * columns without a value get NaN; the file is rewritten if one is due (see
+ * above). The staged values are cleared. 0 or MRN_ERR_IO; after a failed
+ * rewrite the series refuses further appends (the file on disk stays the
+ * last complete one). */
 int mrn_series_append(mrn_series *s, long step, double time);
+/* Rewrite the file now if anything changed since the last rewrite: every
+ * appended row is then on disk. 0 or MRN_ERR_IO. */
+int mrn_series_flush(mrn_series *s);
 
 /* rows appended so far; columns and their names in order */
 long mrn_series_rows(const mrn_series *s);

@@ -37,6 +37,8 @@ void mrn_particles_free(mrn_particles *p) {
   free(p->material);
   free(p->id);
   free(p->state);
+  free(p->user);
+  p->user = NULL;
   p->material = NULL;
   p->id = NULL;
   p->state = NULL;
@@ -56,7 +58,8 @@ int mrn_particles_reserve(mrn_particles *p, size_t cap) {
     if (!grow((void **)field_ptr(p, i), cap, sizeof(double) * field_table[i].ncomp))
       return mrn_error("particles: out of memory for %zu particles", cap);
   if (!grow((void **)&p->material, cap, sizeof(int32_t)) || !grow((void **)&p->id, cap, sizeof(int64_t)) ||
-      (p->state_stride > 0 && !grow((void **)&p->state, cap, sizeof(double) * p->state_stride)))
+      (p->state_stride > 0 && !grow((void **)&p->state, cap, sizeof(double) * p->state_stride)) ||
+      (p->user_stride > 0 && !grow((void **)&p->user, cap, sizeof(double) * p->user_stride)))
     return mrn_error("particles: out of memory for %zu particles", cap);
   p->cap = cap;
   return MRN_OK;
@@ -88,6 +91,9 @@ long mrn_particles_add(mrn_particles *p, const double x[3], double mass, double 
   p->material[i] = material;
   p->id[i] = p->next_id++;
   for (int k = 0; k < p->state_stride; k++) p->state[i * p->state_stride + k] = 0.0;
+  for (int f = 0; f < p->nuser; f++)
+    for (int k = 0; k < p->user_fields[f].ncomp; k++)
+      p->user[i * p->user_stride + p->user_fields[f].offset + k] = p->user_fields[f].init;
   return (long)i;
 }
 
@@ -105,6 +111,8 @@ void mrn_particles_compact(mrn_particles *p, const unsigned char *keep) {
       p->id[out] = p->id[i];
       if (p->state_stride)
         memcpy(p->state + out * p->state_stride, p->state + i * p->state_stride, sizeof(double) * p->state_stride);
+      if (p->user_stride)
+        memcpy(p->user + out * p->user_stride, p->user + i * p->user_stride, sizeof(double) * p->user_stride);
     }
     out++;
   }

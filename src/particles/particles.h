@@ -27,6 +27,19 @@
   X(e_elastic, 1, "elastic energy stored (J; J/m in 2D)")                                   \
   X(w_plastic, 1, "accumulated plastic work (J), negative while dissipating (000, Eq. 65)")
 
+/* A per-particle value registered by a deck (sim:particle_field): `ncomp`
+ * doubles per particle at `offset` within each particle's record of the
+ * `user` array, starting at `init` for every particle added. */
+#define MRN_USER_FIELDS_MAX 16
+#define MRN_USER_FIELD_NAME 32
+typedef struct mrn_user_field {
+  char name[MRN_USER_FIELD_NAME];
+  int ncomp;
+  int offset;
+  double init;
+  char unit[16];
+} mrn_user_field;
+
 typedef struct mrn_particles {
   size_t n, cap;
   int dim;
@@ -37,6 +50,10 @@ typedef struct mrn_particles {
   int64_t *id;       /* stable identifier, unique in a simulation */
   double *state;     /* material history variables, `state_stride` per particle */
   int state_stride;
+  double *user;      /* values of the registered fields, `user_stride` per particle */
+  int user_stride;
+  int nuser;
+  mrn_user_field user_fields[MRN_USER_FIELDS_MAX];
   int64_t next_id;
 } mrn_particles;
 
@@ -49,6 +66,12 @@ int mrn_particles_set_state_stride(mrn_particles *p, int stride);
  * rest and unstrained (F = I, zero stress). Returns its index, or -1 on
  * allocation failure (message set). */
 long mrn_particles_add(mrn_particles *p, const double x[3], double mass, double vol, int material);
+/* Register a per-particle field of ncomp values that every particle, present
+ * and future, starts at `init`. 0 or MRN_ERR (name taken, too many fields,
+ * memory; message set). */
+int mrn_particles_add_user_field(mrn_particles *p, const char *name, int ncomp, double init, const char *unit);
+/* the registered field `name`, or NULL */
+const mrn_user_field *mrn_particles_user_field(const mrn_particles *p, const char *name);
 /* remove particles whose keep[i] == 0, preserving order */
 void mrn_particles_compact(mrn_particles *p, const unsigned char *keep);
 

@@ -35,6 +35,10 @@ int mrn_particles_permute(mrn_particles *p, const uint32_t *order) {
   for (size_t k = 0; k < stride; k++)
     permute_component((char *)p->state, sizeof(double) * stride, sizeof(double) * k, sizeof(double), order, n,
                       scratch);
+  const size_t ustride = (size_t)p->user_stride;
+  for (size_t k = 0; k < ustride; k++)
+    permute_component((char *)p->user, sizeof(double) * ustride, sizeof(double) * k, sizeof(double), order, n,
+                      scratch);
   free(scratch);
   return MRN_OK;
 }

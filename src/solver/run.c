@@ -54,7 +54,11 @@ static int after_step(mrn_sim *sim, mrn_output *out, mrn_run_options *opt, int f
   int rc;
   for (int i = 0; i < opt->nhooks; i++)
     if (due_hook(&opt->hooks[i], sim) && (rc = opt->hooks[i].fn(opt->hooks[i].ctx, sim)) != 0) return rc;
+  const int snapshots = out ? out->vtk_count : 0;
   if (out && (rc = mrn_output_maybe_vtk(out, sim)) != MRN_OK) return rc;
+  if (out && out->vtk_count != snapshots) /* a snapshot was just written */
+    for (int i = 0; i < opt->nhooks; i++)
+      if (opt->hooks[i].at_output && (rc = opt->hooks[i].fn(opt->hooks[i].ctx, sim)) != 0) return rc;
   int thermo_due = opt->thermo_every > 0 && (first || sim->step % opt->thermo_every == 0);
   int csv_due = out && (out->csv_name || out->series_name) &&
                 (first || (out->csv_every > 0 && sim->step % out->csv_every == 0));

@@ -17,6 +17,7 @@ typedef int (*mrn_hook_fn)(void *ctx, mrn_sim *sim);
 typedef struct mrn_hook {
   long every_steps;   /* > 0: call every this many steps */
   double every_time;  /* > 0: call every this much model time */
+  int at_output;      /* 1: call after each VTK snapshot the run writes */
   double next_time;
   mrn_hook_fn fn;
   void *ctx;

@@ -19,18 +19,10 @@ from vtk.util import numpy_support
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from vtk_read import read_pvd  # noqa: E402
+from checklib import Checks  # noqa: E402
 
 outdir, series, nx, ny = sys.argv[1], sys.argv[2], int(sys.argv[3]), int(sys.argv[4])
-passed = failed = 0
-
-
-def check(cond, what):
-    global passed, failed
-    if cond:
-        passed += 1
-    else:
-        failed += 1
-        print("FAIL:", what)
+check = Checks("check_grid_run")
 
 
 with open(os.path.join(outdir, "diagnostics.csv")) as f:
@@ -50,5 +42,4 @@ for k, (t, path) in enumerate(entries):
     if k > 0 and "mass" in arrays:
         m = numpy_support.vtk_to_numpy(arrays["mass"]).sum()
         check(abs(m - total_mass) <= 1e-12 * total_mass, f"{path}: nodal mass {m} vs particle mass {total_mass}")
-print(f"{passed} passed, {failed} failed")
-sys.exit(1 if failed else 0)
+sys.exit(check.report())

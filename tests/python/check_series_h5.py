@@ -3,8 +3,8 @@
 
     check_series_h5.py [--extra-columns] SERIES.h5 SERIES.csv [SERIES.h5 SERIES.csv ...]
 
-For each pair, reads the series with h5py and, when h5dump is installed, with
-h5dump, and checks that:
+For each pair, reads the series with h5py and with h5dump (a missing h5dump
+is a failure), and checks that:
   - the file is a moraine series (root attribute format = "moraine-series");
   - /time, /step and every column are 1D datasets of the same length, each
     with `units` and `description` attributes;
@@ -26,19 +26,12 @@ import sys
 import h5py
 import numpy as np
 
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from checklib import Checks  # noqa: E402
+
 RTOL = 4 * np.finfo(np.float64).eps  # both sides come from the same double
 
-passed = 0
-failed = 0
-
-
-def check(cond, what):
-    global passed, failed
-    if cond:
-        passed += 1
-    else:
-        failed += 1
-        print(f"FAIL: {what}", file=sys.stderr)
+check = Checks("check_series_h5")
 
 
 def text(value):
@@ -128,9 +121,9 @@ def main(argv):
         print("usage: check_series_h5.py [--extra-columns] SERIES.h5 SERIES.csv [SERIES.h5 SERIES.csv ...]",
               file=sys.stderr)
         return 2
+    # h5dump (Debian: hdf5-tools, installed by scripts/install-deps.sh) is part of the check
     have_h5dump = shutil.which("h5dump") is not None
-    if not have_h5dump:
-        print("check_series_h5: h5dump not found, reading with h5py only", file=sys.stderr)
+    check(have_h5dump, "h5dump is installed (apt-get install hdf5-tools)")
     for h5_path, csv_path in zip(argv[1::2], argv[2::2]):
         label = os.path.basename(h5_path)
         try:
@@ -140,8 +133,7 @@ def main(argv):
                 check_h5dump(h5_path, columns, names, label)
         except (OSError, KeyError, ValueError, IndexError) as e:
             check(False, f"{label}: {e}")
-    print(f"check_series_h5: {passed} passed, {failed} failed")
-    return 1 if failed else 0
+    return check.report()
 
 
 if __name__ == "__main__":

@@ -17,22 +17,13 @@ from vtk.util import numpy_support
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import vtk_read  # noqa: E402  (the .pvd parser)
+from checklib import Checks  # noqa: E402
 
 ORIGIN = (-1.0, 2.0, 0.5)  # make_grid() in test_vti.c
 CELL = 0.5
 NCELL = (4, 3, 2)
 
-passed = 0
-failed = 0
-
-
-def check(cond, what):
-    global passed, failed
-    if cond:
-        passed += 1
-    else:
-        failed += 1
-        print(f"FAIL: {what}", file=sys.stderr)
+check = Checks("check_vti")
 
 
 def read_image(path):
@@ -130,8 +121,7 @@ def main():
         check(all(os.path.isfile(f) for _, f in series), "pvd files exist")
     except (vtk_read.VtkReadError, OSError) as e:
         check(False, str(e))
-    print(f"check_vti: {passed} passed, {failed} failed")
-    return 1 if failed else 0
+    return check.report()
 
 
 if __name__ == "__main__":

@@ -12,20 +12,11 @@ import numpy as np
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import vtk_read  # noqa: E402
+from checklib import Checks  # noqa: E402
 
 NPTS = 37
 
-passed = 0
-failed = 0
-
-
-def check(cond, what):
-    global passed, failed
-    if cond:
-        passed += 1
-    else:
-        failed += 1
-        print(f"FAIL: {what}", file=sys.stderr)
+check = Checks("test_vtk_roundtrip")
 
 
 def expected():
@@ -86,8 +77,7 @@ def main():
         check(not [f for f in os.listdir(d) if ".tmp." in f], "no temporary files left")
     except vtk_read.VtkReadError as e:
         check(False, str(e))
-    print(f"{passed} passed, {failed} failed")
-    return 0 if failed == 0 else 1
+    return check.report()
 
 
 if __name__ == "__main__":

@@ -10,16 +10,7 @@
 #include "check.h"
 #include "shape/shape.h"
 
-#define DIM 2
-#define KNAME(name) name##_2d
-#include "transfer/stencil.h"
-#undef DIM
-#undef KNAME
-#define DIM 3
-#define KNAME(name) name##_3d
-#include "transfer/stencil.h"
-#undef DIM
-#undef KNAME
+#include "transfer/stencils.h"
 
 static double rnd(unsigned *s) {
   *s = *s * 1664525u + 1013904223u;

@@ -7,7 +7,7 @@
  *                               columns, dt, and recorded values that come
  *                               and go (NaN where not given)
  *                           DIR/killed.h5 + killed.csv   written by a process
- *                               killed with SIGKILL between two appends
+ *                               killed with SIGKILL after a flush, with a row staged
  *
  * The series are read back here with HDF5's C library (through io/h5util.h),
  * while the writer still has the file open (h5dump, another process), and
@@ -245,6 +245,7 @@ static void test_readable_while_open(const char *dir) {
   pair p = {0};
   CHECK(pair_open(&p, dir, "open") == MRN_OK);
   for (long r = 0; r < 5 && p.s; r++) CHECK(pair_row(&p, r) == MRN_OK);
+  CHECK(p.s && mrn_series_flush(p.s) == MRN_OK); /* every appended row on disk */
   char *h5 = mrn_path_join(dir, "open.h5");
   char *out = mrn_path_join(dir, "open.txt");
   char cmd[1024];
@@ -263,8 +264,8 @@ static void test_readable_while_open(const char *dir) {
   free(out);
 }
 
-/* A child appends rows, stages one more and is killed: the file it leaves
- * holds every appended row and nothing of the staged one. */
+/* A child appends rows, flushes, stages one more and is killed: the file it
+ * leaves holds every appended row and nothing of the staged one. */
 static int write_killed(const char *dir, long rows) {
   pid_t pid = fork();
   if (pid < 0) return -1;
@@ -273,6 +274,7 @@ static int write_killed(const char *dir, long rows) {
     if (pair_open(&p, dir, "killed") != MRN_OK) _exit(3);
     for (long r = 0; r < rows; r++)
       if (pair_row(&p, r) != MRN_OK) _exit(4);
+    if (mrn_series_flush(p.s) != MRN_OK) _exit(6);
     mrn_series_set(p.s, "runout", 99.0); /* staged, never appended */
     mrn_series_set(p.s, "never_appended", 1.0);
     raise(SIGKILL);
