@@ -1,0 +1,61 @@
+/* moraine: the implicit integrator's state and its grid-side operations
+ * (grid_system.c), shared with the step (implicit.c). Not a public header. */
+#ifndef MRN_IMPLICIT_IMPLICIT_INTERNAL_H
+#define MRN_IMPLICIT_IMPLICIT_INTERNAL_H
+
+#include "implicit/emc_stress.h"
+#include "implicit/implicit.h"
+#include "implicit/linear_solver.h"
+#include "implicit/stencil.h"
+
+struct mrn_implicit {
+  mrn_sim *sim;
+  mrn_implicit_options opt;
+  int dim;
+  size_t np;
+  mrn_emc_material mat[MRN_MAX_MATERIALS];
+  mrn_emc_state *st;   /* per particle, start of step */
+  mrn_emc_result *res; /* per particle, at the current Newton iterate */
+  double *diss;        /* accumulated dissipation V_0 sum dD per particle */
+  double *fpt;         /* 3 per particle: point forces */
+  double load_factor;  /* multiplies every point force */
+  mrn_implicit_stencil *sten;
+  double work_ext;
+  double pic_loss; /* sum over steps of sum m |v_p - N v_t|^2 / 2 under PIC (001 Eq. 37) */
+
+  /* active nodes of the step, in grid-index order */
+  int *dof;      /* grid.n: active index or -1 */
+  size_t *act;   /* nact grid indices */
+  int *ijk;      /* 3 per active node */
+  size_t nact, act_cap;
+  /* node pairs: column node b and row node a = b + off[r] */
+  int W, R, NR, rc; /* stencil width 2 sup - 1, reach sup - 1, pairs per node, r of a == b */
+  long off[125];
+  double *Kb;    /* nact * NR * 9: K_(a i),(b k) at [(b NR + r) 9 + 3 i + k] */
+  double *Mc;    /* nact * NR consistent mass */
+  unsigned char *touched;
+  double *ml;    /* lumped mass per active node */
+  double *gmass; /* grid.n: lumped mass of every node, for the mass floor */
+  int *fdof;     /* dim per active node: free dof index or -1 (fixed) */
+  int nfree;
+  double *v0, *u, *fint, *fext, *p, *r, *du; /* 3 per active node; r, du per free dof */
+  mrn_csc A;
+};
+
+/* stencils at the start-of-step positions (small nodes left out), active
+ * nodes, clamped components; 0 or error */
+int mrn_implicit_setup_step(mrn_implicit *im);
+/* mass matrices, grid momentum and mid-step external forces (001 Eqs. 15-19, 26) */
+void mrn_implicit_map_to_grid(mrn_implicit *im);
+/* the free-dof matrix alpha M~ + beta K in im->A */
+int mrn_implicit_build_matrix(mrn_implicit *im, double alpha, double beta);
+/* y = M~ x over all active components (3 per active node) */
+void mrn_implicit_mass_multiply(const mrn_implicit *im, const double *x, double *y);
+/* dF = I + sum_A u_A (x) grad N_A (001 Eq. 25) */
+void mrn_implicit_increment(const mrn_implicit *im, const mrn_implicit_stencil *s, double dF[9]);
+/* internal forces (001 Eq. 44) and stiffness (001 Eq. A.10) at the current u */
+void mrn_implicit_assemble(mrn_implicit *im);
+/* M~ v = p on the free components (001 Eq. 26) */
+int mrn_implicit_project_velocity(mrn_implicit *im, const double *p, double *v);
+
+#endif

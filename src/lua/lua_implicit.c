@@ -1,0 +1,212 @@
+/* moraine: the implicit integrator of a deck (src/implicit, paper 001).
+ *
+ *   local imp = sim:implicit{ mass = "consistent", mapping = "FLIP", tol = 1e-11, dt_factor = 5 }
+ *   imp:point_force{ region = mpm.box{...}, force = { 0, -5e5 } }
+ *   imp:load_factor(t / 25)   -- scales every point force from the next step
+ *   local h = imp:step()      -- { dt, iterations, errors = {...}, residual }
+ *   local e = imp:energy()    -- { kinetic, strain, dissipated, external_work, total, momentum, angular }
+ * The deck drives the time loop; every option is checked against the specs
+ * below (listed by `moraine --list-options`). */
+#include <lauxlib.h>
+#include <math.h>
+#include <string.h>
+
+#include "core/error.h"
+#include "implicit/implicit.h"
+#include "lua/lua_check.h"
+#include "lua/lua_internal.h"
+
+#define MRN_LUA_IMPLICIT "moraine.implicit"
+
+static const char *const mass_choices[] = {"consistent", "lumped", "effective", NULL};
+static const char *const mapping_choices[] = {"FLIP", "PIC", NULL};
+
+static const mrn_spec implicit_specs[] = {
+    {"mass", MRN_SPEC_STRING, 0, 0, 0, 0, 0, 0, NULL,
+     "mass matrix: consistent (default), lumped, or effective (1 - eps) M + eps M_lumped (001 Eq. 18)", mass_choices},
+    {"eps", MRN_SPEC_NUMBER, 0, 0.5, 0, 1, 0, 0, "", "lumped weight of the effective mass matrix (mass = \"effective\")",
+     NULL},
+    {"mapping", MRN_SPEC_STRING, 0, 0, 0, 0, 0, 0, NULL, "grid-to-point velocity mapping: FLIP (default) or PIC (001 Eqs. 28-29)",
+     mapping_choices},
+    {"tol", MRN_SPEC_NUMBER, 0, 1e-11, 0, 1, 1, 0, "", "Newton tolerance on f_err^(k) / f_err^(1) (001 §3.4)", NULL},
+    {"max_iter", MRN_SPEC_INTEGER, 0, 20, 2, MRN_IMPLICIT_MAX_ITER, 0, 0, "", "Newton iterations before a step fails", NULL},
+    {"dt", MRN_SPEC_NUMBER, 0, 0, 0, HUGE_VAL, 1, 0, "s", "fixed time step (default: adaptive, see dt_factor)", NULL},
+    {"dt_factor", MRN_SPEC_NUMBER, 0, 5, 0, HUGE_VAL, 1, 0, "",
+     "adaptive step: this factor times the grid-averaged CFL estimate of 001 Eq. 61", NULL},
+    {"min_node_mass", MRN_SPEC_NUMBER, 0, 1e-3, 0, 1, 0, 1, "",
+     "nodes lighter than this times the heaviest point are left out (MLS functions on the rest)", NULL},
+};
+
+static const mrn_spec force_specs[] = {
+    {"region", MRN_SPEC_ANY, 1, 0, 0, 0, 0, 0, NULL, "the material points loaded (those inside at the call)", NULL},
+    {"force", MRN_SPEC_VECTOR, 0, 0, -HUGE_VAL, HUGE_VAL, 0, 0, "N", "total point force, split equally (N/m in 2D)", NULL},
+    {"traction", MRN_SPEC_VECTOR, 0, 0, -HUGE_VAL, HUGE_VAL, 0, 0, "Pa",
+     "traction: each point gets traction times its face V0^((dim-1)/dim)", NULL},
+};
+
+typedef struct implicit_box {
+  mrn_implicit *im;
+} implicit_box;
+
+static mrn_implicit *check_implicit(lua_State *L, int idx) {
+  implicit_box *b = luaL_checkudata(L, idx, MRN_LUA_IMPLICIT);
+  if (!b->im) luaL_error(L, "implicit integrator has been freed");
+  /* the simulation (kept as user value) must still be alive */
+  lua_getiuservalue(L, idx, 1);
+  mrn_lua_check_sim(L, -1);
+  lua_pop(L, 1);
+  return b->im;
+}
+
+static int l_implicit_gc(lua_State *L) {
+  implicit_box *b = luaL_checkudata(L, 1, MRN_LUA_IMPLICIT);
+  mrn_implicit_free(b->im);
+  b->im = NULL;
+  return 0;
+}
+
+/* sim:implicit{...} */
+static int l_sim_implicit(lua_State *L) {
+  const char *where = "implicit{}";
+  mrn_sim *sim = mrn_lua_check_sim(L, 1);
+  if (lua_isnoneornil(L, 2)) lua_newtable(L), lua_replace(L, 2);
+  const int n = MRN_COUNT(implicit_specs);
+  mrn_lua_check_table(L, 2, where, implicit_specs, n);
+  mrn_implicit_options o;
+  mrn_implicit_options_default(&o);
+  const char *mass = mrn_lua_get_string(L, 2, where, implicit_specs, n, "mass");
+  if (mass) o.mass = !strcmp(mass, "lumped") ? MRN_MASS_LUMPED : !strcmp(mass, "effective") ? MRN_MASS_EFFECTIVE
+                                                                                            : MRN_MASS_CONSISTENT;
+  if (mrn_lua_has(L, 2, "eps")) {
+    if (o.mass != MRN_MASS_EFFECTIVE) mrn_lua_error(L, where, "eps: only used with mass = \"effective\"");
+  }
+  o.eps = mrn_lua_get_number(L, 2, where, implicit_specs, n, "eps");
+  const char *map = mrn_lua_get_string(L, 2, where, implicit_specs, n, "mapping");
+  if (map && !strcmp(map, "PIC")) o.mapping = MRN_MAPPING_PIC;
+  o.tol = mrn_lua_get_number(L, 2, where, implicit_specs, n, "tol");
+  o.max_iter = (int)mrn_lua_get_integer(L, 2, where, implicit_specs, n, "max_iter");
+  if (mrn_lua_has(L, 2, "dt") && mrn_lua_has(L, 2, "dt_factor"))
+    mrn_lua_error(L, where, "give either dt (fixed step) or dt_factor (adaptive), not both");
+  if (mrn_lua_has(L, 2, "dt")) o.dt = mrn_lua_get_number(L, 2, where, implicit_specs, n, "dt");
+  o.dt_factor = mrn_lua_get_number(L, 2, where, implicit_specs, n, "dt_factor");
+  o.min_node_mass = mrn_lua_get_number(L, 2, where, implicit_specs, n, "min_node_mass");
+  implicit_box *b = lua_newuserdatauv(L, sizeof *b, 1);
+  b->im = NULL;
+  luaL_setmetatable(L, MRN_LUA_IMPLICIT);
+  lua_pushvalue(L, 1);
+  lua_setiuservalue(L, -2, 1);
+  b->im = mrn_implicit_new(sim, &o);
+  if (!b->im) mrn_lua_error(L, where, "%s", mrn_error_message());
+  return 1;
+}
+
+static int l_step(lua_State *L) {
+  mrn_implicit *im = check_implicit(L, 1);
+  mrn_implicit_history h;
+  if (mrn_implicit_step(im, &h)) return luaL_error(L, "%s", mrn_error_message());
+  lua_createtable(L, 0, 4);
+  lua_pushnumber(L, h.dt), lua_setfield(L, -2, "dt");
+  lua_pushinteger(L, h.iterations), lua_setfield(L, -2, "iterations");
+  lua_pushnumber(L, h.residual), lua_setfield(L, -2, "residual");
+  lua_createtable(L, h.iterations, 0);
+  for (int k = 0; k < h.iterations; k++) lua_pushnumber(L, h.err[k]), lua_rawseti(L, -2, k + 1);
+  lua_setfield(L, -2, "errors");
+  return 1;
+}
+
+static void push_vector(lua_State *L, const double v[3]) {
+  lua_createtable(L, 3, 0);
+  for (int d = 0; d < 3; d++) lua_pushnumber(L, v[d]), lua_rawseti(L, -2, d + 1);
+}
+
+static int l_energy(lua_State *L) {
+  mrn_implicit *im = check_implicit(L, 1);
+  mrn_implicit_energy e;
+  mrn_implicit_energies(im, &e);
+  lua_createtable(L, 0, 7);
+  lua_pushnumber(L, e.kinetic), lua_setfield(L, -2, "kinetic");
+  lua_pushnumber(L, e.strain), lua_setfield(L, -2, "strain");
+  lua_pushnumber(L, e.dissipated), lua_setfield(L, -2, "dissipated");
+  lua_pushnumber(L, e.external_work), lua_setfield(L, -2, "external_work");
+  lua_pushnumber(L, e.total), lua_setfield(L, -2, "total");
+  lua_pushnumber(L, e.mapping_loss), lua_setfield(L, -2, "mapping_loss");
+  push_vector(L, e.momentum), lua_setfield(L, -2, "momentum");
+  push_vector(L, e.angular), lua_setfield(L, -2, "angular");
+  return 1;
+}
+
+static int l_next_dt(lua_State *L) {
+  mrn_implicit *im = check_implicit(L, 1);
+  double dt;
+  if (mrn_implicit_next_dt(im, &dt)) return luaL_error(L, "%s", mrn_error_message());
+  lua_pushnumber(L, dt);
+  return 1;
+}
+
+/* imp:point_force{ region, force | traction }: replaces the loads of the
+ * points inside region; returns how many points were loaded */
+static int l_point_force(lua_State *L) {
+  const char *where = "point_force{}";
+  mrn_implicit *im = check_implicit(L, 1);
+  lua_getiuservalue(L, 1, 1);
+  mrn_sim *sim = mrn_lua_check_sim(L, -1);
+  lua_pop(L, 1);
+  const int n = MRN_COUNT(force_specs);
+  mrn_lua_check_table(L, 2, where, force_specs, n);
+  lua_getfield(L, 2, "region");
+  mrn_region *r = mrn_lua_check_region(L, -1, where);
+  lua_pop(L, 1);
+  double f[3] = {0, 0, 0};
+  int has_force = mrn_lua_get_vector(L, 2, where, "force", sim->dim, f, 0);
+  int has_traction = mrn_lua_get_vector(L, 2, where, "traction", sim->dim, f, 0);
+  if (has_force == has_traction) mrn_lua_error(L, where, "give exactly one of force and traction");
+  const mrn_particles *ps = &sim->particles;
+  long count = 0;
+  for (size_t p = 0; p < ps->n; p++) count += mrn_region_contains(r, ps->x + 3 * p) == 1;
+  if (count == 0) mrn_lua_error(L, where, "region: holds no material point");
+  for (size_t p = 0; p < ps->n; p++) {
+    if (mrn_region_contains(r, ps->x + 3 * p) != 1) continue;
+    double fp[3];
+    double scale = has_force ? 1.0 / (double)count : pow(ps->vol0[p], (sim->dim - 1.0) / sim->dim);
+    for (int d = 0; d < 3; d++) fp[d] = f[d] * scale;
+    mrn_implicit_set_point_force(im, p, fp);
+  }
+  lua_pushinteger(L, count);
+  return 1;
+}
+
+static int l_load_factor(lua_State *L) {
+  mrn_implicit *im = check_implicit(L, 1);
+  double f = luaL_checknumber(L, 2);
+  if (!isfinite(f)) return luaL_error(L, "load_factor(): expected a finite number, got %f", f);
+  mrn_implicit_set_load_factor(im, f);
+  return 0;
+}
+
+static int l_clear_forces(lua_State *L) {
+  mrn_implicit_clear_point_forces(check_implicit(L, 1));
+  return 0;
+}
+
+void mrn_lua_open_implicit(lua_State *L, int module) {
+  (void)module;
+  luaL_newmetatable(L, MRN_LUA_IMPLICIT);
+  static const luaL_Reg meta[] = {{"__gc", l_implicit_gc}, {"__close", l_implicit_gc}, {NULL, NULL}};
+  luaL_setfuncs(L, meta, 0);
+  static const luaL_Reg methods[] = {{"step", l_step},           {"energy", l_energy},
+                                     {"next_dt", l_next_dt},     {"point_force", l_point_force},
+                                     {"clear_forces", l_clear_forces}, {"load_factor", l_load_factor}, {"free", l_implicit_gc},
+                                     {NULL, NULL}};
+  lua_newtable(L);
+  luaL_setfuncs(L, methods, 0);
+  lua_setfield(L, -2, "__index");
+  lua_pop(L, 1);
+  /* sim:implicit{...} joins the simulation's methods */
+  luaL_getmetatable(L, MRN_LUA_SIM);
+  lua_getfield(L, -1, "__index");
+  lua_pushcfunction(L, l_sim_implicit);
+  lua_setfield(L, -2, "implicit");
+  lua_pop(L, 2);
+  mrn_spec_register_group("implicit{}", implicit_specs, MRN_COUNT(implicit_specs));
+  mrn_spec_register_group("point_force{}", force_specs, MRN_COUNT(force_specs));
+}
