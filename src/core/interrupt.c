@@ -22,6 +22,9 @@ void mrn_interrupt_install(void) {
   sigemptyset(&sa.sa_mask);
   sigaction(SIGINT, &sa, NULL);
   sigaction(SIGTERM, &sa, NULL);
+  /* past a file-size limit (ulimit -f) write() then fails with EFBIG and the
+   * run stops with a message naming the file, instead of being killed */
+  signal(SIGXFSZ, SIG_IGN);
 }
 
 int mrn_interrupt_pending(void) { return (int)received; }

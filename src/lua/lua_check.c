@@ -1,4 +1,5 @@
 #include "lua/lua_check.h"
+#include "lua/moraine_lua.h"
 
 #include <lauxlib.h>
 #include <math.h>
@@ -6,13 +7,40 @@
 #include <stdio.h>
 #include <string.h>
 
-int mrn_lua_error(lua_State *L, const char *where, const char *fmt, ...) {
+/* push "FILE:LINE: where: message", the location being the deck line that called the API */
+static void push_message(lua_State *L, const char *where, const char *fmt, va_list ap) {
   char buf[1024];
+  vsnprintf(buf, sizeof buf, fmt, ap);
+  luaL_where(L, 1);
+  lua_pushfstring(L, "%s: %s", where, buf);
+  lua_concat(L, 2);
+}
+
+int mrn_lua_error(lua_State *L, const char *where, const char *fmt, ...) {
   va_list ap;
   va_start(ap, fmt);
-  vsnprintf(buf, sizeof buf, fmt, ap);
+  push_message(L, where, fmt, ap);
   va_end(ap);
-  return luaL_error(L, "%s: %s", where, buf);
+  return lua_error(L);
+}
+
+#define OUTPUT_ERROR_KEY "moraine.output_error"
+
+int mrn_lua_output_error(lua_State *L, const char *where, const char *fmt, ...) {
+  va_list ap;
+  va_start(ap, fmt);
+  push_message(L, where, fmt, ap);
+  va_end(ap);
+  lua_pushvalue(L, -1);
+  lua_setfield(L, LUA_REGISTRYINDEX, OUTPUT_ERROR_KEY);
+  return lua_error(L);
+}
+
+int mrn_lua_exit_status(lua_State *L) {
+  lua_getfield(L, LUA_REGISTRYINDEX, OUTPUT_ERROR_KEY);
+  int output = lua_type(L, -1) == LUA_TSTRING && lua_type(L, -2) == LUA_TSTRING && lua_rawequal(L, -1, -2);
+  lua_pop(L, 1);
+  return output ? MRN_EXIT_OUTPUT : 1;
 }
 
 static void list_choices(const char *const *choices, char *buf, size_t len) {
@@ -71,9 +99,12 @@ void mrn_lua_check_table(lua_State *L, int idx, const char *where, const mrn_spe
       }
       mrn_lua_error(L, where, "unknown key '%s' (valid keys: %s)", key, valid);
     }
-    if (!type_matches(L, -1, s->type))
+    if (!type_matches(L, -1, s->type)) {
+      if (s->type == MRN_SPEC_INTEGER && lua_type(L, -1) == LUA_TNUMBER)
+        mrn_lua_error(L, where, "%s must be a whole number, got %g", key, lua_tonumber(L, -1));
       mrn_lua_error(L, where, "%s must be %s %s, got %s", key,
                     s->type == MRN_SPEC_INTEGER ? "an" : "a", mrn_spec_type_name(s->type), luaL_typename(L, -1));
+    }
     lua_pop(L, 1);
   }
   for (int i = 0; i < count; i++) {
@@ -158,7 +189,9 @@ int mrn_lua_get_vector(lua_State *L, int idx, const char *where, const char *key
     if (lua_type(L, -1) != LUA_TNUMBER)
       mrn_lua_error(L, where, "%s[%d] must be a number, got %s", key, d + 1, luaL_typename(L, -1));
     out[d] = lua_tonumber(L, -1);
-    if (!isfinite(out[d])) mrn_lua_error(L, where, "%s[%d] must be finite, got %g", key, d + 1, out[d]);
+    if (!isfinite(out[d]))
+      mrn_lua_error(L, where, "%s[%d] must be finite, got %s", key, d + 1,
+                    isnan(out[d]) ? "NaN" : out[d] > 0 ? "inf" : "-inf");
     lua_pop(L, 1);
   }
   lua_pop(L, 1);

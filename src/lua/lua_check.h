@@ -18,6 +18,14 @@
 /* raise "where: message" with the caller's file and line */
 int mrn_lua_error(lua_State *L, const char *where, const char *fmt, ...) __attribute__((format(printf, 3, 4)));
 
+/* The same for an output file that could not be written (disk full, quota,
+ * file-size limit, permission): the message is also remembered, so that
+ * when it is what stops the deck moraine exits with MRN_EXIT_OUTPUT. */
+int mrn_lua_output_error(lua_State *L, const char *where, const char *fmt, ...) __attribute__((format(printf, 3, 4)));
+/* the exit status for the error message at the top of the stack: 1, or
+ * MRN_EXIT_OUTPUT when it is the last output error raised */
+int mrn_lua_exit_status(lua_State *L);
+
 /* check that idx is a table whose keys are all in specs and whose values have
  * the declared types; `where` names the function for messages ("simulation{}") */
 void mrn_lua_check_table(lua_State *L, int idx, const char *where, const mrn_spec *specs, int count);

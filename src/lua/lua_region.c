@@ -133,6 +133,9 @@ static int l_region(lua_State *L) {
 static int combine(lua_State *L, mrn_region_kind kind, const char *where) {
   int n = lua_gettop(L);
   if (n < 2) mrn_lua_error(L, where, "expected at least two regions, got %d", n);
+  /* every argument is checked before any reference is taken: an error
+   * raised half-way through would leak the partial combination */
+  for (int i = 1; i <= n; i++) mrn_lua_check_region(L, i, where);
   mrn_region *acc = mrn_lua_check_region(L, 1, where);
   mrn_region_ref(acc);
   for (int i = 2; i <= n; i++) {

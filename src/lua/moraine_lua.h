@@ -17,8 +17,13 @@ typedef struct mrn_deck_options {
 void mrn_lua_open(lua_State *L, const mrn_deck_options *opt);
 int luaopen_moraine(lua_State *L);
 
+/* exit status when the deck stopped because an output file could not be
+ * written (disk full, quota, file-size limit, permission); the files written
+ * before stay complete and no partial file is left */
+#define MRN_EXIT_OUTPUT 3
+
 /* Run a deck file. Returns 0 on success; on error prints "moraine: <message>"
- * to stderr and returns 1. */
+ * to stderr and returns 1, or MRN_EXIT_OUTPUT for an output error. */
 int mrn_lua_run_deck(const char *path, const mrn_deck_options *opt);
 
 /* the directory holding the pure-Lua library (lua/moraine/...'s parent) */

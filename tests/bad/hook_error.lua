@@ -1,4 +1,5 @@
--- expect: hook_error.lua:8: attempt to perform arithmetic on a nil value
+-- expect: hook_error.lua:9: attempt to perform arithmetic on a nil value
+-- case: runtime | an error inside a hook
 local mpm = require "moraine"
 local mat = mpm.material.linear_elastic{ density = 1000, E = 1e6, nu = 0.3 }
 local sim = mpm.simulation{ dim = 2, grid = { size = {1, 1}, cell = 0.1 }, gravity = {0, -9.81},

@@ -1,4 +1,5 @@
--- expect: import_other_dim.lua:9: import\(\): '.*flat.h5': the checkpoint is 2D but the simulation is 3D
+-- expect: import_other_dim.lua:10: import\(\): '.*flat.h5': the checkpoint is 2D but the simulation is 3D
+-- case: files | importing a 2D checkpoint into a 3D simulation
 local mat = mpm.material.linear_elastic{ density = 1000, E = 1e6, nu = 0.3 }
 local flat = mpm.simulation{ dim = 2, grid = { size = { 1, 1 }, cell = 0.1 }, thermo = 0, diagnostics = false }
 flat:add_particles(mpm.box{ min = { 0.2, 0.2 }, max = { 0.6, 0.6 } }, { material = mat })

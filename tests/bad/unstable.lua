@@ -1,4 +1,5 @@
--- expect: unstable.lua:9: run\{\}: step [0-9]+.*particle [0-9]+.*(non-finite|invert|left the grid).*the state at step [0-9]+ is in
+-- expect: unstable.lua:10: run\{\}: step [0-9]+.*particle [0-9]+.*(non-finite|invert|left the grid).*the state at step [0-9]+ is in
+-- case: runtime | a run with a fixed dt 15x above the CFL estimate (robust.unstable_cfl: exactly 10x)
 local mpm = require "moraine"
 local mat = mpm.material.linear_elastic{ density = 1000, E = 1e8, nu = 0.3 }
 local sim = mpm.simulation{ dim = 2, grid = { size = {1, 1}, cell = 0.05 }, gravity = {0, -9.81},

@@ -1,0 +1,7 @@
+-- expect: particles_unknown_key\.lua:7: add_particles\(\): unknown key 'per_axes' \(did you mean 'per_axis'\?\)
+-- case: keys | `per_axes` for `per_axis`
+local mpm = require "moraine"
+local mat = mpm.material.linear_elastic{ density = 1000, E = 1e6, nu = 0.3 }
+local sim = mpm.simulation{ dim = 2, grid = { size = {1, 1}, cell = 0.1 }, thermo = 0, diagnostics = false, series = false }
+local box = mpm.box{ min = {0.2, 0.2}, max = {0.4, 0.4} }
+sim:add_particles(box, { material = mat, per_axes = 2 })

@@ -1,0 +1,12 @@
+-- moraine robustness: a run whose every step takes a long while (a slow hook),
+-- for tests/robust/sigterm_twice.sh. The file "started" tells the test the
+-- run is inside its first hook.
+local mat = mpm.material.linear_elastic{ density = 1000, E = 1e6, nu = 0.3 }
+local sim = mpm.simulation{ dim = 2, grid = { size = { 1, 1 }, cell = 0.1 }, thermo = 0, name = "twice" }
+sim:add_particles(mpm.box{ min = { 0.2, 0.2 }, max = { 0.4, 0.4 } }, { material = mat })
+sim:hook{ every_steps = 1, fn = function(s)
+  local f = assert(io.open(mpm.outdir .. "/started", "w")) f:close()
+  local t = os.clock()
+  while os.clock() - t < 5 do end -- a slow analysis
+end }
+sim:run{ steps = 100 }
