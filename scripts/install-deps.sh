@@ -7,8 +7,11 @@ packages=(
   build-essential cmake pkg-config git
   liblua5.4-dev lua5.4            # the embedded Lua 5.4 (C API) and a stand-alone interpreter
   libhdf5-dev hdf5-tools          # HDF5 (checkpoints, time series) and h5dump
+  libsuitesparse-dev              # UMFPACK sparse LU for the implicit integrator
   python3 python3-numpy python3-vtk9 python3-h5py   # the tests read outputs with the real VTK reader
   python3-matplotlib gnuplot-nox  # plots (scripts/moraine-plot uses matplotlib, else gnuplot)
+  clang libclang-rt-14-dev        # the libFuzzer harnesses (-DMORAINE_FUZZ=ON, tests/fuzz/README.md)
+  valgrind                        # the weekly memcheck target (scripts/memcheck.sh)
 )
 
 missing=()

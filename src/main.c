@@ -13,6 +13,7 @@
 #include "core/error.h"
 #include "core/interrupt.h"
 #include "core/log.h"
+#include "core/warn.h"
 #include "io/atomic_file.h"
 #include "core/spec.h"
 #include "lua/moraine_lua.h"
@@ -32,14 +33,22 @@ static void usage(FILE *f) {
           "                       may be repeated\n"
           "  --threads N          number of OpenMP threads (default: all cores)\n"
           "  -q, --quiet          no thermo lines, progress bar or information messages\n"
+          "  --ignore-warning ID  silence one kind of warning (or 'all'); may be repeated\n"
           "  --list-options       print every deck option with its type, default and unit\n"
           "  -h, --help           this text\n"
           "  -v, --version        the version\n"
           "\n"
           "Exit status: 0 on success, 1 on any error (the message names the deck file\n"
-          "and line), 2 on a command-line error, 130 when SIGINT or SIGTERM stopped the\n"
-          "run (after writing a checkpoint; a second signal exits at once).\n"
-          "Documentation: doc/getting-started.md and doc/lua-api.md in the source tree.\n");
+          "and line), 2 on a command-line error, 3 when an output file could not be\n"
+          "written (disk full, quota, permission: the message names the file; every\n"
+          "earlier output stays complete), 130 when SIGINT or SIGTERM stopped the run\n"
+          "(after writing a checkpoint; a second signal exits at once).\n"
+          "Documentation (doc/ in the source tree; installed in share/doc/moraine):\n"
+          "  doc/getting-started.md            install, a first deck, outputs, ParaView\n"
+          "  doc/tutorial-column-collapse.md   a complete study step by step\n"
+          "  doc/lua-api.md                    every function, option, default, unit and error\n"
+          "  doc/validation.md                 how moraine compares with the references\n"
+          "  doc/README.md                     the index of all of them\n");
 }
 
 static void list_options(void) {
@@ -91,6 +100,15 @@ int main(int argc, char **argv) {
         return 2;
       }
       sets[nsets++] = argv[i];
+    } else if (!strcmp(a, "--ignore-warning")) {
+      if (++i >= argc) goto missing;
+      if (mrn_warning_ignore(argv[i]) != MRN_OK) {
+        fprintf(stderr, "moraine: --ignore-warning: %s (known: ", mrn_error_message());
+        for (const char *const *id = mrn_warning_ids(); *id; id++) fprintf(stderr, "%s, ", *id);
+        fprintf(stderr, "all)\n");
+        free(sets);
+        return 2;
+      }
     } else if (!strcmp(a, "--threads")) {
       if (++i >= argc) goto missing;
       char *end;

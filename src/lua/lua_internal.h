@@ -35,8 +35,15 @@ int mrn_lua_callback_pcall(lua_State *L, int nargs, int nresults);
 void mrn_lua_open_regions(lua_State *L, int module);
 void mrn_lua_open_materials(lua_State *L, int module);
 void mrn_lua_open_simulation(lua_State *L, int module);
+void mrn_lua_open_warnings(lua_State *L, int module);
+/* sim:implicit{...} and the integrator object (lua_implicit.c) */
+void mrn_lua_open_implicit(lua_State *L, int module);
 
 mrn_region *mrn_lua_check_region(lua_State *L, int idx, const char *where);
+/* the engine simulation of a simulation userdata (raises if freed) */
+struct mrn_sim *mrn_lua_check_sim(lua_State *L, int idx);
+/* particle_field, value, set_value, set_field, probe (lua_fields.c) into the methods table at idx */
+void mrn_lua_add_field_methods(lua_State *L, int methods);
 mrn_material *mrn_lua_check_material(lua_State *L, int idx, const char *where);
 
 /* read a vector of the simulation's dimension from a function's results or a table at idx */

@@ -12,6 +12,7 @@
 #include "core/spec.h"
 #include "io/output.h"
 #include "io/provenance.h"
+#include "lua/lua_check.h"
 #include "lua/lua_internal.h"
 #include "lua/moraine_lua.h"
 
@@ -46,6 +47,14 @@ const char *mrn_lua_library_dir(void) {
   return library_dir;
 }
 
+/* The path of the running executable (for decks that start further runs,
+ * lua/moraine/sweep.lua); "moraine" when /proc/self/exe cannot be read. */
+static void push_executable(lua_State *L) {
+  char exe[PATH_MAX];
+  ssize_t len = readlink("/proc/self/exe", exe, sizeof exe - 1);
+  lua_pushstring(L, len > 0 ? (exe[len] = '\0', exe) : "moraine");
+}
+
 static int l_param(lua_State *L) {
   const char *name = luaL_checkstring(L, 1);
   int has_default = !lua_isnone(L, 2);
@@ -78,10 +87,14 @@ int luaopen_moraine(lua_State *L) {
   mrn_lua_open_regions(L, module);
   mrn_lua_open_materials(L, module);
   mrn_lua_open_simulation(L, module);
+  mrn_lua_open_warnings(L, module);
+  mrn_lua_open_implicit(L, module);
   lua_pushstring(L, MORAINE_VERSION);
   lua_setfield(L, module, "version");
   lua_pushstring(L, mrn_lua_library_dir());
   lua_setfield(L, module, "library_dir");
+  push_executable(L);
+  lua_setfield(L, module, "executable");
   lua_pushcfunction(L, l_param);
   lua_setfield(L, module, "param");
   lua_getfield(L, LUA_REGISTRYINDEX, "moraine.args");
@@ -179,7 +192,7 @@ int mrn_lua_run_deck(const char *path, const mrn_deck_options *opt) {
   int rc = 0;
   if (status != LUA_OK) {
     fprintf(stderr, "moraine: %s\n", lua_tostring(L, -1));
-    rc = 1;
+    rc = mrn_lua_exit_status(L);
   }
   lua_close(L);
   mrn_output_forget_files();

@@ -15,6 +15,7 @@
 #include "lua/lua_internal.h"
 #include "solver/run.h"
 #include "solver/simulation.h"
+#include "solver/suspicious.h"
 
 #define MAX_HOOKS 32
 
@@ -28,6 +29,8 @@ typedef struct sim_box {
   long thermo_every;
   int progress;
   char name[64];
+  const char *busy; /* "run{}" or "add_particles()" while deck callbacks can run inside it */
+  long invalid_step; /* > 0: a run stopped keeping an invalid state (a particle outside the grid) at this step */
 } sim_box;
 
 static sim_box *check_sim(lua_State *L, int idx) {
@@ -35,6 +38,27 @@ static sim_box *check_sim(lua_State *L, int idx) {
   if (!b->sim) luaL_error(L, "simulation has been freed");
   return b;
 }
+
+/* the simulation holds a state its grid cannot (see raise_engine_error) */
+static sim_box *check_valid(lua_State *L, int idx, const char *what) {
+  sim_box *b = check_sim(L, idx);
+  if (b->invalid_step)
+    mrn_lua_error(L, what, "the simulation stopped at step %ld on a state its grid cannot hold (a particle outside "
+                  "it); load an earlier checkpoint to go on", b->invalid_step);
+  return b;
+}
+
+/* The calls that free or reallocate what a running step or seeding uses are
+ * refused from inside that simulation's own hooks and callbacks. */
+static sim_box *check_idle(lua_State *L, int idx, const char *what) {
+  sim_box *b = check_sim(L, idx);
+  if (b->busy)
+    mrn_lua_error(L, what, "not allowed inside a hook or callback of this simulation's %s (call it after %s returns)",
+                  b->busy, b->busy);
+  return b;
+}
+
+struct mrn_sim *mrn_lua_check_sim(lua_State *L, int idx) { return check_sim(L, idx)->sim; }
 
 /* ---------------------------------------------------------------- specs */
 
@@ -148,6 +172,7 @@ static const mrn_spec run_specs[] = {
 static const mrn_spec hook_specs[] = {
     {"every_steps", MRN_SPEC_INTEGER, 0, 0, 1, 1e15, 0, 0, "steps", "call every N steps", NULL},
     {"every_time", MRN_SPEC_NUMBER, 0, 0, 0, HUGE_VAL, 1, 0, "s", "call every T of model time", NULL},
+    {"at_output", MRN_SPEC_BOOLEAN, 0, 0, 0, 0, 0, 0, NULL, "call after each VTK snapshot a run writes", NULL},
     {"fn", MRN_SPEC_FUNCTION, 1, 0, 0, 0, 0, 0, NULL, "function(sim)", NULL},
 };
 
@@ -395,8 +420,10 @@ static void read_output(lua_State *L, int idx, const char *where, sim_box *b) {
       lua_geti(L, -1, i + 1);
       if (lua_type(L, -1) != LUA_TSTRING) mrn_lua_error(L, sub, "fields[%d] must be a field name", i + 1);
       const char *f = lua_tostring(L, -1);
-      mrn_lua_check_choice(L, sub, "fields", f, mrn_output_field_names());
-      o->fields[o->nfields++] = mrn_output_field_find(f)->name;
+      /* a built-in field, or one the deck registers (checked at the first snapshot) */
+      if (!mrn_output_field_find(f) && (strlen(f) >= sizeof o->fields[0] || strpbrk(f, " \t\"<>&")))
+        mrn_lua_check_choice(L, sub, "fields", f, mrn_output_field_names());
+      snprintf(o->fields[o->nfields++], sizeof o->fields[0], "%s", f);
       lua_pop(L, 1);
     }
     lua_pop(L, 1);
@@ -574,8 +601,8 @@ static int init_particle_fields(lua_State *L) {
 }
 
 static int l_add_particles(lua_State *L) {
-  sim_box *b = check_sim(L, 1);
   const char *where = "add_particles()";
+  sim_box *b = check_idle(L, 1, where);
   mrn_region *region = mrn_lua_check_region(L, 2, where);
   mrn_lua_check_table(L, 3, where, particle_specs, MRN_COUNT(particle_specs));
   lua_getfield(L, 3, "material");
@@ -602,9 +629,12 @@ static int l_add_particles(lua_State *L) {
   size_t first = 0;
   long count = 0;
   mrn_lua_active = L;
-  if (mrn_sim_seed(b->sim, region, mat_index, per_axis, pl, &first, &count) != MRN_OK)
-    mrn_lua_error(L, where, "%s", mrn_error_message());
+  b->busy = where; /* region functions run inside the seeding */
+  int seeded = mrn_sim_seed(b->sim, region, mat_index, per_axis, pl, &first, &count);
+  b->busy = NULL;
+  if (seeded != MRN_OK) mrn_lua_error(L, where, "%s", mrn_error_message());
   if (count == 0) mrn_lua_error(L, where, "the region seeds no particle on this grid (is it inside the domain?)");
+  mrn_suspicious_seed(b->sim, per_axis, count);
 
   /* the initial fields call deck functions that may fail: on any error the
    * particles just seeded are removed again, so a caught error leaves the
@@ -614,9 +644,19 @@ static int l_add_particles(lua_State *L) {
   lua_pushvalue(L, 3);
   lua_pushinteger(L, (lua_Integer)first);
   lua_pushinteger(L, count);
-  if (lua_pcall(L, 4, 0, 0) != LUA_OK) {
+  b->busy = where; /* and so do the velocity and stress functions */
+  int status = lua_pcall(L, 4, 0, 0);
+  b->busy = NULL;
+  if (status != LUA_OK) {
     b->sim->particles.n = first;
     mrn_sim_particles_changed(b->sim);
+    /* the checks in there name add_particles() but cannot see the deck line: add it */
+    const char *msg = lua_tostring(L, -1);
+    if (msg && strncmp(msg, where, strlen(where)) == 0) {
+      luaL_where(L, 1);
+      lua_insert(L, -2);
+      lua_concat(L, 2);
+    }
     return lua_error(L);
   }
   lua_pushinteger(L, count);
@@ -673,17 +713,25 @@ static int raise_engine_error(lua_State *L, int rc, const char *where, sim_box *
     lua_pushstring(L, mrn_error_message());
     return lua_error(L);
   }
+  if (rc == MRN_ERR_IO) return mrn_lua_output_error(L, where, "%s", mrn_error_message());
   if (rc == MRN_ERR_STATE || rc == MRN_ERR_INTERRUPTED) {
     char note[1024];
     write_final_state(b, rc == MRN_ERR_STATE ? "failed" : "interrupted", note, sizeof note);
-    return mrn_lua_error(L, where, "%s%s", mrn_error_message(), note);
+    char message[2048];
+    snprintf(message, sizeof message, "%s%s", mrn_error_message(), note);
+    /* a state the grid cannot hold (a particle outside it) may not be stepped
+     * or measured on the grid again: run{} and dt_estimate() refuse it */
+    if (rc == MRN_ERR_STATE && mrn_sim_check_state(b->sim) != MRN_OK)
+      b->invalid_step = b->sim->step > 0 ? b->sim->step : 1;
+    return mrn_lua_error(L, where, "%s", message);
   }
   return mrn_lua_error(L, where, "%s", mrn_error_message());
 }
 
 static int l_run(lua_State *L) {
-  sim_box *b = check_sim(L, 1);
   const char *where = "run{}";
+  check_valid(L, 1, where);
+  sim_box *b = check_idle(L, 1, where);
   mrn_lua_check_table(L, 2, where, run_specs, MRN_COUNT(run_specs));
   if (!mrn_lua_has(L, 2, "time") && !mrn_lua_has(L, 2, "steps"))
     mrn_lua_error(L, where, "give time = <seconds> and/or steps = <count>");
@@ -713,7 +761,10 @@ static int l_run(lua_State *L) {
   }
   lua_settop(L, 2); /* callbacks find the simulation at index 1 */
   mrn_lua_active = L;
+  mrn_suspicious_run(b->sim);
+  b->busy = where;
   int rc = mrn_run(b->sim, &b->out, &opt);
+  b->busy = NULL;
   mrn_lua_callback_release(stop_cb);
   if (rc != MRN_OK) return raise_engine_error(L, rc, where, b);
   return 0;
@@ -724,12 +775,15 @@ static int l_hook(lua_State *L) {
   const char *where = "hook{}";
   mrn_lua_check_table(L, 2, where, hook_specs, MRN_COUNT(hook_specs));
   int has_steps = mrn_lua_has(L, 2, "every_steps"), has_time = mrn_lua_has(L, 2, "every_time");
-  if (has_steps == has_time) mrn_lua_error(L, where, "give exactly one of every_steps or every_time");
+  int at_output = mrn_lua_get_boolean(L, 2, where, hook_specs, MRN_COUNT(hook_specs), "at_output", 0);
+  if (has_steps + has_time + at_output != 1)
+    mrn_lua_error(L, where, "give exactly one of every_steps, every_time or at_output = true");
   if (b->nhooks == MAX_HOOKS) mrn_lua_error(L, where, "at most %d hooks per simulation", MAX_HOOKS);
   mrn_hook *h = &b->hooks[b->nhooks];
   memset(h, 0, sizeof *h);
   if (has_steps) h->every_steps = mrn_lua_get_integer(L, 2, where, hook_specs, MRN_COUNT(hook_specs), "every_steps");
   if (has_time) h->every_time = mrn_lua_get_number(L, 2, where, hook_specs, MRN_COUNT(hook_specs), "every_time");
+  h->at_output = at_output;
   lua_getfield(L, 2, "fn");
   b->hook_cb[b->nhooks] = mrn_lua_callback_new(L, -1, "hook");
   lua_pop(L, 1);
@@ -759,13 +813,13 @@ static int l_set_boundary(lua_State *L) {
 }
 
 static int l_set_scheme(lua_State *L) {
-  sim_box *b = check_sim(L, 1);
+  sim_box *b = check_idle(L, 1, "set_scheme()");
   read_scheme(L, 2, "set_scheme()", b->sim);
   return 0;
 }
 
 static int l_set_dt(lua_State *L) {
-  sim_box *b = check_sim(L, 1);
+  sim_box *b = check_idle(L, 1, "set_dt()");
   read_dt(L, 2, "set_dt()", b->sim);
   return 0;
 }
@@ -863,7 +917,7 @@ static int l_save(lua_State *L) {
   sim_box *b = check_sim(L, 1);
   const char *path = output_path(L, b, luaL_checkstring(L, 2));
   if (mrn_mkdir_p(b->out.dir) != MRN_OK) mrn_lua_error(L, "save()", "%s", mrn_error_message());
-  if (mrn_checkpoint_save(b->sim, path) != MRN_OK) mrn_lua_error(L, "save()", "%s", mrn_error_message());
+  if (mrn_checkpoint_save(b->sim, path) != MRN_OK) mrn_lua_output_error(L, "save()", "%s", mrn_error_message());
   lua_pushstring(L, path);
   return 1;
 }
@@ -927,8 +981,8 @@ static const mrn_spec import_specs[] = {
 
 /* sim:import(path [, {material = m, offset = {...}}]): particles of a checkpoint */
 static int l_import(lua_State *L) {
-  sim_box *b = check_sim(L, 1);
   const char *where = "import()";
+  sim_box *b = check_idle(L, 1, where);
   const char *path = luaL_checkstring(L, 2);
   mrn_material *override = NULL;
   double offset[3] = {0, 0, 0};
@@ -957,7 +1011,7 @@ static int l_set_damping(lua_State *L) {
 
 /* the critical steps the CFL policies use, without their Courant number */
 static int l_dt_estimate(lua_State *L) {
-  sim_box *b = check_sim(L, 1);
+  sim_box *b = check_valid(L, 1, "dt_estimate()");
   lua_createtable(L, 0, 3);
   lua_pushnumber(L, mrn_dt_particle_critical(b->sim));
   lua_setfield(L, -2, "cfl");
@@ -969,7 +1023,7 @@ static int l_dt_estimate(lua_State *L) {
 }
 
 static int l_set_output(lua_State *L) {
-  sim_box *b = check_sim(L, 1);
+  sim_box *b = check_idle(L, 1, "output()");
   read_output(L, 2, "output()", b);
   return 0;
 }
@@ -977,7 +1031,8 @@ static int l_set_output(lua_State *L) {
 static int l_write_vtk(lua_State *L) {
   sim_box *b = check_sim(L, 1);
   if (!b->out.vtk_name) mrn_lua_error(L, "write_vtk()", "no VTK series configured (output{vtk = name})");
-  if (mrn_output_write_vtk(&b->out, b->sim) != MRN_OK) mrn_lua_error(L, "write_vtk()", "%s", mrn_error_message());
+  if (mrn_output_write_vtk(&b->out, b->sim) != MRN_OK)
+    mrn_lua_output_error(L, "write_vtk()", "%s", mrn_error_message());
   return 0;
 }
 
@@ -1032,20 +1087,20 @@ static int l_diagnostics(lua_State *L) {
 static int l_field(lua_State *L) {
   sim_box *b = check_sim(L, 1);
   const char *name = luaL_checkstring(L, 2);
-  mrn_lua_check_choice(L, "field()", "name", name, mrn_output_field_names());
-  const mrn_output_field *f = mrn_output_field_find(name);
+  mrn_field_ref f;
+  if (!mrn_field_lookup(b->sim, name, &f)) mrn_lua_check_choice(L, "field()", "name", name, mrn_output_field_names());
   size_t n = b->sim->particles.n;
-  size_t total = n * f->ncomp;
+  size_t total = n * f.ncomp;
   void *buf = lua_newuserdatauv(L, (total ? total : 1) * 8, 0);
-  f->compute(b->sim, buf);
+  mrn_field_fill(b->sim, &f, buf);
   lua_createtable(L, (int)total, 0);
   for (size_t i = 0; i < total; i++) {
-    if (f->type == MRN_VTK_FLOAT64) lua_pushnumber(L, ((double *)buf)[i]);
-    else if (f->type == MRN_VTK_INT32) lua_pushinteger(L, ((int32_t *)buf)[i]);
+    if (f.type == MRN_VTK_FLOAT64) lua_pushnumber(L, ((double *)buf)[i]);
+    else if (f.type == MRN_VTK_INT32) lua_pushinteger(L, ((int32_t *)buf)[i]);
     else lua_pushinteger(L, ((int64_t *)buf)[i]);
     lua_rawseti(L, -2, (lua_Integer)i + 1);
   }
-  lua_pushinteger(L, f->ncomp);
+  lua_pushinteger(L, f.ncomp);
   return 2;
 }
 
@@ -1055,7 +1110,7 @@ static int l_record(lua_State *L) {
   const char *name = luaL_checkstring(L, 2);
   double v = luaL_checknumber(L, 3);
   if (!name[0] || strchr(name, '/')) mrn_lua_error(L, "record()", "'%s' is not a valid series name", name);
-  if (mrn_output_record(&b->out, name, v) != MRN_OK) mrn_lua_error(L, "record()", "%s", mrn_error_message());
+  if (mrn_output_record(&b->out, name, v) != MRN_OK) mrn_lua_output_error(L, "record()", "%s", mrn_error_message());
   return 0;
 }
 
@@ -1092,21 +1147,21 @@ static int l_reduce(lua_State *L) {
     ncomp = 3;
   } else {
     static const char *const extra[] = {"x", "y", "z", NULL};
-    const mrn_output_field *f = mrn_output_field_find(field);
-    if (!f) {
+    mrn_field_ref f;
+    if (!mrn_field_lookup(b->sim, field, &f)) {
       const char *hint = mrn_suggest_from(mrn_output_field_names(), field);
       if (!hint) hint = mrn_suggest_from(extra, field);
       mrn_lua_error(L, where, "unknown field '%s'%s%s%s (fields: x, y, z and those of sim:field)", field,
                     hint ? " (did you mean '" : "", hint ? hint : "", hint ? "'?)" : "");
     }
-    ncomp = f->ncomp;
+    ncomp = f.ncomp;
     double *buf = lua_newuserdatauv(L, (n ? n : 1) * ncomp * sizeof(double), 0);
-    if (f->type == MRN_VTK_FLOAT64) {
-      f->compute(b->sim, buf);
+    if (f.type == MRN_VTK_FLOAT64) {
+      mrn_field_fill(b->sim, &f, buf);
     } else { /* integer fields, widened */
       int64_t *tmp = lua_newuserdatauv(L, (n ? n : 1) * sizeof(int64_t), 0);
-      f->compute(b->sim, tmp);
-      for (size_t i = 0; i < n; i++) buf[i] = f->type == MRN_VTK_INT32 ? ((int32_t *)tmp)[i] : (double)tmp[i];
+      mrn_field_fill(b->sim, &f, tmp);
+      for (size_t i = 0; i < n; i++) buf[i] = f.type == MRN_VTK_INT32 ? ((int32_t *)tmp)[i] : (double)tmp[i];
       lua_pop(L, 1);
     }
     data = buf;
@@ -1230,6 +1285,8 @@ static int l_info(lua_State *L) {
 
 static int l_gc(lua_State *L) {
   sim_box *b = luaL_checkudata(L, 1, MRN_LUA_SIM);
+  /* __gc never comes while running (the run holds the simulation); free() and __close can */
+  if (b->busy) check_idle(L, 1, "free()");
   for (int i = 0; i < b->nhooks; i++) mrn_lua_callback_release(b->hook_cb[i]);
   b->nhooks = 0;
   if (b->out_ready) mrn_output_free(&b->out);
@@ -1267,6 +1324,7 @@ void mrn_lua_open_simulation(lua_State *L, int module) {
       {"field", l_field}, {"reduce", l_reduce}, {"record", l_record}, {"particle", l_particle}, {"info", l_info}, {"free", l_gc}, {NULL, NULL}};
   lua_newtable(L);
   luaL_setfuncs(L, methods, 0);
+  mrn_lua_add_field_methods(L, lua_gettop(L));
   lua_setfield(L, -2, "__index");
   lua_pop(L, 1);
   lua_pushcfunction(L, l_simulation);
