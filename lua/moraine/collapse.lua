@@ -22,6 +22,7 @@
 -- normalised by |Delta E_p^stable| = |Delta E_g + Delta E_el| (Eq. 69).
 -- The deviatoric strain eps_D (Eq. 75) is a particle field of the engine.
 local mpm = rawget(_G, "mpm") or require "moraine"
+local results = require "moraine.results"
 
 local M = {}
 
@@ -145,28 +146,7 @@ end
 
 --- Write rows (arrays of numbers) under a header to a CSV file in the output
 -- directory (a relative path) or at an absolute path. Returns the path.
-function M.write_csv(path, header, rows)
-  if path:sub(1, 1) ~= "/" then path = mpm.outdir .. "/" .. path end
-  local f = io.open(path, "w")
-  if not f then
-    local dir = path:match("^(.*)/[^/]*$")
-    if dir then os.execute("mkdir -p '" .. dir:gsub("'", "'\\''") .. "'") end
-    f = assert(io.open(path, "w"))
-  end
-  f:write(table.concat(header, ","), "\n")
-  for _, r in ipairs(rows) do
-    local t = {}
-    for i = 1, #header do
-      local v = r[i]
-      if type(v) == "number" then t[i] = string.format("%.10g", v)
-      elseif v == nil then t[i] = ""
-      else t[i] = tostring(v) end
-    end
-    f:write(table.concat(t, ","), "\n")
-  end
-  f:close()
-  return path
-end
+M.write_csv = results.write_csv
 
 local function sanitize(s)
   return (tostring(s):gsub("[^%w%.%-]", "_"))

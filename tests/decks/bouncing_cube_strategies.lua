@@ -42,19 +42,30 @@ for _, name in ipairs(list) do
                       name, 100 * r[name].loss, 100 * r[name].worst, r[name].top))
   T.check(r[name].impact, "%s: the cube never reached the floor", name)
 end
-if r.FLIP then T.check(r.FLIP.worst < 0.03, "FLIP drifted %.2f %% (limit 3 %%)", 100 * r.FLIP.worst) end
+local id = "bouncing_cube_strategies."
+if r.FLIP then
+  T.expect{ id = id .. "FLIP.drift", what = string.format("FLIP largest energy drift over %g s", duration),
+            value = 100 * r.FLIP.worst, max = 3, unit = "%" }
+end
 for _, name in ipairs{ "AFLIP", "TFLIP" } do
-  if r[name] then T.check(r[name].loss < 0.06, "%s lost %.2f %% in one bounce (about 5 %% at most)", name, 100 * r[name].loss) end
+  if r[name] then
+    T.expect{ id = id .. name .. ".loss", what = string.format("%s energy lost over %g s (000: about 5 %% per bounce)", name, duration),
+              value = 100 * r[name].loss, max = 6, unit = "%" }
+  end
 end
 for _, name in ipairs{ "PIC", "APIC", "TPIC" } do
-  if r[name] then T.check(r[name].top < 1.0, "%s bounced back to %.3f m (limit 1.0 m, half the drop)", name, r[name].top) end
+  if r[name] then
+    T.expect{ id = id .. name .. ".top", what = name .. ": highest centre of mass after the impact (does not bounce: below 1.0 m)",
+              value = r[name].top, max = 1.0, unit = "m" }
+  end
 end
 if r.PIC and r.FLIP then
   for m = 2, 4 do
     local x = r["XPIC(" .. m .. ")"]
     if x then
-      T.check(x.loss > r.FLIP.loss and x.loss < r.PIC.loss, "XPIC(%d) lost %.2f %%, not between FLIP (%.2f %%) and PIC (%.2f %%)",
-              m, 100 * x.loss, 100 * r.FLIP.loss, 100 * r.PIC.loss)
+      T.expect{ id = id .. "XPIC" .. m .. ".loss",
+                what = string.format("XPIC(%d) energy lost over %g s, between FLIP's and PIC's", m, duration),
+                value = 100 * x.loss, min = 100 * r.FLIP.loss, max = 100 * r.PIC.loss, unit = "%" }
     end
   end
 end

@@ -74,18 +74,24 @@ function M.study(case)
         100 * r.erms[1], 100 * r.erms[2], 100 * r.erms[3], fractions[1], fractions[2], fractions[3]))
       finest = r
     end
+    for i, N in ipairs(resolutions) do
+      T.expect{ id = string.format("%s.%s.E_N%d", case.name, transfer, N), what = string.format("%s N = %d: E(h)", transfer, N),
+                value = es[i], detail = true }
+    end
     local order = slope(hs, es)
     local shown = {}
     for i, e in ipairs(es) do shown[i] = string.format("%.3e", e) end
     print(string.format("%s %-8s convergence order %.2f over N = %s (E = %s)", case.name, transfer, order,
       table.concat(resolutions, ", "), table.concat(shown, ", ")))
-    if transfer == "APIC" then
-      for k, frac in ipairs(fractions) do
-        T.check(finest.emax[k] <= case.tolerance, "APIC at N = %d, t/T = %.2f: profile error %.3f %% above %g %%",
-                resolutions[#resolutions], frac, 100 * finest.emax[k], 100 * case.tolerance)
-      end
-      T.check(order >= 1.7, "APIC convergence order %.2f below 1.7", order)
+    -- APIC is held to the tolerance and the order; the blend is reported
+    local held = transfer == "APIC"
+    for k, frac in ipairs(fractions) do
+      T.expect{ id = string.format("%s.%s.emax_%g", case.name, transfer, frac),
+                what = string.format("%s e_max at N = %d, t/T = %.2f", transfer, resolutions[#resolutions], frac),
+                value = 100 * finest.emax[k], max = held and 100 * case.tolerance or nil, unit = "%" }
     end
+    T.expect{ id = string.format("%s.%s.order", case.name, transfer), what = transfer .. " convergence order",
+              value = order, min = held and 1.7 or nil }
   end
   T.done(case.name)
 end

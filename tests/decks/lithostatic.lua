@@ -29,9 +29,11 @@ for i = 1, sim:particle_count() do
   end
 end
 T.check(count > 10, "too few particles at mid-height (%d)", count)
-local err = T.close(sum_yy / count, ref_sum / count, 0.05, "mean sigma_yy at mid-height")
+local err = T.expect{ id = "lithostatic.sigma_yy", what = "mean sigma_yy at mid-height", value = sum_yy / count,
+                     reference = ref_sum / count, rtol = 0.05, unit = "Pa" }
 local ratio = sum_xx / sum_yy
-local err_k = T.close(ratio, nu / (1 - nu), 0.10, "sigma_xx / sigma_yy")
+local err_k = T.expect{ id = "lithostatic.K0", what = "sigma_xx / sigma_yy at mid-height", value = ratio,
+                       reference = nu / (1 - nu), rtol = 0.10 }
 local e = sim:energy()
 print(string.format("lithostatic: sigma_yy error %.2f %%, K0 = %.4f (expected %.4f, error %.2f %%), E_k = %.3g J/m",
                     100 * err, ratio, nu / (1 - nu), 100 * err_k, e.kinetic))

@@ -27,7 +27,8 @@ end
 for _, transfer in ipairs{ "APIC", "TPIC", "MLS" } do
   local L0, L, ok, err = spin(transfer, "wls")
   T.check(ok, "%s with the WLS correction failed: %s", transfer, tostring(err))
-  local change = T.close(L, L0, 0.01, transfer .. " angular momentum after one turn")
+  local change = T.expect{ id = "rotating_disk." .. transfer .. "_wls", what = transfer .. " + WLS: angular momentum after one turn, L/L0",
+                           value = L / L0, reference = 1, rtol = 0.01 }
   print(string.format("rotating disk %-4s + WLS: L = %.6g, L0 = %.6g (change %.3f %%)", transfer, L, L0, 100 * change))
 end
 -- for the record: the same without correction (002 found APIC and TPIC unstable)
@@ -35,5 +36,7 @@ for _, transfer in ipairs{ "APIC", "TPIC" } do
   local L0, L, ok = spin(transfer, "truncated")
   print(string.format("rotating disk %-4s truncated: %s", transfer,
                       ok and string.format("L/L0 = %.4f", L / L0) or "stopped (unstable)"))
+  T.expect{ id = "rotating_disk." .. transfer .. "_truncated", what = transfer .. " truncated kernels: ran one turn stably (1) or not (0); 002 found them unstable",
+            value = ok and 1 or 0, asserted = false }
 end
 T.done("rotating_disk")

@@ -72,7 +72,7 @@ f:close()
 local q = sum / n
 print(string.format("strip footing %s + %s, h = B/%d (%d particles, %d steps): q = %.1f Pa, q/q_u = %.4f (peak %.4f); q_u = (2 + pi) c = %.1f Pa",
   transfer, boundary, 2 * k + 1, sim:particle_count(), sim:step(), q, q / qu, peak / qu, qu))
-if boundary == "wls" then
-  T.close(q, qu, 0.05, "footing pressure against Prandtl's (2 + pi) c")
-end
+T.expect{ id = string.format("strip_footing.%s_%s_B%d", transfer, boundary, 2 * k + 1),
+          what = string.format("footing pressure, %s + %s, h = B/%d", transfer, boundary, 2 * k + 1),
+          value = q, reference = qu, rtol = 0.05, unit = "Pa", asserted = boundary == "wls" }
 T.done("strip_footing")

@@ -1,5 +1,6 @@
 -- moraine test decks: small assertion helpers. A failed check raises an
 -- error, so moraine exits non-zero with the deck file and line.
+local results = require "moraine.results"
 local T = { checks = 0 }
 
 local function fail(level, fmt, ...)
@@ -20,6 +21,26 @@ end
 function T.check(cond, fmt, ...)
   T.checks = T.checks + 1
   if not cond then fail(2, fmt or "check failed", ...) end
+end
+
+--- T.expect{ id, what, value, reference, rtol, atol, max, min, unit, asserted, ... }:
+-- records the figure as a RESULT line (lua/moraine/results.lua, read by the
+-- validation report) and, unless asserted = false, fails the deck when a
+-- tolerance or bound does not hold. Returns the relative error (or nil).
+function T.expect(t)
+  local r = results.record(t)
+  if r.asserted and r.status ~= "reported" then T.checks = T.checks + 1 end
+  if r.status == "fail" then
+    local limits = {}
+    if t.rtol or t.atol then
+      limits[#limits + 1] = string.format("expected %.12g within rtol %.3g%s", t.reference, t.rtol or 0,
+                                          t.atol and string.format(" + atol %.3g", t.atol) or "")
+    end
+    if t.max then limits[#limits + 1] = string.format("at most %.12g", t.max) end
+    if t.min then limits[#limits + 1] = string.format("at least %.12g", t.min) end
+    fail(2, "%s: got %.12g, %s", t.what or t.id, t.value, table.concat(limits, ", "))
+  end
+  return r.error
 end
 
 function T.done(name)

@@ -31,7 +31,9 @@ the heading's code spans, not preceded or followed by a letter, digit or "_".
    naming `:<method>`; every region function (src/lua/lua_region.c) a heading
    naming `mpm.<function>` (`:contains` for the region method); every field
    of the module (src/lua/lua_module.c) and every helper defined in
-   lua/moraine/init.lua a heading naming `mpm.<name>`.
+   lua/moraine/init.lua a heading naming `mpm.<name>`; every function
+   `M.<name>` of a library module lua/moraine/<module>.lua (other than
+   init.lua) a heading naming `<module>.<name>`.
 4. These names appear as "`name`" anywhere in the document: shape functions
    (src/shape/shape.c), transfer presets (src/transfer/scheme.c, with the
    FLIPX and NFLIPX patterns), stress updates (src/transfer/scheme.c),
@@ -191,6 +193,14 @@ def heading_lists(root):
                              "src/lua/lua_module.c")
     helpers = re.findall(r"^\s*function\s+(mpm(?:\.\w+)+)\s*\(", read(root, "lua/moraine/init.lua"), re.M)
     lists["Lua helper"] = ([(h, re.escape(h) + r"(?![\w.])") for h in helpers], "lua/moraine/init.lua")
+    functions = []
+    for f in sorted(os.listdir(os.path.join(root, "lua/moraine"))):
+        if f.endswith(".lua") and f != "init.lua":
+            module = f[:-len(".lua")]
+            for fn in re.findall(r"^function\s+M\.(\w+)\s*\(", read(root, "lua/moraine/" + f), re.M):
+                name = f"{module}.{fn}"
+                functions.append((name, r"(?<![\w.])" + re.escape(name) + r"(?![\w.])"))
+    lists["Lua library function"] = (functions, "lua/moraine/*.lua")
     return lists
 
 
