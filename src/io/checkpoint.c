@@ -91,6 +91,10 @@ static void save_simulation(mrn_h5w *w, const mrn_sim *sim) {
   mrn_h5w_double(w, g, "work_damping", sim->work_damping);
   mrn_h5w_double(w, g, "energy_ref", sim->energy_ref);
   mrn_h5w_int32(w, g, "energy_ref_set", sim->energy_ref_set);
+  mrn_h5w_string(w, g, "on_leave", mrn_leave_policy_names()[sim->on_leave]);
+  mrn_h5w_int64(w, g, "outflow_particles", sim->outflow_particles);
+  mrn_h5w_double(w, g, "outflow_mass", sim->outflow_mass);
+  mrn_h5w_double(w, g, "energy_outflow", sim->energy_outflow);
   mrn_h5w_double(w, g, "mass_floor", sim->mass_floor);
   mrn_h5w_int32(w, g, "affine_pending", sim->affine_pending);
   H5Gclose(g);
@@ -457,6 +461,10 @@ static mrn_sim *build_sim(const ck_data *d, mrn_checkpoint_info *info) {
   sim->work_damping = d->work_damping;
   sim->energy_ref = d->energy_ref;
   sim->energy_ref_set = d->energy_ref_set;
+  sim->on_leave = (mrn_leave_policy)d->on_leave;
+  sim->outflow_particles = (long)d->outflow_particles;
+  sim->outflow_mass = d->outflow_mass;
+  sim->energy_outflow = d->energy_outflow;
   sim->affine_pending = d->affine_pending;
   for (int i = 0; i < d->nmaterials; i++)
     if (mrn_sim_add_material(sim, d->materials[i]) < 0) goto fail;

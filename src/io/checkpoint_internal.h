@@ -28,7 +28,9 @@ typedef struct ck_data {
   double damping_cundall, damping_viscous;
   double work_friction, work_damping, energy_ref; /* energy balance (000, Eqs. 66-68) */
   int energy_ref_set;
-  int64_t step;
+  int on_leave; /* mrn_leave_policy */
+  double outflow_mass, energy_outflow;
+  int64_t step, outflow_particles;
   /* /grid */
   double origin[3], size[3], cell;
   int ncell[3];

@@ -112,6 +112,13 @@ static void read_simulation(mrn_h5r *r, ck_data *d) {
   read_finite(r, g, "work_damping", -HUGE_VAL, &d->work_damping);
   read_finite(r, g, "energy_ref", -HUGE_VAL, &d->energy_ref);
   read_int_in(r, g, "energy_ref_set", 0, 1, &energy_ref_set);
+  /* the outflow book (files written before it existed have none: stop, 0) */
+  if (mrn_h5r_has_attr(r, g, "on_leave")) {
+    mrn_h5r_choice(r, g, "on_leave", mrn_leave_policy_names(), &d->on_leave);
+    read_int_in(r, g, "outflow_particles", 0, CK_MAX_COUNTER, &d->outflow_particles);
+    read_finite(r, g, "outflow_mass", 0.0, &d->outflow_mass);
+    read_finite(r, g, "energy_outflow", -HUGE_VAL, &d->energy_outflow);
+  }
   read_finite(r, g, "mass_floor", 0.0, &d->mass_floor);
   read_int_in(r, g, "affine_pending", 0, 1, &affine_pending);
   d->energy_ref_set = (int)energy_ref_set;

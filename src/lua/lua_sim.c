@@ -82,6 +82,8 @@ static const mrn_spec sim_specs[] = {
     {"output", MRN_SPEC_TABLE, 0, 0, 0, 0, 0, 0, NULL, "VTK output {vtk, every, every_steps, fields, format}", NULL},
     {"name", MRN_SPEC_STRING, 0, 0, 0, 0, 0, 0, NULL, "label shown in messages", NULL},
     {"progress", MRN_SPEC_BOOLEAN, 0, 0, 0, 0, 0, 0, NULL, "progress bar on a terminal (default true)", NULL},
+    {"on_leave", MRN_SPEC_STRING, 0, 0, 0, 0, 0, 0, NULL,
+     "a particle leaving the grid: stop the run (default) or delete it", NULL},
 };
 
 static const mrn_spec grid_specs[] = {
@@ -451,6 +453,15 @@ static sim_box *push_sim_box(lua_State *L) {
   return b;
 }
 
+/* on_leave = "stop" | "delete" in the table at idx (absent: unchanged) */
+static void read_on_leave(lua_State *L, int idx, const char *where, const mrn_spec *specs, int nspecs, mrn_sim *sim) {
+  const char *policy = mrn_lua_get_string(L, idx, where, specs, nspecs, "on_leave");
+  if (!policy) return;
+  mrn_lua_check_choice(L, where, "on_leave", policy, mrn_leave_policy_names());
+  for (int k = 0; mrn_leave_policy_names()[k]; k++)
+    if (!strcmp(policy, mrn_leave_policy_names()[k])) sim->on_leave = (mrn_leave_policy)k;
+}
+
 static int l_simulation(lua_State *L) {
   const char *where = "simulation{}";
   mrn_lua_check_table(L, 1, where, sim_specs, MRN_COUNT(sim_specs));
@@ -488,6 +499,7 @@ static int l_simulation(lua_State *L) {
   int self = lua_gettop(L);
   b->sim = mrn_sim_new(&cfg);
   if (!b->sim) mrn_lua_error(L, where, "%s", mrn_error_message());
+  read_on_leave(L, 1, where, sim_specs, MRN_COUNT(sim_specs), b->sim);
   for (int i = 0; i < MRN_FACE_COUNT; i++) b->sim->boundary.face[i].kind = MRN_BC_SLIP;
   mrn_output_set_csv(&b->out, "diagnostics.csv", 10);
   const char *name = mrn_lua_get_string(L, 1, where, sim_specs, MRN_COUNT(sim_specs), "name");
@@ -927,6 +939,8 @@ static const mrn_spec load_specs[] = {
     {"thermo", MRN_SPEC_INTEGER, 0, 100, 0, 1e12, 0, 0, "steps", "thermo line every N steps", NULL},
     {"diagnostics", MRN_SPEC_ANY, 0, 0, 0, 0, 0, 0, NULL, "CSV file name, or false", NULL},
     {"output", MRN_SPEC_TABLE, 0, 0, 0, 0, 0, 0, NULL, "VTK output settings, as in simulation{}", NULL},
+    {"on_leave", MRN_SPEC_STRING, 0, 0, 0, 0, 0, 0, NULL,
+     "a particle leaving the grid: stop or delete (default: as saved)", NULL},
 };
 
 /* mpm.load(path [, options]): a simulation continuing from a checkpoint */
@@ -969,6 +983,7 @@ static int l_load(lua_State *L) {
       read_output(L, -1, where, b);
       lua_pop(L, 1);
     }
+    read_on_leave(L, 2, where, load_specs, MRN_COUNT(load_specs), b->sim);
   }
   lua_pushvalue(L, self);
   return 1;
@@ -1080,6 +1095,9 @@ static int l_diagnostics(lua_State *L) {
   lua_pushnumber(L, b->sim->time); lua_setfield(L, -2, "time");
   lua_pushinteger(L, b->sim->step); lua_setfield(L, -2, "step");
   lua_pushnumber(L, b->sim->dt); lua_setfield(L, -2, "dt");
+  lua_pushinteger(L, b->sim->outflow_particles); lua_setfield(L, -2, "outflow_particles");
+  lua_pushnumber(L, b->sim->outflow_mass); lua_setfield(L, -2, "outflow_mass");
+  lua_pushnumber(L, b->sim->energy_outflow); lua_setfield(L, -2, "energy_outflow");
   return 1;
 }
 

@@ -107,7 +107,9 @@ void mrn_sim_diagnostics(const mrn_sim *sim, mrn_diagnostics *out) {
   out->damping = sim->work_damping;
   out->total = ek + eg + eel;
   /* (000, Eq. 68) summed over the steps since the balance started */
-  out->mpm_error = sim->energy_ref_set ? out->total - sim->energy_ref - wpl - sim->work_friction - sim->work_damping : 0.0;
+  out->mpm_error = sim->energy_ref_set
+                       ? out->total - sim->energy_ref - wpl - sim->work_friction - sim->work_damping + sim->energy_outflow
+                       : 0.0;
   out->mass = mass;
   for (int d = 0; d < 3; d++) {
     out->momentum[d] = t[S_MOM + d];
@@ -150,6 +152,11 @@ void mrn_sim_diagnostics(const mrn_sim *sim, mrn_diagnostics *out) {
   double l[DIAG_SUMS];
   add_pieces(part, 3, l);
   out->L_centroid = sqrt(l[0] * l[0] + l[1] * l[1] + l[2] * l[2]);
+}
+
+const char *const *mrn_leave_policy_names(void) {
+  static const char *const names[] = {"stop", "delete", NULL};
+  return names;
 }
 
 int mrn_sim_particle_error(const mrn_sim *sim, size_t p) {
@@ -230,7 +237,7 @@ void mrn_sim_energy_balance_start(mrn_sim *sim) {
   mrn_diagnostics d;
   sim->energy_ref_set = 0;
   mrn_sim_diagnostics(sim, &d);
-  sim->energy_ref = d.total - d.plastic - d.friction - d.damping;
+  sim->energy_ref = d.total - d.plastic - d.friction - d.damping + sim->energy_outflow;
   sim->energy_ref_set = 1;
 }
 

@@ -22,6 +22,14 @@
 
 #define MRN_MAX_MATERIALS 64
 
+/* What happens to a particle that leaves the grid through a free face (or
+ * is carried past any face): the run stops with a diagnosis and a final
+ * checkpoint (the default), or the particle is deleted and its mass and
+ * energy are booked as outflow. */
+typedef enum { MRN_LEAVE_STOP = 0, MRN_LEAVE_DELETE } mrn_leave_policy;
+/* "stop", "delete", NULL */
+const char *const *mrn_leave_policy_names(void);
+
 typedef struct mrn_sim {
   int dim;
   mrn_grid grid;
@@ -52,6 +60,12 @@ typedef struct mrn_sim {
   double work_damping;  /* work of the damping forces, negative while dissipating */
   double energy_ref;    /* E_k + E_g + E_el when the energy balance started (000, Eq. 68) */
   int energy_ref_set;
+
+  /* particles deleted on leaving the grid (on_leave = MRN_LEAVE_DELETE) */
+  mrn_leave_policy on_leave;
+  long outflow_particles; /* how many */
+  double outflow_mass;    /* their mass (kg; per metre of thickness in 2D) */
+  double energy_outflow;  /* their E_k + E_g + E_el - W_pl when deleted, added back in W_MPM (J) */
   double mass_floor;    /* nodes lighter than this are treated as empty */
   int affine_pending;   /* initial velocities were assigned: initialise grad v / B at the next run */
 

@@ -167,9 +167,13 @@ static double *scratch(mrn_sim *sim, size_t count) {
  *   beyond it, but a particle moved by the interpolated grid velocity can
  *   still step a hair past it (the nodes just inside move towards it): such a
  *   particle is put back on the face, with no velocity into the wall; free
- *   faces let material leave (and the state check then stops the run);
+ *   faces let material leave;
  * - the state check of mrn_sim_check_state, reporting the first bad particle
- *   (the lowest index, for any thread count). */
+ *   (the lowest index, for any thread count); with on_leave = delete, a
+ *   finite particle outside the grid is marked instead and deleted after the
+ *   pass (delete_leaving). */
+static void delete_leaving(mrn_sim *sim, const unsigned char *keep);
+
 static int end_of_step(mrn_sim *sim) {
   const mrn_grid *g = &sim->grid;
   mrn_particles *ps = &sim->particles;
@@ -187,8 +191,13 @@ static int end_of_step(mrn_sim *sim) {
     hi[d] = g->origin[d] + g->size[d];
   }
   const long n = (long)ps->n;
-  long first_bad = n;
-#pragma omp parallel for schedule(static) if (n > MRN_OMP_MIN_ITEMS) reduction(min : first_bad)
+  long first_bad = n, leaving = 0;
+  unsigned char *keep = NULL;
+  if (sim->on_leave == MRN_LEAVE_DELETE) {
+    keep = (unsigned char *)scratch(sim, (size_t)n / sizeof(double) + 1);
+    if (!keep) return mrn_error("step: out of memory");
+  }
+#pragma omp parallel for schedule(static) if (n > MRN_OMP_MIN_ITEMS) reduction(min : first_bad) reduction(+ : leaving)
   for (long p = 0; p < n; p++) {
     for (int d = 0; d < dim; d++) {
       double *x = ps->x + 3 * p + d, *v = ps->v + 3 * p + d;
@@ -207,9 +216,37 @@ static int end_of_step(mrn_sim *sim) {
         if (*v > 0) *v = 0.0;
       }
     }
-    if (p < first_bad && !mrn_sim_particle_ok(sim, (size_t)p)) first_bad = p;
+    if (keep) {
+      const int finite = mrn_sim_particle_finite(sim, (size_t)p);
+      keep[p] = !finite || mrn_grid_contains(g, ps->x + 3 * p);
+      leaving += !keep[p];
+      if (p < first_bad && !finite) first_bad = p;
+    } else if (p < first_bad && !mrn_sim_particle_ok(sim, (size_t)p)) {
+      first_bad = p;
+    }
   }
-  return first_bad < n ? mrn_sim_particle_error(sim, (size_t)first_bad) : MRN_OK;
+  if (first_bad < n) return mrn_sim_particle_error(sim, (size_t)first_bad);
+  if (leaving) delete_leaving(sim, keep);
+  return MRN_OK;
+}
+
+/* Delete the particles with keep[p] == 0, booking their mass and their
+ * E_k + E_g + E_el - W_pl as outflow so that W_MPM (000, Eq. 68) does not
+ * jump when they go (mrn_sim_diagnostics adds energy_outflow back). Summed in
+ * index order: the same for any thread count. */
+static void delete_leaving(mrn_sim *sim, const unsigned char *keep) {
+  const mrn_particles *ps = &sim->particles;
+  const double *g = sim->gravity;
+  for (size_t p = 0; p < ps->n; p++) {
+    if (keep[p]) continue;
+    const double m = ps->mass[p], *x = ps->x + 3 * p, *v = ps->v + 3 * p;
+    const double ek = 0.5 * m * (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]); /* (000, Eq. 47) */
+    const double eg = -m * (g[0] * x[0] + g[1] * x[1] + g[2] * x[2]);      /* (000, Eq. 48) */
+    sim->energy_outflow += ek + eg + ps->e_elastic[p] - ps->w_plastic[p];
+    sim->outflow_mass += m;
+    sim->outflow_particles++;
+  }
+  mrn_particles_compact(&sim->particles, keep);
 }
 
 /* grid velocity from the particles, and XPIC's smoothed velocity when needed */

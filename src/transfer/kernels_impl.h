@@ -297,7 +297,7 @@ void KNAME(mrn_p2g)(mrn_sim *sim, int momentum, int force) {
   if (!b) {
     run(&ar, NULL, 0, sim->particles.n);
   } else {
-    const int threads = !b->dense && sim->particles.n > MRN_OMP_MIN_ITEMS;
+    const int threads __attribute__((unused)) = !b->dense && sim->particles.n > MRN_OMP_MIN_ITEMS; /* unused without OpenMP */
 #pragma omp parallel if (threads)
     for (int c = 0; c < b->colours; c++) {
       const long first = (long)b->colour_first[c], count = (long)b->colour_first[c + 1] - first;
