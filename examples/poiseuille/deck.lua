@@ -17,15 +17,8 @@ local N = math.tointeger(mpm.param("cells", quick and 8 or 32))
 local h = H / N
 local fractions = quick and { 0.05 } or { 0.05, 0.15, 0.5 }
 
-local function series(y, t) -- (VALIDATION.md)
-  local u = F / (2 * nu) * y * (H - y)
-  for n = 1, 999, 2 do
-    local decay = math.exp(-n * n * math.pi ^ 2 * nu * t / (H * H))
-    if decay < 1e-18 then break end
-    u = u - 4 * F * H * H / (nu * math.pi ^ 3 * n ^ 3) * math.sin(n * math.pi * y / H) * decay
-  end
-  return u
-end
+local analytic = require "moraine.analytic"
+local function series(y, t) return analytic.poiseuille(y, t, { H = H, nu = nu, F = F }) end
 
 local fluid = mpm.material.newtonian{ density = rho, viscosity = mu, sound_speed = math.sqrt(K / rho) }
 local sim = mpm.simulation{

@@ -26,15 +26,8 @@
 local flow = dofile(mpm.deck_dir .. "/channel_flow.lua")
 local H, nu, V = flow.H, flow.nu, 0.0625
 
-local function series(y, t)
-  local u = V * y / H
-  for n = 1, 5000 do
-    local decay = math.exp(-n * n * math.pi ^ 2 * nu * t / (H * H))
-    if decay < 1e-18 then break end
-    u = u + 2 * V / (n * math.pi) * (n % 2 == 0 and 1 or -1) * math.sin(n * math.pi * y / H) * decay
-  end
-  return u
-end
+local analytic = require "moraine.analytic"
+local function series(y, t) return analytic.couette(y, t, { H = H, nu = nu, V = V }) end
 
 flow.study{ name = "couette", series = series, scale = function() return V end,
             top = { "velocity", v = { V, 0 } }, tolerance = 0.03 }

@@ -35,15 +35,8 @@
 local flow = dofile(mpm.deck_dir .. "/channel_flow.lua")
 local H, nu, F = flow.H, flow.nu, 10.0
 
-local function series(y, t)
-  local u = F / (2 * nu) * y * (H - y)
-  for n = 1, 999, 2 do
-    local decay = math.exp(-n * n * math.pi ^ 2 * nu * t / (H * H))
-    if decay < 1e-18 then break end
-    u = u - 4 * F * H * H / (nu * math.pi ^ 3 * n ^ 3) * math.sin(n * math.pi * y / H) * decay
-  end
-  return u
-end
+local analytic = require "moraine.analytic"
+local function series(y, t) return analytic.poiseuille(y, t, { H = H, nu = nu, F = F }) end
 
 flow.study{ name = "poiseuille", series = series, scale = function(t) return series(0.5 * H, t) end,
             gravity = { F, 0 }, top = "fixed", tolerance = 0.02 }
