@@ -72,7 +72,6 @@ enum { S_EK, S_EG, S_EEL, S_WPL, S_MASS, S_MOM, S_ANG = S_MOM + 3, S_MX = S_ANG 
 
 void mrn_sim_diagnostics(const mrn_sim *sim, mrn_diagnostics *out) {
   const mrn_particles *ps = &sim->particles;
-  const double *g = sim->gravity;
   const long n = (long)ps->n;
   double part[DIAG_PIECES][DIAG_SUMS], t[DIAG_SUMS];
 #pragma omp parallel for schedule(static) if (n > MRN_OMP_MIN_ITEMS)
@@ -83,8 +82,8 @@ void mrn_sim_diagnostics(const mrn_sim *sim, mrn_diagnostics *out) {
     for (long p = lo; p < hi; p++) {
       const double m = ps->mass[p];
       const double *x = ps->x + 3 * p, *v = ps->v + 3 * p;
-      s[S_EK] += 0.5 * m * (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]); /* (000, Eq. 47) */
-      s[S_EG] -= m * (g[0] * x[0] + g[1] * x[1] + g[2] * x[2]);      /* (000, Eq. 48) */
+      s[S_EK] += mrn_sim_particle_kinetic(sim, (size_t)p);
+      s[S_EG] += mrn_sim_particle_gravity(sim, (size_t)p);
       s[S_EEL] += ps->e_elastic[p];
       s[S_WPL] += ps->w_plastic[p];
       s[S_MASS] += m;

@@ -153,6 +153,18 @@ static inline int mrn_sim_particle_ok(const mrn_sim *sim, size_t p) {
   return mrn_sim_particle_finite(sim, p) && mrn_grid_contains(&sim->grid, sim->particles.x + 3 * p);
 }
 
+/* A particle's kinetic energy 1/2 m |v|^2 (000, Eq. 47) and gravitational
+ * energy -m g . x, zero at the origin's height (000, Eq. 48): the terms the
+ * diagnostics sum, and what a deleted particle carries out of the balance. */
+static inline double mrn_sim_particle_kinetic(const mrn_sim *sim, size_t p) {
+  const double *v = sim->particles.v + 3 * p;
+  return 0.5 * sim->particles.mass[p] * (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+}
+static inline double mrn_sim_particle_gravity(const mrn_sim *sim, size_t p) {
+  const double *x = sim->particles.x + 3 * p, *g = sim->gravity;
+  return -sim->particles.mass[p] * (g[0] * x[0] + g[1] * x[1] + g[2] * x[2]);
+}
+
 /* The error of mrn_sim_check_state for a particle that failed the test */
 int mrn_sim_particle_error(const mrn_sim *sim, size_t p);
 

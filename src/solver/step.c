@@ -236,14 +236,11 @@ static int end_of_step(mrn_sim *sim) {
  * index order: the same for any thread count. */
 static void delete_leaving(mrn_sim *sim, const unsigned char *keep) {
   const mrn_particles *ps = &sim->particles;
-  const double *g = sim->gravity;
   for (size_t p = 0; p < ps->n; p++) {
     if (keep[p]) continue;
-    const double m = ps->mass[p], *x = ps->x + 3 * p, *v = ps->v + 3 * p;
-    const double ek = 0.5 * m * (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]); /* (000, Eq. 47) */
-    const double eg = -m * (g[0] * x[0] + g[1] * x[1] + g[2] * x[2]);      /* (000, Eq. 48) */
-    sim->energy_outflow += ek + eg + ps->e_elastic[p] - ps->w_plastic[p];
-    sim->outflow_mass += m;
+    sim->energy_outflow +=
+        mrn_sim_particle_kinetic(sim, p) + mrn_sim_particle_gravity(sim, p) + ps->e_elastic[p] - ps->w_plastic[p];
+    sim->outflow_mass += ps->mass[p];
     sim->outflow_particles++;
   }
   mrn_particles_compact(&sim->particles, keep);
