@@ -16,6 +16,8 @@ endfunction()
 moraine_deck_test(free_fall free_fall.lua)
 # particles leaving through a free face with on_leave = "delete": mass and energy booked as outflow
 moraine_deck_test(outflow outflow.lua)
+# point forces (sim:point_force, load_factor, clear_forces): momentum, energy, traction, checkpoint
+moraine_deck_test(point_force point_force.lua)
 moraine_deck_test(lithostatic lithostatic.lua)
 moraine_deck_test(axial_bar_linear axial_bar.lua ARGS --set shape=linear --set cells=16)
 moraine_deck_test(axial_bar_quadratic axial_bar.lua ARGS --set shape=quadratic_bspline --set cells=32)

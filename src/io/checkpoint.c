@@ -89,6 +89,8 @@ static void save_simulation(mrn_h5w *w, const mrn_sim *sim) {
   mrn_h5w_double(w, g, "damping_viscous", sim->damping_viscous);
   mrn_h5w_double(w, g, "work_friction", sim->work_friction);
   mrn_h5w_double(w, g, "work_damping", sim->work_damping);
+  mrn_h5w_double(w, g, "work_external", sim->work_external);
+  mrn_h5w_double(w, g, "load_factor", sim->load_factor);
   mrn_h5w_double(w, g, "energy_ref", sim->energy_ref);
   mrn_h5w_int32(w, g, "energy_ref_set", sim->energy_ref_set);
   mrn_h5w_string(w, g, "on_leave", mrn_leave_policy_names()[sim->on_leave]);
@@ -459,6 +461,8 @@ static mrn_sim *build_sim(const ck_data *d, mrn_checkpoint_info *info) {
   sim->damping_viscous = d->damping_viscous;
   sim->work_friction = d->work_friction;
   sim->work_damping = d->work_damping;
+  sim->work_external = d->work_external;
+  sim->load_factor = d->load_factor;
   sim->energy_ref = d->energy_ref;
   sim->energy_ref_set = d->energy_ref_set;
   sim->on_leave = (mrn_leave_policy)d->on_leave;

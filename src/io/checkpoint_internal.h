@@ -27,6 +27,7 @@ typedef struct ck_data {
   double time, dt, gravity[3], mass_floor;
   double damping_cundall, damping_viscous;
   double work_friction, work_damping, energy_ref; /* energy balance (000, Eqs. 66-68) */
+  double work_external, load_factor;              /* point forces (solver/point_force.h) */
   int energy_ref_set;
   int on_leave; /* mrn_leave_policy */
   double outflow_mass, energy_outflow;

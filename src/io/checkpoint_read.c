@@ -110,6 +110,12 @@ static void read_simulation(mrn_h5r *r, ck_data *d) {
   read_finite(r, g, "damping_viscous", 0.0, &d->damping_viscous);
   read_finite(r, g, "work_friction", -HUGE_VAL, &d->work_friction);
   read_finite(r, g, "work_damping", -HUGE_VAL, &d->work_damping);
+  /* point forces (files written before them have none: no work, factor 1) */
+  d->load_factor = 1.0;
+  if (mrn_h5r_has_attr(r, g, "load_factor")) {
+    read_finite(r, g, "work_external", -HUGE_VAL, &d->work_external);
+    read_finite(r, g, "load_factor", -HUGE_VAL, &d->load_factor);
+  }
   read_finite(r, g, "energy_ref", -HUGE_VAL, &d->energy_ref);
   read_int_in(r, g, "energy_ref_set", 0, 1, &energy_ref_set);
   /* the outflow book (files written before it existed have none: stop, 0) */

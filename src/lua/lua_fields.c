@@ -16,6 +16,7 @@
 #include "io/particle_fields.h"
 #include "lua/lua_check.h"
 #include "lua/lua_internal.h"
+#include "solver/point_force.h"
 #include "solver/simulation.h"
 #include "transfer/probe.h"
 
@@ -51,6 +52,8 @@ static int l_particle_field(lua_State *L) {
                   MRN_USER_FIELD_NAME - 1);
   if (mrn_output_field_find(name) || !strcmp(name, "x") || !strcmp(name, "y") || !strcmp(name, "z"))
     mrn_lua_error(L, where, "name '%s' is a built-in particle field", name);
+  if (!strcmp(name, MRN_POINT_FORCE_FIELD))
+    mrn_lua_error(L, where, "name '%s' is reserved for the point forces of sim:point_force{}", name);
   if (unit && strlen(unit) >= sizeof sim->particles.user_fields[0].unit)
     mrn_lua_error(L, where, "unit '%s' is longer than %d characters", unit,
                   (int)sizeof sim->particles.user_fields[0].unit - 1);

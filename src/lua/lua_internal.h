@@ -44,6 +44,15 @@ mrn_region *mrn_lua_check_region(lua_State *L, int idx, const char *where);
 struct mrn_sim *mrn_lua_check_sim(lua_State *L, int idx);
 /* particle_field, value, set_value, set_field, probe (lua_fields.c) into the methods table at idx */
 void mrn_lua_add_field_methods(lua_State *L, int methods);
+/* point_force, load_factor, clear_forces (lua_loads.c) into the methods table at idx */
+void mrn_lua_add_load_methods(lua_State *L, int methods);
+/* The arguments {region, force | traction} at idx: calls set(ctx, p, f) for
+ * every point in the region with its share of the force (a total force split
+ * equally, or traction times V0^((dim-1)/dim)); returns how many. Raises on
+ * bad arguments, an empty region or a failing set (message named by where). */
+struct mrn_sim;
+long mrn_lua_point_force_args(lua_State *L, int idx, const struct mrn_sim *sim, const char *where,
+                              int (*set)(void *ctx, size_t p, const double f[3]), void *ctx);
 mrn_material *mrn_lua_check_material(lua_State *L, int idx, const char *where);
 
 /* read a vector of the simulation's dimension from a function's results or a table at idx */

@@ -6,6 +6,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
+#include <time.h>
 #include <unistd.h>
 
 #include "core/error.h"
@@ -17,6 +18,15 @@
 #include "lua/moraine_lua.h"
 
 static char library_dir[PATH_MAX + 128];
+
+/* mpm.wall_time(): seconds of a monotonic wall clock, for timing parts of a
+ * deck (os.clock() counts the CPU time of every thread) */
+static int l_wall_time(lua_State *L) {
+  struct timespec ts;
+  clock_gettime(CLOCK_MONOTONIC, &ts);
+  lua_pushnumber(L, (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec);
+  return 1;
+}
 
 static int is_dir(const char *path) {
   struct stat st;
@@ -97,6 +107,8 @@ int luaopen_moraine(lua_State *L) {
   lua_setfield(L, module, "executable");
   lua_pushcfunction(L, l_param);
   lua_setfield(L, module, "param");
+  lua_pushcfunction(L, l_wall_time);
+  lua_setfield(L, module, "wall_time");
   lua_getfield(L, LUA_REGISTRYINDEX, "moraine.args");
   lua_setfield(L, module, "args");
   lua_getfield(L, LUA_REGISTRYINDEX, "moraine.outdir");

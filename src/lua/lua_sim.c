@@ -1072,6 +1072,7 @@ static int l_energy(lua_State *L) {
   lua_pushnumber(L, d.plastic); lua_setfield(L, -2, "plastic");
   lua_pushnumber(L, d.friction); lua_setfield(L, -2, "friction");
   lua_pushnumber(L, d.damping); lua_setfield(L, -2, "damping");
+  lua_pushnumber(L, d.external); lua_setfield(L, -2, "external");
   lua_pushnumber(L, d.mpm_error); lua_setfield(L, -2, "mpm_error");
   return 1;
 }
@@ -1343,6 +1344,7 @@ void mrn_lua_open_simulation(lua_State *L, int module) {
   lua_newtable(L);
   luaL_setfuncs(L, methods, 0);
   mrn_lua_add_field_methods(L, lua_gettop(L));
+  mrn_lua_add_load_methods(L, lua_gettop(L));
   lua_setfield(L, -2, "__index");
   lua_pop(L, 1);
   lua_pushcfunction(L, l_simulation);

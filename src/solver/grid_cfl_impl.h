@@ -12,9 +12,8 @@
 double KNAME(mrn_grid_slowness)(mrn_sim *sim, const double *modulus) {
   const mrn_grid *g = &sim->grid;
   const mrn_particles *ps = &sim->particles;
-  mrn_kernel_options ko = {sim->shape, sim->kernel_boundary, 0, 0};
-  for (int d = 0; d < DIM; d++)
-    if (mrn_boundary_periodic(&sim->boundary, d)) ko.periodic |= 1u << d;
+  mrn_kernel_options ko = mrn_sim_kernel_options(sim);
+  ko.mls_gradient = 0; /* values only */
   double *acc = calloc(3 * g->n, sizeof(double)); /* m, V, M per node */
   if (!acc) return NAN;
   KNAME(stencil) s;

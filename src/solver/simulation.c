@@ -24,7 +24,15 @@ mrn_sim *mrn_sim_new(const mrn_sim_config *cfg) {
   mrn_scheme_default(&sim->scheme);
   for (int d = 0; d < 3; d++) sim->gravity[d] = d < cfg->dim ? cfg->gravity[d] : 0.0;
   mrn_dt_policy_a_tau(&sim->dt_policy, 0.05);
+  sim->load_factor = 1.0;
   return sim;
+}
+
+mrn_kernel_options mrn_sim_kernel_options(const mrn_sim *sim) {
+  mrn_kernel_options o = {sim->shape, sim->kernel_boundary, sim->scheme.mls_gradient, 0};
+  for (int d = 0; d < sim->dim; d++)
+    if (mrn_boundary_periodic(&sim->boundary, d)) o.periodic |= 1u << d;
+  return o;
 }
 
 void mrn_sim_free(mrn_sim *sim) {
@@ -104,10 +112,12 @@ void mrn_sim_diagnostics(const mrn_sim *sim, mrn_diagnostics *out) {
   out->plastic = wpl;
   out->friction = sim->work_friction;
   out->damping = sim->work_damping;
+  out->external = sim->work_external;
   out->total = ek + eg + eel;
   /* (000, Eq. 68) summed over the steps since the balance started */
   out->mpm_error = sim->energy_ref_set
-                       ? out->total - sim->energy_ref - wpl - sim->work_friction - sim->work_damping + sim->energy_outflow
+                       ? out->total - sim->energy_ref - wpl - sim->work_friction - sim->work_damping - sim->work_external +
+                             sim->energy_outflow
                        : 0.0;
   out->mass = mass;
   for (int d = 0; d < 3; d++) {

@@ -58,6 +58,8 @@ typedef struct mrn_sim {
   /* cumulative energy terms that are not stored per particle */
   double work_friction; /* (000, Eq. 66), negative while dissipating */
   double work_damping;  /* work of the damping forces, negative while dissipating */
+  double work_external; /* work of the point forces (solver/point_force.h) */
+  double load_factor;   /* multiplies every point force (default 1) */
   double energy_ref;    /* E_k + E_g + E_el when the energy balance started (000, Eq. 68) */
   int energy_ref_set;
 
@@ -120,6 +122,9 @@ int mrn_sim_step_dt(mrn_sim *sim, double dt);
  * given initial velocities by repeating 000 Eqs. 19-22 until grad v
  * converges (000 §3.2, last paragraph). Returns the iterations used. */
 int mrn_sim_init_affine(mrn_sim *sim);
+
+/* the kernel as the transfers use it: shape, face treatment, MLS gradient, periodic axes */
+mrn_kernel_options mrn_sim_kernel_options(const mrn_sim *sim);
 
 /* Energies, momenta and centre of mass of the current state */
 void mrn_sim_diagnostics(const mrn_sim *sim, mrn_diagnostics *d);

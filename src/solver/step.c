@@ -18,6 +18,7 @@
 #include "core/parallel.h"
 #include "core/tensor.h"
 #include "material/advance.h"
+#include "solver/point_force.h"
 #include "solver/simulation.h"
 #include "transfer/blocks.h"
 #include "transfer/kernels.h"
@@ -62,6 +63,7 @@ static void grid_update(mrn_sim *sim, double dt) {
   const double D = sim->damping_cundall, alpha = sim->damping_viscous;
   const int damped = D > 0.0 || alpha > 0.0;
   const mrn_node_ranges r = mrn_grid_active_ranges(g); /* every nodal array is zero elsewhere */
+  mrn_point_forces_to_grid(sim);
 #pragma omp parallel for schedule(static) if (r.nodes > MRN_OMP_MIN_NODES)
   for (long k = 0; k < r.count; k++) {
     double work = 0.0;
@@ -87,6 +89,7 @@ static void grid_update(mrn_sim *sim, double dt) {
   sim->work_damping += work;
   sim->work_friction += mrn_boundary_apply(&sim->boundary, g, g->vel_new, 1);
   for (int c = 0; c < sim->nconstraints; c++) mrn_constraint_apply(&sim->constraints[c], g, g->vel_new, floor_mass, dt);
+  sim->work_external += mrn_point_forces_work(sim, dt);
 #pragma omp parallel for schedule(static) if (r.nodes > MRN_OMP_MIN_NODES)
   for (long k = 0; k < r.count; k++)
     for (long i = r.lo[k]; i < r.hi[k]; i++)

@@ -4,14 +4,6 @@
 #include "solver/simulation.h"
 #include "transfer/stencils.h"
 
-/* the kernel as the transfers use it */
-static mrn_kernel_options probe_kernel(const mrn_sim *sim) {
-  mrn_kernel_options o = {sim->shape, sim->kernel_boundary, sim->scheme.mls_gradient, 0};
-  for (int d = 0; d < sim->dim; d++)
-    if (mrn_boundary_periodic(&sim->boundary, d)) o.periodic |= 1u << d;
-  return o;
-}
-
 #define PROBE_BODY(SUFFIX)                                                             \
   {                                                                                    \
     stencil_##SUFFIX s;                                                                \
@@ -23,7 +15,7 @@ static mrn_kernel_options probe_kernel(const mrn_sim *sim) {
 
 int mrn_probe_grid(const mrn_sim *sim, const double *nodal, int ncomp, const double x[3], double *out) {
   if (!mrn_grid_contains(&sim->grid, x)) return -1;
-  const mrn_kernel_options ko = probe_kernel(sim);
+  const mrn_kernel_options ko = mrn_sim_kernel_options(sim);
   /* uGIMP: half a cell wide (lp = 1/4 cell), as 4 particles per cell in 2D, 8 in 3D */
   const double half = 0.5 * sim->grid.cell;
   const double vol0 = sim->dim == 3 ? half * half * half : half * half;
