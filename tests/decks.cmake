@@ -36,6 +36,8 @@ moraine_deck_test(checkpoint_workflow checkpoint_workflow.lua)
 moraine_deck_test(rotating_cube rotating_cube.lua ARGS --set time=10)
 # the parameter-sweep helper lua/moraine/sweep.lua (runs axial_bar.lua four times)
 moraine_deck_test(sweep sweep.lua LABELS lua)
+# moraine.presets and moraine.geometry
+moraine_deck_test(presets_geometry presets_geometry.lua LABELS lua)
 
 # VTK files read back by the real VTK reader
 moraine_deck_test(vtk_output vtk_output.lua)

@@ -12,12 +12,14 @@
 local quick = mpm.param("quick", false)
 local g, L0 = 9.81, 1.0
 local H0 = mpm.param("height", 2.0)
-local rho, E, nu = 1400, 10e6, 0.3
+local presets = require "moraine.presets"
+local sand_set = presets.parameters("sand_column") -- 002 §5.5: E = 10 MPa, nu = 0.3, phi = 35, c = 0, psi = 0, rho = 1400
+local rho, nu = sand_set.density, sand_set.nu
 local h = mpm.param("cell", quick and 0.1 or 0.05)
 local W = 6.0
 local tc = math.sqrt(H0 / g)
 
-local sand = mpm.material.drucker_prager{ density = rho, E = E, nu = nu, phi = 35, psi = 0, cohesion = 0 } -- 002 Eqs. 71-74
+local sand = presets.material("sand_column") -- Drucker-Prager, 002 Eqs. 71-74
 local sim = mpm.simulation{
   dim = 2,
   grid = { size = { W, H0 + 2 * h }, cell = h },

@@ -9,7 +9,7 @@
 -- Parameters: k (constrained nodes 0..k under the half-footing, cell = 0.5 / (k + 0.5) m; 5),
 -- transfer (TPIC), boundary (shape_boundary: wls), travel (m; 4e-4), vtk (true), quick (false).
 local quick = mpm.param("quick", false)
-local E, nu, rho, c = 1e9, 0.333, 1000, 10e3
+local c = 10e3 -- cohesion (Pa); the soil is the preset footing_clay (002 §5.2: E = 1000 MPa, nu = 0.333, yield sqrt(3) c)
 local B, L = 1.0, 5.0
 local k = math.tointeger(mpm.param("k", quick and 2 or 5))
 local h = (B / 2) / (k + 0.5)
@@ -17,7 +17,7 @@ local V, ramp = 4e-3, 0.02
 local travel = quick and 2e-5 or mpm.param("travel", 4e-4)
 local qu = (2 + math.pi) * c
 
-local soil = mpm.material.von_mises{ density = rho, E = E, nu = nu, yield = math.sqrt(3) * c } -- 002 Eq. 67
+local soil = require("moraine.presets").material("footing_clay", { yield = math.sqrt(3) * c }) -- von Mises, 002 Eq. 67
 local sim = mpm.simulation{
   dim = 2,
   grid = { size = { L, L }, cell = h },

@@ -26,17 +26,12 @@ local results = require "moraine.results"
 
 local M = {}
 
---- 000 Table 2: Mohr-Coulomb parameters of the collapse (Camargue sand).
+--- 000 Table 2: Mohr-Coulomb parameters of the collapse (Camargue sand, the
+-- preset camargue_sand of moraine.presets: density 1748 kg/m^3, E 1.284e7 Pa,
+-- nu 0.16, phi 33.75 deg, psi 0, cohesion 1 Pa, tension -1 = the apex c / tan(phi)).
 -- The settling uses a linear elastic material with the same density, E, nu.
-M.table2 = {
-  density = 1748,  -- kg/m^3
-  E = 1.284e7,     -- Pa
-  nu = 0.16,
-  phi = 33.75,     -- deg
-  psi = 0,         -- deg
-  cohesion = 1,    -- Pa
-  tension = -1,    -- negative: the apex c / tan(phi) (000 Table 2)
-}
+M.table2 = require("moraine.presets").parameters("camargue_sand")
+M.table2.model, M.table2.source = nil, nil
 
 -- every option of collapse.run (and collapse.settle) with its default; false = none
 local DEFAULTS = {
