@@ -25,12 +25,7 @@ sim:constrain{ region = mpm.box{ min = { -1.01, -1 }, max = { 0.01, 21 } }, vx =
 local n = sim:point_force{ region = mpm.box{ min = { L - 0.05, 10 - 0.05 }, max = { L, 10 + 0.05 } }, force = { 0, -P } }
 T.check(n == 2, "the end load should act on 2 points, got %d", n)
 
-local tip, best = 1, math.huge
-for i = 1, sim:particle_count() do
-  local x = sim:particle(i).x
-  local d = (x[1] - L) ^ 2 + (x[2] - 10) ^ 2
-  if d < best then tip, best = i, d end
-end
+local tip = T.nearest(sim, { L, 10 }) -- the end point on the beam axis
 local yrest = sim:particle(tip).x[2]
 local Ep = E / (1 - nu * nu)
 local f1 = 1.8751 ^ 2 / (2 * math.pi) * math.sqrt(Ep * H ^ 3 / 12 / (rho * H * L ^ 4))

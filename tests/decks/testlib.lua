@@ -43,6 +43,17 @@ function T.expect(t)
   return r.error
 end
 
+--- index of the particle nearest the point x (2 or 3 numbers)
+function T.nearest(sim, x)
+  local best, index = math.huge, nil
+  for i = 1, sim:particle_count() do
+    local p, d = sim:particle(i).x, 0
+    for k = 1, #x do d = d + (p[k] - x[k]) ^ 2 end
+    if d < best then best, index = d, i end
+  end
+  return index
+end
+
 function T.done(name)
   print(string.format("%s: %d checks passed", name or "deck", T.checks))
 end
