@@ -38,6 +38,8 @@ moraine_deck_test(rotating_cube rotating_cube.lua ARGS --set time=10)
 moraine_deck_test(sweep sweep.lua LABELS lua)
 # moraine.presets and moraine.geometry
 moraine_deck_test(presets_geometry presets_geometry.lua LABELS lua)
+# a vertical cut stands below the limit-analysis lower bound and collapses above the upper bound
+moraine_deck_test(vertical_cut vertical_cut.lua)
 
 # VTK files read back by the real VTK reader
 moraine_deck_test(vtk_output vtk_output.lua)

@@ -20,7 +20,7 @@ end
 
 --- A 2D slope on a foundation layer, as an mpm.polygon region: a foundation
 -- `base` m deep and `toe + run + crest` m long, the slope rising `height` m at
--- `angle` degrees over the run height / tan(angle), with `toe` m of flat
+-- `angle` degrees (90: a vertical cut) over the run height / tan(angle), with `toe` m of flat
 -- ground in front and `crest` m behind. The lower left corner is at `origin`
 -- (default {0, 0}); the slope faces -x. Returns the region and a table of
 -- its key points {toe = {x, y}, crest = {x, y}, width, height}.
@@ -29,12 +29,12 @@ function M.slope(t)
   if type(t) ~= "table" then error(where .. ": expected a table of options", 2) end
   local positive = function(v) return v > 0 end
   local H = number(t, "height", where, nil, positive)
-  local angle = number(t, "angle", where, nil, function(v) return v > 0 and v < 90 end)
+  local angle = number(t, "angle", where, nil, function(v) return v > 0 and v <= 90 end)
   local crest = number(t, "crest", where, 0, function(v) return v >= 0 end)
   local toe = number(t, "toe", where, 0, function(v) return v >= 0 end)
   local base = number(t, "base", where, 0, function(v) return v >= 0 end)
   local o = t.origin or { 0, 0 }
-  local run = H / math.tan(math.rad(angle))
+  local run = angle == 90 and 0 or H / math.tan(math.rad(angle)) -- 90: a vertical cut
   local x0, y0 = o[1], o[2]
   local xt, xc = x0 + toe, x0 + toe + run
   local width = toe + run + crest

@@ -48,8 +48,10 @@ local mass = sim:diagnostics().mass
 T.close(mass, rho * area, 0.5 * h * H * math.sqrt(2) / area, "mass of the seeded slope against density x area")
 print(string.format("presets_geometry: %d presets; slope area %.4f m^2, seeded %.4f m^2 (%.2f %%)", #presets.names(),
                     area, mass / rho, 100 * (mass / rho - area) / area))
-ok, msg = pcall(geometry.slope, { height = 4, angle = 90 })
-T.check(not ok and msg:find("angle = 90 is out of range"), "angle 90: %s", tostring(msg))
+ok, msg = pcall(geometry.slope, { height = 4, angle = 0 })
+T.check(not ok and msg:find("angle = 0 is out of range"), "angle 0: %s", tostring(msg))
+local cut, cut_key = geometry.slope{ height = 4, angle = 90, crest = 2, toe = 1 }
+T.check(cut:contains(2.9, 3.9) and not cut:contains(0.9, 0.1) and cut_key.crest[1] == 1, "vertical cut outline")
 ok, msg = pcall(geometry.grid_around, { region_min = { 0, 0 }, region_max = { 1, 1 }, cell = 0.1, pad = { 1, 2 } })
 T.check(not ok and msg:find("pad must list 4 numbers"), "pad: %s", tostring(msg))
 T.done("presets_geometry")
