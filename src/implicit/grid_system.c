@@ -9,14 +9,6 @@
 #include "implicit/implicit_internal.h"
 #include "material/principal.h"
 
-static inline int pair_index(const mrn_implicit *im, size_t a, size_t b) {
-  const int *ia = im->ijk + 3 * a, *ib = im->ijk + 3 * b;
-  int r = 0;
-  if (im->dim == 3) r = (ia[2] - ib[2] + im->R) * im->W;
-  r = (r + ia[1] - ib[1] + im->R) * im->W;
-  return r + ia[0] - ib[0] + im->R;
-}
-
 static int grow(void **ptr, size_t bytes) {
   void *q = realloc(*ptr, bytes ? bytes : 1);
   if (!q) return mrn_error_code(MRN_ERR, "implicit: out of memory");
@@ -187,7 +179,7 @@ void mrn_implicit_map_to_grid(mrn_implicit *im) {
       }
       for (int l = 0; l < s->count; l++) {
         size_t b = (size_t)im->dof[s->node[l]];
-        size_t idx = b * NR + (size_t)pair_index(im, a, b);
+        size_t idx = b * NR + (size_t)mrn_implicit_pair_index(im, a, b);
         im->Mc[idx] += mN * s->N[l];
         im->touched[idx] = 1;
       }
@@ -287,7 +279,7 @@ void mrn_implicit_assemble(mrn_implicit *im) {
           }
       for (int la = 0; la < s->count; la++) {
         size_t a = (size_t)im->dof[s->node[la]];
-        double *Kab = im->Kb + 9 * (b * NR + (size_t)pair_index(im, a, b));
+        double *Kab = im->Kb + 9 * (b * NR + (size_t)mrn_implicit_pair_index(im, a, b));
         for (int i = 0; i < dim; i++)
           for (int kk = 0; kk < dim; kk++) {
             double sum = 0.0;
@@ -297,6 +289,7 @@ void mrn_implicit_assemble(mrn_implicit *im) {
       }
     }
   }
+  mrn_implicit_ghost_apply(im);
 }
 
 /* Solve M~ v = p on the free components. The consistent mass matrix is

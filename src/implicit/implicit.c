@@ -20,6 +20,7 @@ void mrn_implicit_options_default(mrn_implicit_options *o) {
   o->dt = 0.0;
   o->dt_factor = 5.0;
   o->min_node_mass = 1e-3;
+  o->ghost = 0.0;
 }
 
 static int material_of(const mrn_material *m, mrn_emc_material *out) {
@@ -42,6 +43,7 @@ void mrn_implicit_free(mrn_implicit *im) {
   if (!im) return;
   free(im->st), free(im->res), free(im->diss), free(im->fpt), free(im->sten);
   free(im->dof), free(im->act), free(im->ijk), free(im->Kb), free(im->Mc), free(im->touched), free(im->ml), free(im->gmass);
+  free(im->Gb), free(im->cellvol);
   free(im->fdof), free(im->v0), free(im->u), free(im->fint), free(im->fext), free(im->p), free(im->r), free(im->du);
   mrn_csc_free(&im->A);
   free(im);
@@ -49,9 +51,20 @@ void mrn_implicit_free(mrn_implicit *im) {
 
 mrn_implicit *mrn_implicit_new(mrn_sim *sim, const mrn_implicit_options *o) {
   if (o->max_iter < 2 || o->max_iter > MRN_IMPLICIT_MAX_ITER || !(o->tol > 0) || o->eps < 0 || o->eps > 1 ||
-      !(o->dt > 0 || o->dt_factor > 0) || !(o->min_node_mass >= 0 && o->min_node_mass < 1)) {
-    mrn_error_code(MRN_ERR, "implicit: invalid options (max_iter 2..%d, tol > 0, eps in [0, 1], dt or dt_factor > 0)",
+      !(o->dt > 0 || o->dt_factor > 0) || !(o->min_node_mass >= 0 && o->min_node_mass < 1) ||
+      !(o->ghost >= 0 && isfinite(o->ghost))) {
+    mrn_error_code(MRN_ERR, "implicit: invalid options (max_iter 2..%d, tol > 0, eps in [0, 1], dt or dt_factor > 0, "
+                            "ghost >= 0)",
                    MRN_IMPLICIT_MAX_ITER);
+    return NULL;
+  }
+  if (o->ghost > 0 && sim->shape != MRN_SHAPE_LINEAR && sim->shape != MRN_SHAPE_GIMP) {
+    /* the penalty on the jump of the first normal derivative is the one of
+     * the linear (hat) grid basis; B-splines would need the jumps of higher
+     * derivatives */
+    mrn_error_code(MRN_ERR, "implicit: ghost penalty: only the linear and gimp shape functions (hat grid basis) "
+                            "are supported, not '%s'",
+                   mrn_shape_info_of(sim->shape)->name);
     return NULL;
   }
   if (sim->shape == MRN_SHAPE_CUBIC_BSPLINE) {
@@ -69,6 +82,10 @@ mrn_implicit *mrn_implicit_new(mrn_sim *sim, const mrn_implicit_options *o) {
       mrn_implicit_free(im);
       return NULL;
     }
+  for (int i = 0; i < sim->nmaterials; i++) { /* the penalty's modulus: the stiffest Young's modulus */
+    double l = im->mat[i].lambda, G = im->mat[i].G;
+    im->ghost_modulus = fmax(im->ghost_modulus, G * (3.0 * l + 2.0 * G) / (l + G));
+  }
   const mrn_particles *ps = &sim->particles;
   size_t n = im->np = ps->n;
   im->st = calloc(n ? n : 1, sizeof *im->st);
@@ -93,7 +110,8 @@ mrn_implicit *mrn_implicit_new(mrn_sim *sim, const mrn_implicit_options *o) {
   /* node pairs reachable through one particle */
   int sup = mrn_shape_support(sim->shape);
   im->R = sup - 1;
-  im->W = 2 * sup - 1;
+  if (o->ghost > 0 && im->R < 2) im->R = 2; /* the face jumps couple nodes two cells apart (ghost.c) */
+  im->W = 2 * im->R + 1;
   im->NR = im->dim == 3 ? im->W * im->W * im->W : im->W * im->W;
   int r = 0;
   for (int dk = (im->dim == 3 ? -im->R : 0); dk <= (im->dim == 3 ? im->R : 0); dk++)
@@ -121,7 +139,6 @@ int mrn_implicit_next_dt(mrn_implicit *im, double *dt) {
   return 0;
 }
 
-/* pair index of row node a and column node b (active indices) */
 int mrn_implicit_step(mrn_implicit *im, mrn_implicit_history *h) {
   mrn_sim *sim = im->sim;
   mrn_particles *ps = &sim->particles;
@@ -134,6 +151,7 @@ int mrn_implicit_step(mrn_implicit *im, mrn_implicit_history *h) {
   if (rc) return rc;
   if ((rc = mrn_implicit_setup_step(im))) return rc;
   mrn_implicit_map_to_grid(im);
+  if ((rc = mrn_implicit_ghost_build(im))) return rc;
   const size_t nact = im->nact;
 
   /* B: grid velocity from M~ v = p on the free components (001 Eq. 26) */
@@ -258,6 +276,7 @@ int mrn_implicit_step(mrn_implicit *im, mrn_implicit_history *h) {
                           sim->step + 1, sim->time, dt, im->opt.max_iter, hist, im->opt.tol, resmax);
   }
 
+  im->ghost_work += mrn_implicit_ghost_work(im); /* the kinetic energy the penalty took in the step (ghost.c) */
   /* E: grid-to-particle mapping and update (001 Eqs. 23-25, 28-30) */
   for (size_t q = 0; q < 3 * nact; q++) {
     double v1 = 2.0 * im->u[q] / dt - im->v0[q]; /* mid-point rule: u = dt (v_t + v_t+dt) / 2 */
@@ -320,5 +339,6 @@ void mrn_implicit_energies(const mrn_implicit *im, mrn_implicit_energy *e) {
   }
   e->external_work = im->work_ext;
   e->mapping_loss = im->pic_loss;
-  e->total = e->kinetic + e->strain + e->dissipated - e->external_work;
+  e->ghost = im->ghost_work;
+  e->total = e->kinetic + e->strain + e->dissipated + e->ghost - e->external_work;
 }

@@ -10,6 +10,7 @@
  *      f_int from the energy-consistent algorithmic stress (emc_stress.h,
  *      001 Eq. 44), f_ext from point forces on material points and gravity,
  *      both at mid-step;
+ *      plus, with options.ghost > 0, the ghost penalty K_g u (ghost.c);
  *   D  Newton-Raphson from u = dt p / m_lumped, J = 2/dt^2 M~ + K (001 Eq. 27
  *      and §3.4), with a backtracking line search, until the
  *      error f_err^(k) = sum_I |r_I^(k)| |du_I^(k)| falls below tol times
@@ -49,9 +50,11 @@ typedef struct mrn_implicit_options {
   double dt_factor;         /* otherwise dt = dt_factor * (001 Eq. 61) at the start of every step */
   double min_node_mass;     /* nodes lighter than this times the heaviest point are left out of the
                              * step and the points touching them get MLS functions (grid_system.c) */
+  double ghost;             /* ghost penalty factor gamma (ghost.c), times the largest Young's modulus;
+                             * 0: off. Linear and gimp shapes only. */
 } mrn_implicit_options;
 
-/* consistent mass, FLIP, tol 1e-11, 20 iterations, dt_factor 5, min_node_mass 1e-3 */
+/* consistent mass, FLIP, tol 1e-11, 20 iterations, dt_factor 5, min_node_mass 1e-3, no ghost penalty */
 void mrn_implicit_options_default(mrn_implicit_options *o);
 
 typedef struct mrn_implicit_history {
@@ -66,7 +69,8 @@ typedef struct mrn_implicit_energy {
   double strain;        /* sum V_0 psi */
   double dissipated;    /* accumulated plastic dissipation sum V_0 dD */
   double external_work; /* work of point forces and gravity, sum f_ext . u */
-  double total;         /* kinetic + strain + dissipated - external_work */
+  double ghost;         /* energy removed by the ghost penalty, sum over steps of u^T K_g u (ghost.c) */
+  double total;         /* kinetic + strain + dissipated + ghost - external_work */
   double mapping_loss;  /* kinetic energy the PIC mapping removed, sum of m |v_p - N v_t|^2 / 2 (001 Eq. 37) */
   double momentum[3];   /* sum m v */
   double angular[3];    /* sum x x m v (z only in 2D) */

@@ -38,9 +38,23 @@ struct mrn_implicit {
   double *gmass; /* grid.n: lumped mass of every node, for the mass floor */
   int *fdof;     /* dim per active node: free dof index or -1 (fixed) */
   int nfree;
+  /* ghost penalty (ghost.c): K_g per node pair (one scalar, the same for every
+   * component), points' volume per cell, the modulus E it is scaled by and
+   * the energy it removed, sum over steps of u^T K_g u */
+  double *Gb, *cellvol, ghost_modulus, ghost_work;
   double *v0, *u, *fint, *fext, *p, *r, *du; /* 3 per active node; r, du per free dof */
   mrn_csc A;
 };
+
+/* pair index of row node a and column node b (active indices): the offset
+ * a - b in the (2 R + 1)^dim block */
+static inline int mrn_implicit_pair_index(const mrn_implicit *im, size_t a, size_t b) {
+  const int *ia = im->ijk + 3 * a, *ib = im->ijk + 3 * b;
+  int r = 0;
+  if (im->dim == 3) r = (ia[2] - ib[2] + im->R) * im->W;
+  r = (r + ia[1] - ib[1] + im->R) * im->W;
+  return r + ia[0] - ib[0] + im->R;
+}
 
 /* stencils at the start-of-step positions (small nodes left out), active
  * nodes, clamped components; 0 or error */
@@ -57,5 +71,12 @@ void mrn_implicit_increment(const mrn_implicit *im, const mrn_implicit_stencil *
 void mrn_implicit_assemble(mrn_implicit *im);
 /* M~ v = p on the free components (001 Eq. 26) */
 int mrn_implicit_project_velocity(mrn_implicit *im, const double *p, double *v);
+
+/* ghost stabilisation (ghost.c): the penalty matrix K_g of the step's cut
+ * faces (after map_to_grid); f_int += K_g u and K += K_g (in assemble); the
+ * energy u^T K_g u the penalty removes in the step */
+int mrn_implicit_ghost_build(mrn_implicit *im);
+void mrn_implicit_ghost_apply(mrn_implicit *im);
+double mrn_implicit_ghost_work(const mrn_implicit *im);
 
 #endif

@@ -4,7 +4,7 @@
  *   imp:point_force{ region = mpm.box{...}, force = { 0, -5e5 } }
  *   imp:load_factor(t / 25)   -- scales every point force from the next step
  *   local h = imp:step()      -- { dt, iterations, errors = {...}, residual }
- *   local e = imp:energy()    -- { kinetic, strain, dissipated, external_work, total, momentum, angular }
+ *   local e = imp:energy()    -- { kinetic, strain, dissipated, external_work, ghost, total, momentum, angular }
  * The deck drives the time loop; every option is checked against the specs
  * below (listed by `moraine --list-options`). */
 #include <lauxlib.h>
@@ -35,6 +35,10 @@ static const mrn_spec implicit_specs[] = {
      "adaptive step: this factor times the grid-averaged CFL estimate of 001 Eq. 61", NULL},
     {"min_node_mass", MRN_SPEC_NUMBER, 0, 1e-3, 0, 1, 0, 1, "",
      "nodes lighter than this times the heaviest point are left out (MLS functions on the rest)", NULL},
+    {"ghost", MRN_SPEC_NUMBER, 0, 0, 0, HUGE_VAL, 0, 1, "",
+     "ghost penalty factor gamma, times the largest Young's modulus, on the normal-gradient jumps at cut cells "
+     "(0: off; linear and gimp shapes)",
+     NULL},
 };
 
 static const mrn_spec force_specs[] = {
@@ -90,6 +94,7 @@ static int l_sim_implicit(lua_State *L) {
   if (mrn_lua_has(L, 2, "dt")) o.dt = mrn_lua_get_number(L, 2, where, implicit_specs, n, "dt");
   o.dt_factor = mrn_lua_get_number(L, 2, where, implicit_specs, n, "dt_factor");
   o.min_node_mass = mrn_lua_get_number(L, 2, where, implicit_specs, n, "min_node_mass");
+  o.ghost = mrn_lua_get_number(L, 2, where, implicit_specs, n, "ghost");
   implicit_box *b = lua_newuserdatauv(L, sizeof *b, 1);
   b->im = NULL;
   luaL_setmetatable(L, MRN_LUA_IMPLICIT);
@@ -123,13 +128,14 @@ static int l_energy(lua_State *L) {
   mrn_implicit *im = check_implicit(L, 1);
   mrn_implicit_energy e;
   mrn_implicit_energies(im, &e);
-  lua_createtable(L, 0, 7);
+  lua_createtable(L, 0, 10);
   lua_pushnumber(L, e.kinetic), lua_setfield(L, -2, "kinetic");
   lua_pushnumber(L, e.strain), lua_setfield(L, -2, "strain");
   lua_pushnumber(L, e.dissipated), lua_setfield(L, -2, "dissipated");
   lua_pushnumber(L, e.external_work), lua_setfield(L, -2, "external_work");
   lua_pushnumber(L, e.total), lua_setfield(L, -2, "total");
   lua_pushnumber(L, e.mapping_loss), lua_setfield(L, -2, "mapping_loss");
+  lua_pushnumber(L, e.ghost), lua_setfield(L, -2, "ghost");
   push_vector(L, e.momentum), lua_setfield(L, -2, "momentum");
   push_vector(L, e.angular), lua_setfield(L, -2, "angular");
   return 1;

@@ -11,10 +11,14 @@
 -- --set material=von_mises runs the elasto-plastic variant (001 §7.3): yield
 -- radius sqrt(2 J2) = 10 Pa of 001 Eq. 62, i.e. sigma_y = sqrt(3/2) 10 Pa, and
 -- checks energy plus accumulated plastic dissipation instead.
+-- --set ghost=G adds the ghost penalty (src/implicit/ghost.c): the energy it
+-- removes, sum u^T K_g u, is reported and counted in the balance, and linear
+-- and angular momentum must still hold to round-off.
 local T = dofile(mpm.deck_dir .. "/testlib.lua")
 local model = mpm.param("material", "hencky")
 local tfinal = mpm.param("time", 8.0)
 local per_cell = mpm.param("per_cell", 64)
+local ghost = mpm.param("ghost", 0)
 local mappings = {}
 for m in string.gmatch(mpm.param("mappings", "FLIP,PIC"), "[^,]+") do mappings[#mappings + 1] = m end
 
@@ -33,7 +37,7 @@ local function run(mapping)
   sim:add_particles(mpm.disk{ center = { 14.2, 6.5 }, radius = 2 },
                     { material = mat, velocity = { -0.75, 0 }, per_cell = per_cell, placement = "regular" })
   local imp = sim:implicit{ mass = "consistent", mapping = mapping, tol = 1e-11, dt_factor = mpm.param("dt_factor", 1.15),
-                            min_node_mass = mpm.param("min_node_mass", 0) }
+                            min_node_mass = mpm.param("min_node_mass", 0), ghost = ghost }
   local e0 = imp:energy()
   local pscale, lscale = 0, 0 -- sum m |v| and sum m |x x v| for the round-off scale
   for i = 1, sim:particle_count() do
@@ -76,9 +80,11 @@ for _, mapping in ipairs(mappings) do
   local tag = model .. "." .. mapping
   print(string.format("%s: %d steps, dt %.4g..%.4g s, Newton <= %d iterations, last error ratio <= %.2e, "
                       .. "last-step reduction <= %.2e; energy drift %.3e, |dP| %.2e, |dL| %.2e, "
-                      .. "max strain energy %.4g of %.4g J/m, dissipated %.4g J/m", tag, s.steps, s.dtmin, s.dtmax,
+                      .. "max strain energy %.4g of %.4g J/m, dissipated %.4g J/m, ghost penalty %.4g J/m, "
+                      .. "kinetic + strain at the end %.4g J/m", tag, s.steps, s.dtmin, s.dtmax,
                       s.iters, s.worst_final, s.worst_rate, s.drift, s.dp, s.dl, s.max_strain, s.e0.total,
-                      s.final.dissipated))
+                      s.final.dissipated, s.final.ghost, s.final.kinetic + s.final.strain))
+  if ghost > 0 then T.check(s.final.ghost > 0, "%s: the ghost penalty removed no energy", tag) end
   T.check(s.max_strain > 0.05 * s.e0.total, "%s: the cylinders did not collide (strain energy %g)", tag, s.max_strain)
   T.expect{ id = "implicit_cylinders." .. tag .. ".newton_iterations", what = tag .. ": most Newton iterations in a step",
             value = s.iters, max = 6 }

@@ -1,0 +1,29 @@
+-- Taylor bar impact with the implicit integrator and ghost stabilisation
+-- (001 §7.4): runs examples/implicit_taylor/deck.lua (its --set options pass
+-- through: time, ghost, min_node_mass) and checks what it returns:
+--   every step's Newton iteration reaches tol 1e-11 (a step that does not
+--     raises an error) with a final f_err ratio <= 1e-10;
+--   kinetic + stored + plastic + ghost energy constant to 1e-9 relative;
+--   the steps above 6 Newton iterations, the energy the penalty removed and
+--     the final length and mushroom radius (relative to the initial ones)
+--     are reported, not asserted: no finite-element reference for this
+--     bar was retrieved and verified (doc/implicit.md).
+local T = dofile(mpm.deck_dir .. "/testlib.lua")
+mpm.param("verbose", false) -- declared here too so --set verbose=... is accepted
+local run = dofile(mpm.deck_dir .. "/../../examples/implicit_taylor/deck.lua")
+T.check(run.steps > 0, "no step was taken")
+T.expect{ id = "implicit_taylor.newton_final", what = "largest final f_err ratio of a step", value = run.worst_final,
+          max = 1e-10 }
+T.expect{ id = "implicit_taylor.energy", what = "largest relative change of kinetic + stored + plastic + ghost energy",
+          value = run.drift, max = 1e-9 }
+T.expect{ id = "implicit_taylor.newton_iterations", what = "most Newton iterations in a step", value = run.max_iterations }
+T.expect{ id = "implicit_taylor.newton_over_six", what = "steps needing more than 6 Newton iterations",
+          value = run.over_six }
+T.expect{ id = "implicit_taylor.ghost_energy", what = "energy removed by the ghost penalty / initial kinetic energy",
+          value = run.e.ghost / run.e0.total }
+T.expect{ id = "implicit_taylor.plastic_energy", what = "plastic dissipation / initial kinetic energy",
+          value = run.e.dissipated / run.e0.total }
+T.expect{ id = "implicit_taylor.length_ratio", what = "final / initial length", value = run.s.length / run.s0.length }
+T.expect{ id = "implicit_taylor.radius_ratio", what = "final / initial impact-face radius (area-equivalent)",
+          value = run.s.radius / run.s0.radius }
+T.done("implicit_taylor")
