@@ -5,8 +5,8 @@
  * energy drift and the period. Both start from the same state: at rest in the
  * reference shape with the velocity of the first bending mode,
  * v_y = V phi_1(x) / phi_1(L), phi_1 = cosh bx - cos bx - s (sinh bx - sin bx),
- * b L = 1.8751, s = 0.7341 (the explicit step has no point loads, so the
- * load ramp of tests/decks/implicit_cantilever.lua cannot be run explicitly).
+ * b L = 1.8751, s = 0.7341. The loaded run of both integrators is
+ * tests/decks/implicit_cantilever.lua beside tests/decks/explicit_cantilever.lua.
  * Build: cmake --build BUILD --target implicit_cantilever_bench;
  * run: BUILD/moraine-implicit-cantilever [t_end [courant [explicit_only]]].
  * Figures: doc/implicit.md. */

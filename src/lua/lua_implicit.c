@@ -41,13 +41,6 @@ static const mrn_spec implicit_specs[] = {
      NULL},
 };
 
-static const mrn_spec force_specs[] = {
-    {"region", MRN_SPEC_ANY, 1, 0, 0, 0, 0, 0, NULL, "the material points loaded (those inside at the call)", NULL},
-    {"force", MRN_SPEC_VECTOR, 0, 0, -HUGE_VAL, HUGE_VAL, 0, 0, "N", "total point force, split equally (N/m in 2D)", NULL},
-    {"traction", MRN_SPEC_VECTOR, 0, 0, -HUGE_VAL, HUGE_VAL, 0, 0, "Pa",
-     "traction: each point gets traction times its face V0^((dim-1)/dim)", NULL},
-};
-
 typedef struct implicit_box {
   mrn_implicit *im;
 } implicit_box;
@@ -150,34 +143,15 @@ static int l_next_dt(lua_State *L) {
 }
 
 /* imp:point_force{ region, force | traction }: replaces the loads of the
- * points inside region; returns how many points were loaded */
+ * points inside region (selected as sim:point_force does); returns how many */
+static int set_implicit(void *ctx, size_t p, const double f[3]) { return mrn_implicit_set_point_force(ctx, p, f); }
+
 static int l_point_force(lua_State *L) {
-  const char *where = "point_force{}";
   mrn_implicit *im = check_implicit(L, 1);
   lua_getiuservalue(L, 1, 1);
   mrn_sim *sim = mrn_lua_check_sim(L, -1);
   lua_pop(L, 1);
-  const int n = MRN_COUNT(force_specs);
-  mrn_lua_check_table(L, 2, where, force_specs, n);
-  lua_getfield(L, 2, "region");
-  mrn_region *r = mrn_lua_check_region(L, -1, where);
-  lua_pop(L, 1);
-  double f[3] = {0, 0, 0};
-  int has_force = mrn_lua_get_vector(L, 2, where, "force", sim->dim, f, 0);
-  int has_traction = mrn_lua_get_vector(L, 2, where, "traction", sim->dim, f, 0);
-  if (has_force == has_traction) mrn_lua_error(L, where, "give exactly one of force and traction");
-  const mrn_particles *ps = &sim->particles;
-  long count = 0;
-  for (size_t p = 0; p < ps->n; p++) count += mrn_region_contains(r, ps->x + 3 * p) == 1;
-  if (count == 0) mrn_lua_error(L, where, "region: holds no material point");
-  for (size_t p = 0; p < ps->n; p++) {
-    if (mrn_region_contains(r, ps->x + 3 * p) != 1) continue;
-    double fp[3];
-    double scale = has_force ? 1.0 / (double)count : pow(ps->vol0[p], (sim->dim - 1.0) / sim->dim);
-    for (int d = 0; d < 3; d++) fp[d] = f[d] * scale;
-    mrn_implicit_set_point_force(im, p, fp);
-  }
-  lua_pushinteger(L, count);
+  lua_pushinteger(L, mrn_lua_point_force_args(L, 2, sim, "point_force{}", set_implicit, im));
   return 1;
 }
 
@@ -214,5 +188,4 @@ void mrn_lua_open_implicit(lua_State *L, int module) {
   lua_setfield(L, -2, "implicit");
   lua_pop(L, 2);
   mrn_spec_register_group("implicit{}", implicit_specs, MRN_COUNT(implicit_specs));
-  mrn_spec_register_group("point_force{}", force_specs, MRN_COUNT(force_specs));
 }
