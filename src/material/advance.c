@@ -90,18 +90,29 @@ MRN_ALWAYS_INLINE void jaumann_rotate(const int dim, const double L[9], double d
   s[SXZ] += t02 + t20;
 }
 
+/* F advanced over the step, J its determinant after, and before in *J_old
+ * unless J_old is NULL. Returns 1 (F unchanged) when the increment would
+ * invert F. */
+MRN_ALWAYS_INLINE int advance_F(const int dim, const double L[9], double dt, mrn_f_update f_update, double F[9],
+                                double *J_old, double *J) {
+  double A[9], Fn[9];
+  if (increment(dim, L, dt, f_update, A)) return 1;
+  apply_increment(dim, A, F, Fn);
+  if (J_old) *J_old = mat_det(F);
+  *J = mat_det(Fn);
+  if (!(*J > 0.0)) return 1;
+  memcpy(F, Fn, (dim == 3 ? 9 : 6) * sizeof(double)); /* plane strain: the z row is unchanged */
+  return 0;
+}
+
 /* The kinematics of one point: F advanced, and the model's input (rotated
  * start-of-step stress, strain increment, J) set in pt. Returns 1 (F
  * unchanged) when the increment would invert F. */
 MRN_ALWAYS_INLINE int kinematics(const int dim, const mrn_material *mat, const double L[9], double dt,
                                  mrn_f_update f_update, double F[9], const double stress[6], double *state,
                                  mrn_material_point *pt) {
-  double A[9], Fn[9];
-  if (increment(dim, L, dt, f_update, A)) return 1;
-  apply_increment(dim, A, F, Fn);
-  const double J_old = mat_det(F), J = mat_det(Fn);
-  if (!(J > 0.0)) return 1;
-  memcpy(F, Fn, (dim == 3 ? 9 : 6) * sizeof(double)); /* plane strain: the z row is unchanged */
+  double J_old, J;
+  if (advance_F(dim, L, dt, f_update, F, &J_old, &J)) return 1;
   memcpy(pt->stress, stress, sizeof pt->stress);
   mat_sym_part(L, dt, pt->dstrain); /* (002, Eq. 29) */
   if (mat->type->rate_form) jaumann_rotate(dim, L, dt, pt->stress);
@@ -114,11 +125,44 @@ MRN_ALWAYS_INLINE int kinematics(const int dim, const mrn_material *mat, const d
   return 0;
 }
 
+/* A `pure_hooke` model (material.h): the kinematics and the model's update
+ * of each point in one loop straight on the arrays, the same arithmetic as
+ * kinematics() followed by the model's update without the hand-over through
+ * mrn_material_point and the call per batch. */
+MRN_ALWAYS_INLINE long advance_hooke(const int dim, const mrn_material *mat, mrn_f_update f_update, double dt,
+                                     size_t n, const double *L, double *F, double *stress, double *strain,
+                                     mrn_point_result *out) {
+  const double lambda = mat->derived[0], shear = mat->derived[1];
+  long first_bad = -1;
+  for (size_t i = 0; i < n; i++) {
+    const double *Li = L + 9 * i;
+    double J;
+    if (advance_F(dim, Li, dt, f_update, F + 9 * i, NULL, &J)) {
+      out[i].inverted = 1;
+      if (first_bad < 0) first_bad = (long)i;
+      continue;
+    }
+    double s[6], de[6];
+    memcpy(s, stress + 6 * i, sizeof s);
+    mat_sym_part(Li, dt, de); /* (002, Eq. 29) */
+    jaumann_rotate(dim, Li, dt, s);
+    const double de_elastic = mrn_hooke_update(lambda, shear, de, s);
+    memcpy(stress + 6 * i, s, sizeof s);
+    if (strain) {
+      double *restrict e = strain + 6 * i;
+      for (int c = 0; c < 6; c++) e[c] += de[c];
+    }
+    out[i] = (mrn_point_result){J, de_elastic, 0.0, 0};
+  }
+  return first_bad;
+}
+
 enum { BATCH = 32 }; /* points per call of the model's update */
 
 MRN_ALWAYS_INLINE long advance_points(const int dim, const mrn_material *mat, mrn_f_update f_update, double dt,
                                       size_t n, const double *L, double *F, double *stress, double *strain,
                                       double *state, int state_stride, mrn_point_result *out) {
+  if (mat->type->pure_hooke) return advance_hooke(dim, mat, f_update, dt, n, L, F, stress, strain, out);
   long first_bad = -1;
   if (!mat->type->nstate) state = NULL;
   for (size_t lo = 0; lo < n; lo += BATCH) {
@@ -144,29 +188,32 @@ MRN_ALWAYS_INLINE long advance_points(const int dim, const mrn_material *mat, mr
         double *restrict e = strain + 6 * i;
         for (int c = 0; c < 6; c++) e[c] += pt->dstrain[c];
       }
-      out[i] = (mrn_point_result){pt->J_old, pt->J, pt->de_elastic, pt->dw_plastic, 0};
+      out[i] = (mrn_point_result){pt->J, pt->de_elastic, pt->dw_plastic, 0};
     }
   }
   return first_bad;
 }
 
-static long advance_points_2d(const mrn_material *mat, mrn_f_update f_update, double dt, size_t n, const double *L,
-                              double *F, double *stress, double *strain, double *state, int state_stride,
-                              mrn_point_result *out) {
-  return advance_points(2, mat, f_update, dt, n, L, F, stress, strain, state, state_stride, out);
-}
-
-static long advance_points_3d(const mrn_material *mat, mrn_f_update f_update, double dt, size_t n, const double *L,
-                              double *F, double *stress, double *strain, double *state, int state_stride,
-                              mrn_point_result *out) {
-  return advance_points(3, mat, f_update, dt, n, L, F, stress, strain, state, state_stride, out);
-}
+/* one instance per dimension and F update, so that both are constants */
+#define MRN_ADVANCE_VARIANT(DIM, FU)                                                                            \
+  static long advance_points_##DIM##d_##FU(const mrn_material *mat, double dt, size_t n, const double *L,       \
+                                           double *F, double *stress, double *strain, double *state,            \
+                                           int state_stride, mrn_point_result *out) {                           \
+    return advance_points(DIM, mat, MRN_F_UPDATE_##FU, dt, n, L, F, stress, strain, state, state_stride, out); \
+  }
+MRN_ADVANCE_VARIANT(2, MIDPOINT)
+MRN_ADVANCE_VARIANT(2, EULER)
+MRN_ADVANCE_VARIANT(3, MIDPOINT)
+MRN_ADVANCE_VARIANT(3, EULER)
+#undef MRN_ADVANCE_VARIANT
 
 long mrn_material_advance_points(const mrn_material *mat, int dim, mrn_f_update f_update, double dt, size_t n,
                                  const double *L, double *F, double *stress, double *strain, double *state,
                                  int state_stride, mrn_point_result *out) {
-  return (dim == 2 ? advance_points_2d : advance_points_3d)(mat, f_update, dt, n, L, F, stress, strain, state,
-                                                            state_stride, out);
+  const int mid = f_update == MRN_F_UPDATE_MIDPOINT;
+  return (dim == 2 ? (mid ? advance_points_2d_MIDPOINT : advance_points_2d_EULER)
+                   : (mid ? advance_points_3d_MIDPOINT : advance_points_3d_EULER))(mat, dt, n, L, F, stress, strain,
+                                                                                  state, state_stride, out);
 }
 
 int mrn_material_advance(const mrn_material *mat, const double L[9], double dt, mrn_f_update f_update, double F[9],

@@ -21,7 +21,7 @@
 typedef enum { MRN_F_UPDATE_EULER = 0, MRN_F_UPDATE_MIDPOINT = 1 } mrn_f_update;
 
 typedef struct mrn_point_result {
-  double J_old, J;        /* det F before and after */
+  double J;               /* det F after the step */
   double de_elastic;      /* per unit volume, see mrn_material_point */
   double dw_plastic;
   int inverted;           /* 1: the increment would invert F; the point was left unchanged */

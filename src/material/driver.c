@@ -24,10 +24,11 @@ int mrn_driver_init(mrn_driver *d, const mrn_material *m, const double stress0[6
 static int advance(mrn_driver *d, const double L[9], double dt) {
   mrn_point_result r;
   mrn_f_update kind = d->kinematics == MRN_DRIVER_F_MIDPOINT ? MRN_F_UPDATE_MIDPOINT : MRN_F_UPDATE_EULER;
+  const double J_old = mat_det(d->F);
   if (mrn_material_advance(d->mat, L, dt, kind, d->F, d->stress, d->strain, d->mat->type->nstate ? d->state : NULL,
                            &r))
     return mrn_error("driver: the increment would invert F at t = %g s", d->time + dt);
-  double vol_mid = 0.5 * (r.J_old + r.J);
+  double vol_mid = 0.5 * (J_old + r.J);
   d->de_elastic = r.de_elastic;
   d->dw_plastic = r.dw_plastic;
   d->e_elastic += vol_mid * r.de_elastic;

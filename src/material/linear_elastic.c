@@ -27,14 +27,7 @@ static int prepare(mrn_material *m) {
 }
 
 static inline void update_point(const mrn_material *m, mrn_material_point *pt) {
-  double ds[6], old[6];
-  for (int k = 0; k < 6; k++) old[k] = pt->stress[k];
-  mrn_hooke_increment(m->derived[D_LAMBDA], m->derived[D_SHEAR], pt->dstrain, ds);
-  for (int k = 0; k < 6; k++) pt->stress[k] += ds[k];
-  /* (000, Eq. 64) with the stress averaged over the step (000 §5.1.4) */
-  double mid[6];
-  for (int k = 0; k < 6; k++) mid[k] = 0.5 * (old[k] + pt->stress[k]);
-  pt->de_elastic = sym_ddot(mid, pt->dstrain);
+  pt->de_elastic = mrn_hooke_update(m->derived[D_LAMBDA], m->derived[D_SHEAR], pt->dstrain, pt->stress);
   pt->dw_plastic = 0.0;
 }
 
@@ -48,6 +41,7 @@ const mrn_material_type mrn_material_linear_elastic = {
     .nstate = 0,
     .state_names = NULL,
     .rate_form = 1,
+    .pure_hooke = 1, /* derived[D_LAMBDA], derived[D_SHEAR] are lambda, G */
     .prepare = prepare,
     .update = update,
     .wave_speed = mrn_material_isotropic_wave_speed,

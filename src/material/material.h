@@ -11,6 +11,7 @@
 #define MRN_MATERIAL_MATERIAL_H
 
 #include "core/spec.h"
+#include "core/tensor.h"
 
 #define MRN_MATERIAL_MAX_PARAMS 24
 #define MRN_MATERIAL_MAX_DERIVED 16
@@ -44,6 +45,10 @@ typedef struct mrn_material_type {
   int nstate;
   const char *const *state_names;
   int rate_form;
+  /* 1 when `update` is exactly mrn_hooke_update with lambda = derived[0],
+   * G = derived[1] and no history or plastic work: material/advance.c then
+   * runs that update inline, straight on the particle arrays */
+  int pure_hooke;
   /* derive constants from the parameters and check their consistency;
    * return 0 or an error (message set) */
   int (*prepare)(struct mrn_material *m);
@@ -109,6 +114,19 @@ static inline void mrn_hooke_increment(double lambda, double shear, const double
   double tr = de[0] + de[1] + de[2];
   for (int k = 0; k < 3; k++) ds[k] = lambda * tr + 2.0 * shear * de[k];
   for (int k = 3; k < 6; k++) ds[k] = 2.0 * shear * de[k];
+}
+
+/* The rate-form Hooke update of a point: s <- s + ds (s the rotated
+ * start-of-step stress), returning the elastic energy increment per unit
+ * volume (000, Eq. 64) with the stress averaged over the step (000 §5.1.4). */
+static inline double mrn_hooke_update(double lambda, double shear, const double de[6], double s[6]) {
+  double ds[6], old[6];
+  for (int k = 0; k < 6; k++) old[k] = s[k];
+  mrn_hooke_increment(lambda, shear, de, ds);
+  for (int k = 0; k < 6; k++) s[k] += ds[k];
+  double mid[6];
+  for (int k = 0; k < 6; k++) mid[k] = 0.5 * (old[k] + s[k]);
+  return sym_ddot(mid, de);
 }
 
 #endif

@@ -32,7 +32,7 @@
 #include "material/principal.h"
 
 enum { P_DENSITY, P_E, P_NU, P_PHI, P_PSI, P_COHESION, P_TENSION, P_COUNT };
-enum { D_LAMBDA, D_SHEAR, D_BULK, D_K, D_M, D_SC, D_TENSION };
+enum { D_LAMBDA, D_SHEAR, D_BULK, D_K, D_M, D_SC, D_TENSION, D_REACH };
 enum { S_EPS_P, S_EPS_V, S_COUNT };
 
 static const double DEG = 3.14159265358979323846 / 180.0;
@@ -65,6 +65,7 @@ static int prepare(mrn_material *m) {
   double apex = phi > 0.0 ? c / tan(phi) : HUGE_VAL;
   double t = m->param[P_TENSION];
   d[D_TENSION] = t < 0.0 || t > apex ? apex : t;
+  d[D_REACH] = 2.0 / sqrt(3.0) * sqrt(d[D_K] * d[D_K] + d[D_K] + 1.0); /* see surely_elastic */
   return MRN_OK;
 }
 
@@ -189,11 +190,40 @@ static int return_map(const mrn_material *m, double s[3]) {
   return 1;
 }
 
-static inline void update_point(const mrn_material *m, mrn_material_point *pt) {
-  double old[6], trial[6], ds[6], lam[3], V[9];
-  for (int k = 0; k < 6; k++) old[k] = pt->stress[k];
-  mrn_hooke_increment(m->derived[D_LAMBDA], m->derived[D_SHEAR], pt->dstrain, ds);
-  for (int k = 0; k < 6; k++) trial[k] = old[k] + ds[k];
+/* A sufficient condition for an elastic trial stress s, without its
+ * principal values. With p the mean stress and r = sqrt(J2), the principal
+ * values are p + (2/sqrt 3) r cos(theta - 2 pi i / 3), i = 0, 1, 2, for a
+ * Lode angle theta, so that for any theta
+ *   k s1 - s3 <= (k - 1) p + (2/sqrt 3) sqrt(k^2 + k + 1) r   (the amplitude
+ *   of (k + 1/2) cos theta + (sqrt 3 / 2) sin theta), and
+ *   s1 <= p + (2/sqrt 3) r.
+ * When both bounds clear the main plane and the cut-off by a margin of 1e-10
+ * of the stress scale, far above the round-off of the eigenvalues, the test
+ * of return_map on the principal stresses passes as well: the result is the
+ * one of the full path, without the eigen-decomposition (most points of a
+ * flow are elastic at any step). The bounds are compared squared (r^2 =
+ * J2, no square root); the scale takes the sum of the deviatoric and shear
+ * magnitudes, which is >= r. */
+static inline int surely_elastic(const mrn_material *m, const double s[6]) {
+  const double k = m->derived[D_K], T = m->derived[D_TENSION], sc = m->derived[D_SC];
+  const double p = (s[SXX] + s[SYY] + s[SZZ]) * (1.0 / 3.0);
+  const double dx = s[SXX] - p, dy = s[SYY] - p, dz = s[SZZ] - p;
+  const double J2 = 0.5 * (dx * dx + dy * dy + dz * dz) + s[SXY] * s[SXY] + s[SYZ] * s[SYZ] + s[SXZ] * s[SXZ];
+  const double rbound = fabs(dx) + fabs(dy) + fabs(dz) + fabs(s[SXY]) + fabs(s[SYZ]) + fabs(s[SXZ]);
+  const int tension = isfinite(T);
+  const double margin = 1e-10 * ((k + 1.0) * (fabs(p) + 2.0 * rbound) + sc + (tension ? fabs(T) : 0.0));
+  const double room = sc - (k - 1.0) * p - margin, reach = m->derived[D_REACH];
+  if (!(room >= 0.0 && reach * reach * J2 <= room * room)) return 0;
+  const double room_t = T - margin - p;
+  return !tension || (room_t >= 0.0 && (4.0 / 3.0) * J2 <= room_t * room_t);
+}
+
+/* the trial stress outside the elastic region surely_elastic proves: the
+ * principal-stress return (kept out of line: the elastic path is the common
+ * one and stays small enough to inline in the batch loop) */
+static __attribute__((noinline)) void update_general(const mrn_material *m, mrn_material_point *pt,
+                                                     const double old[6], const double trial[6]) {
+  double lam[3], V[9];
   mrn_sym_eigen(trial, lam, V);
   int plastic = return_map(m, lam);
   /* an elastic step keeps the trial tensor itself, not its re-assembly */
@@ -207,6 +237,19 @@ static inline void update_point(const mrn_material *m, mrn_material_point *pt) {
     pt->state[S_EPS_P] += mrn_equivalent_strain(dp);
     pt->state[S_EPS_V] += sym_trace(dp);
   }
+}
+
+static inline void update_point(const mrn_material *m, mrn_material_point *pt) {
+  double old[6], trial[6], ds[6];
+  for (int k = 0; k < 6; k++) old[k] = pt->stress[k];
+  mrn_hooke_increment(m->derived[D_LAMBDA], m->derived[D_SHEAR], pt->dstrain, ds);
+  for (int k = 0; k < 6; k++) trial[k] = old[k] + ds[k];
+  if (!surely_elastic(m, trial)) {
+    update_general(m, pt, old, trial);
+    return;
+  }
+  for (int k = 0; k < 6; k++) pt->stress[k] = trial[k];
+  mrn_energy_split(m->param[P_E], m->param[P_NU], old, pt->stress, pt->dstrain, 0, pt, NULL);
 }
 
 MRN_MATERIAL_BATCH_UPDATE(update_point)

@@ -20,7 +20,6 @@
   X(vol, 1, "current volume (m^3; m^2 in 2D)")                                              \
   X(vol0, 1, "initial volume")                                                              \
   X(F, 9, "deformation gradient")                                                           \
-  X(gradv, 9, "velocity gradient of the last step (1/s)")                                   \
   X(affine, 9, "APIC C = B D^-1 (000, Eq. 25) or Taylor grad v (000, Eq. 22) (1/s)")       \
   X(stress, 6, "Cauchy stress (Pa), tension positive")                                      \
   X(strain, 6, "accumulated small strain (sum of symmetric velocity-gradient increments)")   \

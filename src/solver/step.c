@@ -17,9 +17,9 @@
 #include "core/error.h"
 #include "core/parallel.h"
 #include "core/tensor.h"
-#include "material/advance.h"
 #include "solver/point_force.h"
 #include "solver/simulation.h"
+#include "solver/update.h"
 #include "transfer/blocks.h"
 #include "transfer/kernels.h"
 #include "transfer/profile.h"
@@ -95,63 +95,6 @@ static void grid_update(mrn_sim *sim, double dt) {
     for (long i = r.lo[k]; i < r.hi[k]; i++)
       for (int d = 0; d < 3; d++) g->acc[3 * i + d] = (g->vel_new[3 * i + d] - g->vel[3 * i + d]) / dt;
   mrn_phase_end(MRN_PHASE_GRID, t0);
-}
-
-enum { STRESS_CHUNK = 256 }; /* particles per task of the stress update */
-
-/* Kinematics and constitutive update of particles [lo, hi) (hi - lo <=
- * STRESS_CHUNK) from their velocity gradients (particles.gradv), in runs of
- * one material; volume from J, and the energies weighted by the mid-step
- * volume (000, Eqs. 64-65). Returns the first particle whose F would invert,
- * or -1. */
-static long update_chunk(mrn_sim *sim, size_t lo, size_t hi, double dt) {
-  mrn_particles *ps = &sim->particles;
-  const int stride = ps->state_stride;
-  mrn_point_result r[STRESS_CHUNK];
-  long first_bad = -1;
-  for (size_t a = lo, b; a < hi; a = b) {
-    for (b = a + 1; b < hi && ps->material[b] == ps->material[a];) b++;
-    long bad = mrn_material_advance_points(sim->materials[ps->material[a]], sim->dim, MRN_F_UPDATE_MIDPOINT, dt,
-                                           b - a, ps->gradv + 9 * a, ps->F + 9 * a, ps->stress + 6 * a,
-                                           ps->strain + 6 * a, stride ? ps->state + (size_t)stride * a : NULL,
-                                           stride, r + (a - lo));
-    if (bad >= 0 && first_bad < 0) first_bad = (long)a + bad;
-  }
-  for (size_t p = lo; p < hi; p++) {
-    const mrn_point_result *rp = &r[p - lo];
-    if (rp->inverted) continue;
-    double vol_old = ps->vol[p];
-    ps->vol[p] = ps->vol0[p] * rp->J;
-    double vol_mid = 0.5 * (vol_old + ps->vol[p]);
-    ps->e_elastic[p] += vol_mid * rp->de_elastic;
-    ps->w_plastic[p] += vol_mid * rp->dw_plastic;
-  }
-  return first_bad;
-}
-
-static int update_stresses(mrn_sim *sim, double dt) {
-  const double t0 = mrn_phase_begin();
-  mrn_particles *ps = &sim->particles;
-  const long n = (long)ps->n, nchunks = (n + STRESS_CHUNK - 1) / STRESS_CHUNK;
-  long first_bad = -1;
-#pragma omp parallel for schedule(static) if (n > MRN_OMP_MIN_ITEMS)
-  for (long c = 0; c < nchunks; c++) {
-    const long lo = c * STRESS_CHUNK, hi = lo + STRESS_CHUNK < n ? lo + STRESS_CHUNK : n;
-    long bad = update_chunk(sim, (size_t)lo, (size_t)hi, dt);
-    if (bad >= 0) {
-#pragma omp critical(mrn_bad_particle)
-      if (first_bad < 0 || bad < first_bad) first_bad = bad; /* the lowest index, whatever the threads */
-    }
-  }
-  mrn_phase_end(MRN_PHASE_STRESS, t0);
-  if (first_bad >= 0) {
-    const double *x = ps->x + 3 * first_bad;
-    return mrn_error_code(MRN_ERR_STATE,
-                          "step %ld: particle %lld at (%g, %g, %g) would invert (det F <= 0); "
-                          "the time step %g s is probably too large",
-                          sim->step + 1, (long long)ps->id[first_bad], x[0], x[1], x[2], dt);
-  }
-  return MRN_OK;
 }
 
 static double *scratch(mrn_sim *sim, size_t count) {
@@ -269,8 +212,8 @@ int mrn_sim_step_dt(mrn_sim *sim, double dt) {
   case MRN_STRESS_USF:
     mrn_p2g(sim, dim, 1, 0);
     if ((rc = grid_velocity_stage(sim))) return rc;
-    mrn_gradient(sim, dim, sim->grid.vel);
-    if ((rc = update_stresses(sim, dt))) return rc;
+    if ((rc = mrn_update_from_grid(sim, sim->grid.vel, dt))) return rc;
+    mrn_blocks_reuse(&sim->grid); /* the particles have not moved since the first P2G */
     mrn_p2g(sim, dim, 0, 1);
     grid_update(sim, dt);
     mrn_g2p(sim, dim, dt, NULL);
@@ -279,20 +222,18 @@ int mrn_sim_step_dt(mrn_sim *sim, double dt) {
     mrn_p2g(sim, dim, 1, 1);
     if ((rc = grid_velocity_stage(sim))) return rc;
     grid_update(sim, dt);
-    mrn_g2p_gradient(sim, dim, dt, NULL); /* grad v from V~, then G2P */
-    if ((rc = update_stresses(sim, dt))) return rc;
+    if ((rc = mrn_update_with_g2p(sim, dt, dt))) return rc; /* G2P, grad v from V~ */
     break;
   case MRN_STRESS_USAVG:
     /* half the strain increment from V^i before the forces, half from V~^i
      * after the motion: two constitutive calls per step (000 §3.4) */
     mrn_p2g(sim, dim, 1, 0);
     if ((rc = grid_velocity_stage(sim))) return rc;
-    mrn_gradient(sim, dim, sim->grid.vel);
-    if ((rc = update_stresses(sim, 0.5 * dt))) return rc;
+    if ((rc = mrn_update_from_grid(sim, sim->grid.vel, 0.5 * dt))) return rc;
+    mrn_blocks_reuse(&sim->grid); /* the particles have not moved since the first P2G */
     mrn_p2g(sim, dim, 0, 1);
     grid_update(sim, dt);
-    mrn_g2p_gradient(sim, dim, dt, NULL); /* grad v from V~, then G2P */
-    if ((rc = update_stresses(sim, 0.5 * dt))) return rc;
+    if ((rc = mrn_update_with_g2p(sim, dt, 0.5 * dt))) return rc; /* G2P, grad v from V~ */
     break;
   case MRN_STRESS_MUSL: {
     mrn_p2g(sim, dim, 1, 1);
@@ -303,10 +244,10 @@ int mrn_sim_step_dt(mrn_sim *sim, double dt) {
     if (!dx && sim->particles.n) return mrn_error("step: out of memory");
     mrn_g2p(sim, dim, dt, dx);
     /* re-map the updated particle momenta (start-of-step positions) */
+    mrn_blocks_reuse(&sim->grid);
     mrn_p2g(sim, dim, 1, 0);
     grid_velocity(sim);
-    mrn_gradient(sim, dim, sim->grid.vel);
-    if ((rc = update_stresses(sim, dt))) return rc;
+    if ((rc = mrn_update_from_grid(sim, sim->grid.vel, dt))) return rc;
     mrn_particles *ps = &sim->particles;
     for (size_t i = 0; i < 3 * ps->n; i++) ps->x[i] += dx[i];
     break;

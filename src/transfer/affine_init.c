@@ -4,10 +4,36 @@
 #include <math.h>
 #include <string.h>
 
+#include "core/parallel.h"
+
 #include "solver/simulation.h"
 #include "transfer/kernels.h"
 
 #define MAX_ITERATIONS 100
+
+typedef struct taylor_ctx {
+  double *affine;
+  double change, scale; /* max |grad v - affine|, max |grad v| */
+} taylor_ctx;
+
+/* gradient sink: the new grad v of a chunk replaces its affine matrices,
+ * noting how much they changed (maxima: the same for any order of chunks) */
+static long take_gradient(void *ctx, size_t lo, size_t hi, const double *L) {
+  taylor_ctx *t = ctx;
+  double change = 0.0, scale = 0.0;
+  double *A = t->affine + 9 * lo;
+  for (size_t k = 0; k < 9 * (hi - lo); k++) {
+    change = fmax(change, fabs(L[k] - A[k]));
+    scale = fmax(scale, fabs(L[k]));
+  }
+  memcpy(A, L, 9 * (hi - lo) * sizeof(double));
+#pragma omp critical(mrn_taylor_change)
+  {
+    t->change = fmax(t->change, change);
+    t->scale = fmax(t->scale, scale);
+  }
+  return -1;
+}
 
 int mrn_sim_init_affine(mrn_sim *sim) {
   mrn_particles *ps = &sim->particles;
@@ -21,17 +47,12 @@ int mrn_sim_init_affine(mrn_sim *sim) {
     for (size_t i = 0; i < g->n; i++)
       for (int d = 0; d < 3; d++)
         g->vel[3 * i + d] = g->mass[i] > sim->mass_floor ? g->mom[3 * i + d] / g->mass[i] : 0.0;
-    mrn_gradient(sim, sim->dim, g->vel); /* (000, Eq. 22) into gradv */
-    double change = 0.0, scale = 0.0;
-    for (size_t k = 0; k < 9 * ps->n; k++) {
-      change = fmax(change, fabs(ps->gradv[k] - ps->affine[k]));
-      scale = fmax(scale, fabs(ps->gradv[k]));
-    }
-    memcpy(ps->affine, ps->gradv, 9 * ps->n * sizeof(double));
-    if (change <= 1e-15 * scale || scale == 0.0) break;
+    taylor_ctx t = {ps->affine, 0.0, 0.0};
+    const mrn_gradient_sink sink = {take_gradient, &t, MRN_PHASE_G2P};
+    mrn_gradient(sim, sim->dim, g->vel, &sink); /* (000, Eq. 22) */
+    if (t.change <= 1e-15 * t.scale || t.scale == 0.0) break;
   }
   sim->scheme.grid_velocity = saved;
-  memset(ps->gradv, 0, 9 * ps->n * sizeof(double));
   sim->affine_pending = 0;
   return it;
 }

@@ -118,6 +118,10 @@ void mrn_blocks_set_sort_every(mrn_grid *g, long every) {
   if (g->blocks) g->blocks->sort_every = every > 0 ? every : 0;
 }
 
+void mrn_blocks_reuse(mrn_grid *g) {
+  if (g->blocks) g->blocks->reuse = 1;
+}
+
 mrn_node_ranges mrn_grid_active_ranges(const mrn_grid *g) {
   const mrn_blocks *b = g->blocks;
   mrn_node_ranges r = {(long)b->nranges, b->range_lo, b->range_hi, b->range_sum, b->active_nodes};
@@ -299,12 +303,19 @@ mrn_blocks *mrn_blocks_prepare(mrn_sim *sim, unsigned clear) {
   mrn_grid *g = &sim->grid;
   mrn_blocks *b = g->blocks;
   const mrn_particles *ps = &sim->particles;
+  const int reuse = b->reuse;
+  b->reuse = 0;
+  if (reuse && b->np == ps->n) {
+    switch_spans(b, g, clear); /* the spans stay: this clears the arrays named in `clear` on them */
+    return b;
+  }
   int threads = threads_for(ps->n);
   int dense = 0;
   for (int d = 0; d < g->dim; d++) dense |= mrn_boundary_periodic(&sim->boundary, d);
   b->dense = dense;
   if (ps->n > UINT32_MAX || !grow_particles(b, ps->n, threads)) {
     /* no room to bin: everything active, the caller scatters in index order */
+    b->np = 0; /* no binning to reuse */
     for (size_t r = 0; r < b->nrows; r++) {
       b->new_lo[r] = 0;
       b->new_hi[r] = g->nnode[0];

@@ -67,6 +67,7 @@ typedef struct mrn_blocks {
 
   long sort_every; /* > 0: reorder the particles by block every this many steps */
   long sorted_step;
+  int reuse;       /* the next mrn_blocks_prepare keeps the binning (mrn_blocks_reuse) */
 } mrn_blocks;
 
 /* allocated with the grid (mrn_grid_init); NULL on failure (message set) */
@@ -77,6 +78,11 @@ size_t mrn_blocks_bytes(const struct mrn_grid *g);
 
 /* reorder the particles by block every `every` steps (0: never) */
 void mrn_blocks_set_sort_every(struct mrn_grid *g, long every);
+
+/* The particles have not moved, nor been added, removed or reordered, since
+ * the last P2G: the next one keeps its binning and spans and only clears the
+ * arrays it accumulates into (USF's second P2G, for one). */
+void mrn_blocks_reuse(struct mrn_grid *g);
 
 /* Bin the particles by block, reorder them when a sort is due, work out the
  * new active spans, clear every nodal array where the old spans reach beyond

@@ -5,7 +5,29 @@
 #ifndef MRN_TRANSFER_KERNELS_H
 #define MRN_TRANSFER_KERNELS_H
 
+#include <stddef.h>
+
+#include "transfer/profile.h"
+
 struct mrn_sim;
+
+/* particles per chunk of velocity gradients handed on together */
+enum { MRN_GRADIENT_CHUNK = 256 };
+
+/* Where the velocity gradients go. They are not stored per particle: the
+ * kernels form them for a chunk of consecutive particles [lo, hi) (at most
+ * MRN_GRADIENT_CHUNK) in a buffer, L holding 9 values per particle
+ * (row-major d v_a / d x_b, zero beyond the dimension), and hand the buffer
+ * to `chunk` at once, on the thread that formed it (several chunks run at
+ * the same time on several threads). `chunk` returns the lowest index of
+ * [lo, hi) it rejects, or -1; the kernel returns the lowest over all chunks,
+ * the same for any thread count. When the phases are timed (profile.h), the
+ * time spent in `chunk` is booked to `phase` instead of G2P. */
+typedef struct mrn_gradient_sink {
+  long (*chunk)(void *ctx, size_t lo, size_t hi, const double *L);
+  void *ctx;
+  mrn_phase phase;
+} mrn_gradient_sink;
 
 /* P2G: nodal mass and momentum (000, Eqs. 6, 16), with the affine (000,
  * Eqs. 23-24) or Taylor (000, Eqs. 19-20) term of the scheme, when
@@ -19,9 +41,10 @@ void mrn_p2g_2d(struct mrn_sim *sim, int momentum, int force);
 void mrn_p2g_3d(struct mrn_sim *sim, int momentum, int force);
 
 /* velocity gradient L_p = sum_i v_i (x) grad N_i (000, Eqs. 44-45) from the
- * nodal velocity array `gvel`, stored in particles.gradv */
-void mrn_gradient_2d(struct mrn_sim *sim, const double *gvel);
-void mrn_gradient_3d(struct mrn_sim *sim, const double *gvel);
+ * nodal velocity array `gvel`, handed to `sink`; returns what the sink
+ * rejected first (see mrn_gradient_sink) */
+long mrn_gradient_2d(struct mrn_sim *sim, const double *gvel, const mrn_gradient_sink *sink);
+long mrn_gradient_3d(struct mrn_sim *sim, const double *gvel, const mrn_gradient_sink *sink);
 
 /* G2P: new particle velocities by the scheme (000, Eqs. 31, 33, 37, 40), the
  * affine/Taylor matrices (000, Eqs. 22, 25-27) and the position increments
@@ -29,10 +52,11 @@ void mrn_gradient_3d(struct mrn_sim *sim, const double *gvel);
  * otherwise the increments are stored there (3 per particle). */
 void mrn_g2p_2d(struct mrn_sim *sim, double dt, double *dx);
 void mrn_g2p_3d(struct mrn_sim *sim, double dt, double *dx);
-/* mrn_gradient from the updated grid velocity (grid.vel_new) followed by
- * mrn_g2p, in one pass over the particles (the same stencil serves both) */
-void mrn_g2p_gradient_2d(struct mrn_sim *sim, double dt, double *dx);
-void mrn_g2p_gradient_3d(struct mrn_sim *sim, double dt, double *dx);
+/* mrn_gradient from the updated grid velocity (grid.vel_new) and mrn_g2p,
+ * in one pass over the particles (the same stencil serves both); a chunk's
+ * gradients go to the sink after its particles have moved */
+long mrn_g2p_gradient_2d(struct mrn_sim *sim, double dt, double *dx, const mrn_gradient_sink *sink);
+long mrn_g2p_gradient_3d(struct mrn_sim *sim, double dt, double *dx, const mrn_gradient_sink *sink);
 
 /* G = interpolation of a nodal field to the particles (000, Eq. 11), 3 per particle */
 void mrn_grid_to_particles_2d(struct mrn_sim *sim, const double *gvel, double *pvel);
@@ -47,14 +71,15 @@ void mrn_particles_to_grid_3d(struct mrn_sim *sim, const double *pvel, double *g
 static inline void mrn_p2g(struct mrn_sim *sim, int dim, int momentum, int force) {
   MRN_DISPATCH(mrn_p2g, dim, sim, momentum, force);
 }
-static inline void mrn_gradient(struct mrn_sim *sim, int dim, const double *gvel) {
-  MRN_DISPATCH(mrn_gradient, dim, sim, gvel);
+static inline long mrn_gradient(struct mrn_sim *sim, int dim, const double *gvel, const mrn_gradient_sink *sink) {
+  return MRN_DISPATCH(mrn_gradient, dim, sim, gvel, sink);
 }
 static inline void mrn_g2p(struct mrn_sim *sim, int dim, double dt, double *dx) {
   MRN_DISPATCH(mrn_g2p, dim, sim, dt, dx);
 }
-static inline void mrn_g2p_gradient(struct mrn_sim *sim, int dim, double dt, double *dx) {
-  MRN_DISPATCH(mrn_g2p_gradient, dim, sim, dt, dx);
+static inline long mrn_g2p_gradient(struct mrn_sim *sim, int dim, double dt, double *dx,
+                                    const mrn_gradient_sink *sink) {
+  return MRN_DISPATCH(mrn_g2p_gradient, dim, sim, dt, dx, sink);
 }
 static inline void mrn_grid_to_particles(struct mrn_sim *sim, int dim, const double *gvel, double *pvel) {
   MRN_DISPATCH(mrn_grid_to_particles, dim, sim, gvel, pvel);

@@ -192,14 +192,22 @@ MRN_INLINE void KNAME(p2g_fast)(const KNAME(p2g_args) *ar, const KNAME(axes) *ax
 }
 
 #else
+#ifndef MRN_KERNEL_V2
+#define MRN_KERNEL_V2
+/* the x, y components of a node, at any 8-byte aligned address (see mrn_v4) */
+typedef double mrn_v2 __attribute__((vector_size(16), aligned(8), may_alias));
+#define mrn_v2_load(p) (*(const mrn_v2 *)(p))
+#define mrn_v2_store(p, v) (*(mrn_v2 *)(p) = (v))
+#endif
+
 /* One particle, plain B-spline factors, in 2D. The node values are formed
  * row by row (a row: the nodes along x at one y): with N = w_x w_y, the
  * branch x_i - x_p = (o_x, o_y) and A_x, A_y the columns of A,
  *   m N (v + A (x_i - x_p)) = w_x (c + s o_x),  c = m w_y (v + A_y o_y), s = m w_y A_x
  *   -V sigma grad N         = -(r dw_x + q w_x), r = V sigma_x w_y,      q = V sigma_y dw_y
- * so a node costs two multiply-adds per component and term. (Short vectors
- * over a whole row, as in 3D, waste a third of every vector on the z
- * components in 2D and measured slower.) */
+ * so a node costs two multiply-adds per term, on the node's (x, y) pair as
+ * one 2-wide vector. (Short vectors over a whole row, as in 3D, waste a
+ * third of every vector on the z components in 2D and measured slower.) */
 MRN_INLINE void KNAME(p2g_fast)(const KNAME(p2g_args) *ar, const KNAME(axes) *ax, size_t p, const int sup,
                                 const int momentum, const int force, const int affine) {
   mrn_grid *g = ar->g;
@@ -212,8 +220,9 @@ MRN_INLINE void KNAME(p2g_fast)(const KNAME(p2g_args) *ar, const KNAME(axes) *ax
   for (int j = 0; j < sup; j++) {
     const double wr = ax->w[1][j];
     const size_t row = ax->node0 + (size_t)(j * s1);
-    double c[DIM], sl[DIM], r[DIM], q[DIM];
     const double mr = m * wr;
+    /* the x, y components of a node are contiguous: one 2-wide vector */
+    mrn_v2 c = {0, 0}, sl = {0, 0}, r = {0, 0}, q = {0, 0};
     for (int a = 0; a < DIM; a++) {
       if (momentum) {
         c[a] = wr * (affine ? mv[a] + MA[a][1] * ax->off[1][j] : mv[a]);
@@ -229,10 +238,11 @@ MRN_INLINE void KNAME(p2g_fast)(const KNAME(p2g_args) *ar, const KNAME(axes) *ax
       const double wx = ax->w[0][i];
       if (momentum) {
         mass[n] += wx * mr;
-        for (int a = 0; a < DIM; a++) mom[3 * n + a] += wx * (affine ? c[a] + sl[a] * ax->off[0][i] : c[a]);
+        mrn_v2 t = c;
+        if (affine) t += sl * ax->off[0][i];
+        mrn_v2_store(mom + 3 * n, mrn_v2_load(mom + 3 * n) + wx * t);
       }
-      if (force)
-        for (int a = 0; a < DIM; a++) frc[3 * n + a] -= r[a] * ax->dw[0][i] + q[a] * wx;
+      if (force) mrn_v2_store(frc + 3 * n, mrn_v2_load(frc + 3 * n) - (r * ax->dw[0][i] + q * wx));
     }
   }
 }
@@ -399,7 +409,7 @@ MRN_INLINE void KNAME(gather_fast)(const KNAME(axes) *ax, const double *restrict
 #else
 /* Sums over a fast stencil, factor by factor, in 2D: along each row of nodes
  * the sums of w_x v, w_x a, w_x o_x v and dw_x v, then those of the rows
- * weighted by w_y, w_y o_y or dw_y:
+ * weighted by w_y, w_y o_y or dw_y, on (x, y) pairs as 2-wide vectors:
  *   vpic = sum N v, ap = sum N a           (000, Eq. 31)
  *   B    = sum N v (x) (x_i - x_p)         (000, Eq. 26) when want_b
  *   L    = sum v (x) grad N                (000, Eqs. 44-45) when want_l
@@ -411,33 +421,40 @@ MRN_INLINE void KNAME(gather_fast)(const KNAME(axes) *ax, const double *restrict
   (void)s2;
   double wox[4];
   for (int i = 0; i < sup; i++) wox[i] = ax->w[0][i] * ax->off[0][i];
+  /* (x, y) pairs as 2-wide vectors; Bx, By, Lx, Ly the columns of B and L */
+  mrn_v2 sv = {vpic[0], vpic[1]}, sa = {ap[0], ap[1]}, Bx = {B[0][0], B[1][0]}, By = {B[0][1], B[1][1]};
+  mrn_v2 Lx = {L[0][0], L[1][0]}, Ly = {L[0][1], L[1][1]};
   for (int j = 0; j < sup; j++) {
     const size_t row = ax->node0 + (size_t)(j * s1);
-    double rv[DIM] = {0}, ra[DIM] = {0}, rvx[DIM] = {0}, rdv[DIM] = {0};
+    mrn_v2 rv = {0, 0}, ra = {0, 0}, rvx = {0, 0}, rdv = {0, 0};
     for (int i = 0; i < sup; i++) {
-      const double *vi = gvel + 3 * (row + (size_t)i);
-      for (int a = 0; a < DIM; a++) {
-        rv[a] += ax->w[0][i] * vi[a];
-        if (want_pic) ra[a] += ax->w[0][i] * gacc[3 * (row + (size_t)i) + a];
-        if (want_b) rvx[a] += wox[i] * vi[a];
-        if (want_l) rdv[a] += ax->dw[0][i] * vi[a];
-      }
+      const mrn_v2 vi = mrn_v2_load(gvel + 3 * (row + (size_t)i));
+      rv += ax->w[0][i] * vi;
+      if (want_pic) ra += ax->w[0][i] * mrn_v2_load(gacc + 3 * (row + (size_t)i));
+      if (want_b) rvx += wox[i] * vi;
+      if (want_l) rdv += ax->dw[0][i] * vi;
     }
     const double wy = ax->w[1][j], woy = wy * ax->off[1][j], dwy = ax->dw[1][j];
-    for (int a = 0; a < DIM; a++) {
-      if (want_pic) {
-        vpic[a] += wy * rv[a];
-        ap[a] += wy * ra[a];
-      }
-      if (want_b) {
-        B[a][0] += wy * rvx[a];
-        B[a][1] += woy * rv[a];
-      }
-      if (want_l) {
-        L[a][0] += wy * rdv[a];
-        L[a][1] += dwy * rv[a];
-      }
+    if (want_pic) {
+      sv += wy * rv;
+      sa += wy * ra;
     }
+    if (want_b) {
+      Bx += wy * rvx;
+      By += woy * rv;
+    }
+    if (want_l) {
+      Lx += wy * rdv;
+      Ly += dwy * rv;
+    }
+  }
+  for (int a = 0; a < DIM; a++) {
+    vpic[a] = sv[a];
+    ap[a] = sa[a];
+    B[a][0] = Bx[a];
+    B[a][1] = By[a];
+    L[a][0] = Lx[a];
+    L[a][1] = Ly[a];
   }
 }
 #endif
@@ -474,11 +491,40 @@ static inline void KNAME(store_matrix)(const double M[DIM][DIM], double *out) {
     for (int b = 0; b < DIM; b++) out[3 * a + b] = M[a][b];
 }
 
+/* The body of a kernel instance that may hand gradients on: the particles
+ * in chunks of MRN_GRADIENT_CHUNK, the chunks in parallel; EACH handles
+ * particle p of the chunk [lo, hi), writing its gradient to L + 9 (p - lo)
+ * when HAND_OVER, and the chunk's gradients then go to `sink`. Returns the
+ * lowest index the sink rejected, or -1, and sets *sink_seconds. */
+#define MRN_CHUNKED_LOOP(N, HAND_OVER, EACH)                                                                  \
+  const long n_ = (N), nchunks_ = (n_ + MRN_GRADIENT_CHUNK - 1) / MRN_GRADIENT_CHUNK;                        \
+  long first_bad = n_;                                                                                       \
+  double spent = 0.0;                                                                                        \
+  _Pragma("omp parallel for schedule(static) if (n_ > MRN_OMP_MIN_ITEMS) reduction(min : first_bad) reduction(+ : spent)") \
+  for (long c = 0; c < nchunks_; c++) {                                                                      \
+    const long lo = c * MRN_GRADIENT_CHUNK, hi = lo + MRN_GRADIENT_CHUNK < n_ ? lo + MRN_GRADIENT_CHUNK : n_; \
+    double L[(HAND_OVER) ? 9 * MRN_GRADIENT_CHUNK : 1];                                                       \
+    for (long p = lo; p < hi; p++) EACH;                                                                     \
+    if (HAND_OVER) KNAME(hand_over)(sink, lo, hi, L, &first_bad, &spent);                                    \
+  }                                                                                                          \
+  *sink_seconds = spent;                                                                                     \
+  return first_bad < n_ ? first_bad : -1;
+
+/* Hands the gradients L of particles [lo, hi) to the sink; keeps the lowest
+ * rejected index and, when the phases are timed, the time spent there. */
+MRN_INLINE void KNAME(hand_over)(const mrn_gradient_sink *sink, long lo, long hi, const double *L, long *first_bad,
+                                 double *spent) {
+  const double t0 = mrn_phase_begin();
+  const long bad = sink->chunk(sink->ctx, (size_t)lo, (size_t)hi, L);
+  if (mrn_profile_seconds) *spent += mrn_profile_now() - t0;
+  if (bad >= 0 && bad < *first_bad) *first_bad = bad;
+}
+
 /* ---- velocity gradient ---------------------------------------------------------- */
 
-/* one particle; `sup` is a constant at every call */
-MRN_INLINE void KNAME(gradient_particle)(const mrn_grid *g, mrn_particles *ps, const mrn_kernel_options *ko,
-                                         const double *gvel, size_t p, const int sup) {
+/* one particle's L into out (9 values); `sup` is a constant at every call */
+MRN_INLINE void KNAME(gradient_particle)(const mrn_grid *g, const mrn_particles *ps, const mrn_kernel_options *ko,
+                                         const double *gvel, size_t p, double *out, const int sup) {
   double L[DIM][DIM] = {{0}}, none[DIM][DIM] = {{0}}, nv[DIM] = {0};
   KNAME(axes) ax;
   if (sup && KNAME(axes_build)(g, sup, ko->boundary, ps->x + 3 * p, &ax)) {
@@ -488,33 +534,37 @@ MRN_INLINE void KNAME(gradient_particle)(const mrn_grid *g, mrn_particles *ps, c
     KNAME(stencil_build)(g, ko, ps->x + 3 * p, ps->vol0[p], &s);
     KNAME(gather_general)(&s, gvel, NULL, NULL, 0, 0, 1, nv, nv, nv, none, none, L);
   }
-  KNAME(store_matrix)(L, ps->gradv + 9 * p);
+  KNAME(store_matrix)(L, out);
 }
 
 /* The parallel loop sits in each instance (not in an inlined helper), so the
- * outlined loop body sees the constants. */
-#define MRN_GRADIENT_VARIANT(SUP)                                                                        \
-  static void KNAME(gradient_##SUP)(mrn_sim * sim, const mrn_kernel_options *ko, const double *gvel) { \
-    const mrn_grid *g = &sim->grid;                                                                      \
-    mrn_particles *ps = &sim->particles;                                                                 \
-    const long n = (long)ps->n;                                                                          \
-    _Pragma("omp parallel for schedule(static) if (n > MRN_OMP_MIN_ITEMS)")                              \
-    for (long p = 0; p < n; p++) KNAME(gradient_particle)(g, ps, ko, gvel, (size_t)p, SUP);              \
+ * outlined loop body sees the constants. Chunks of particles: the gradients
+ * of one chunk go to the sink together (see mrn_gradient_sink). */
+#define MRN_GRADIENT_VARIANT(SUP)                                                                     \
+  static long KNAME(gradient_##SUP)(mrn_sim * sim, const mrn_kernel_options *ko, const double *gvel,  \
+                                    const mrn_gradient_sink *sink, double *sink_seconds) {            \
+    const mrn_grid *g = &sim->grid;                                                                   \
+    const mrn_particles *ps = &sim->particles;                                                        \
+    MRN_CHUNKED_LOOP((long)ps->n, 1,                                                                  \
+                     KNAME(gradient_particle)(g, ps, ko, gvel, (size_t)p, L + 9 * (p - lo), SUP))     \
   }
 MRN_GRADIENT_VARIANT(0)
 MRN_GRADIENT_VARIANT(3)
 MRN_GRADIENT_VARIANT(4)
 #undef MRN_GRADIENT_VARIANT
 
-void KNAME(mrn_gradient)(mrn_sim *sim, const double *gvel) {
+long KNAME(mrn_gradient)(mrn_sim *sim, const double *gvel, const mrn_gradient_sink *sink) {
   const double t0 = mrn_phase_begin();
   const mrn_kernel_options ko = KNAME(kernel_options)(sim);
+  double spent = 0.0;
+  long bad;
   switch (KNAME(fast_support)(&ko)) {
-  case 3: KNAME(gradient_3)(sim, &ko, gvel); break;
-  case 4: KNAME(gradient_4)(sim, &ko, gvel); break;
-  default: KNAME(gradient_0)(sim, &ko, gvel); break;
+  case 3: bad = KNAME(gradient_3)(sim, &ko, gvel, sink, &spent); break;
+  case 4: bad = KNAME(gradient_4)(sim, &ko, gvel, sink, &spent); break;
+  default: bad = KNAME(gradient_0)(sim, &ko, gvel, sink, &spent); break;
   }
-  mrn_phase_end(MRN_PHASE_G2P, t0);
+  mrn_phase_end_split(MRN_PHASE_G2P, sink->phase, t0, spent, sim->particles.n > MRN_OMP_MIN_ITEMS);
+  return bad;
 }
 
 /* ---- G2P ------------------------------------------------------------------------ */
@@ -563,9 +613,9 @@ typedef struct KNAME(g2p_args) {
 } KNAME(g2p_args);
 
 /* G2P of one particle; with `fused` the velocity gradient from the updated
- * grid velocity is stored in gradv on the way (the same stencil). `sup`,
+ * grid velocity is written to Lout on the way (the same stencil). `sup`,
  * `gvk` and `fused` are constants at every call. */
-MRN_INLINE void KNAME(g2p_particle)(const KNAME(g2p_args) *ar, size_t p, const int sup, const int gvk,
+MRN_INLINE void KNAME(g2p_particle)(const KNAME(g2p_args) *ar, size_t p, double *Lout, const int sup, const int gvk,
                                     const int fused) {
   const mrn_grid *g = ar->g;
   mrn_particles *ps = ar->ps;
@@ -594,7 +644,7 @@ MRN_INLINE void KNAME(g2p_particle)(const KNAME(g2p_args) *ar, size_t p, const i
     KNAME(gather_general)(&s, g->vel_new, g->acc, ar->gstar, 1, want_bd, want_l, v_pic, a_p, v_star, B, D, L);
     if (gvk == MRN_VGRID_AFFINE) KNAME(apic_matrix)(B, D, ps->affine + 9 * p);
   }
-  if (fused) KNAME(store_matrix)(L, ps->gradv + 9 * p);
+  if (fused) KNAME(store_matrix)(L, Lout);
   if (gvk == MRN_VGRID_TAYLOR) KNAME(store_matrix)(L, ps->affine + 9 * p); /* (000, Eq. 22), updated V */
   double step[3] = {0, 0, 0};
   for (int d = 0; d < DIM; d++) {
@@ -621,12 +671,12 @@ MRN_INLINE void KNAME(g2p_particle)(const KNAME(g2p_args) *ar, size_t p, const i
   }
 }
 
-typedef void (*KNAME(g2p_fn))(const KNAME(g2p_args) *);
-#define MRN_G2P_VARIANT(SUP, GV, FUSED)                                                  \
-  static void KNAME(g2p_##SUP##_##GV##FUSED)(const KNAME(g2p_args) * ar) {               \
-    const long n = (long)ar->ps->n;                                                      \
-    _Pragma("omp parallel for schedule(static) if (n > MRN_OMP_MIN_ITEMS)")              \
-    for (long p = 0; p < n; p++) KNAME(g2p_particle)(ar, (size_t)p, SUP, GV, FUSED);     \
+typedef long (*KNAME(g2p_fn))(const KNAME(g2p_args) *, const mrn_gradient_sink *, double *);
+#define MRN_G2P_VARIANT(SUP, GV, FUSED)                                                                   \
+  static long KNAME(g2p_##SUP##_##GV##FUSED)(const KNAME(g2p_args) * ar, const mrn_gradient_sink *sink,    \
+                                             double *sink_seconds) {                                      \
+    MRN_CHUNKED_LOOP((long)ar->ps->n, FUSED,                                                              \
+                     KNAME(g2p_particle)(ar, (size_t)p, L + (FUSED ? 9 * (p - lo) : 0), SUP, GV, FUSED)) \
   }
 #define MRN_G2P_VARIANTS(SUP)                                                                                  \
   MRN_G2P_VARIANT(SUP, 0, 0) MRN_G2P_VARIANT(SUP, 1, 0) MRN_G2P_VARIANT(SUP, 2, 0) MRN_G2P_VARIANT(SUP, 0, 1) \
@@ -652,7 +702,7 @@ static KNAME(g2p_fn) KNAME(g2p_pick)(int sup, mrn_grid_velocity_kind gv, int fus
   return NULL;
 }
 
-static void KNAME(g2p_any)(mrn_sim *sim, double dt, double *dx, int fused) {
+static long KNAME(g2p_any)(mrn_sim *sim, double dt, double *dx, const mrn_gradient_sink *sink) {
   const double t0 = mrn_phase_begin();
   const mrn_kernel_options ko = KNAME(kernel_options)(sim);
   /* XPIC's smoothed velocity is gathered by the general form only */
@@ -662,13 +712,18 @@ static void KNAME(g2p_any)(mrn_sim *sim, double dt, double *dx, int fused) {
   KNAME(g2p_args) ar = {&sim->grid, &sim->particles, &ko, dt,
                         vu == MRN_VUPDATE_FLIP ? 1.0 : vu == MRN_VUPDATE_BLEND ? sc->flip_fraction : 0.0, dx,
                         vu == MRN_VUPDATE_XPIC ? sim->grid.vel_star : NULL, vu, sc->position_update};
-  KNAME(g2p_pick)(sup, sc->grid_velocity, fused)(&ar);
-  mrn_phase_end(MRN_PHASE_G2P, t0);
+  double spent = 0.0;
+  const long bad = KNAME(g2p_pick)(sup, sc->grid_velocity, sink != NULL)(&ar, sink, &spent);
+  mrn_phase_end_split(MRN_PHASE_G2P, sink ? sink->phase : MRN_PHASE_G2P, t0, spent,
+                      sim->particles.n > MRN_OMP_MIN_ITEMS);
+  return bad;
 }
 
-void KNAME(mrn_g2p)(mrn_sim *sim, double dt, double *dx) { KNAME(g2p_any)(sim, dt, dx, 0); }
+void KNAME(mrn_g2p)(mrn_sim *sim, double dt, double *dx) { KNAME(g2p_any)(sim, dt, dx, NULL); }
 
-void KNAME(mrn_g2p_gradient)(mrn_sim *sim, double dt, double *dx) { KNAME(g2p_any)(sim, dt, dx, 1); }
+long KNAME(mrn_g2p_gradient)(mrn_sim *sim, double dt, double *dx, const mrn_gradient_sink *sink) {
+  return KNAME(g2p_any)(sim, dt, dx, sink);
+}
 
 /* ---- XPIC's projections -------------------------------------------------------------- */
 
@@ -707,4 +762,5 @@ void KNAME(mrn_particles_to_grid)(mrn_sim *sim, const double *pvel, double *gvel
   }
 }
 
+#undef MRN_CHUNKED_LOOP
 #undef MRN_INLINE

@@ -3,7 +3,8 @@
  * active spans, also after the particles moved away; the grid loops' ranges
  * cover every node with mass; reordering the particles keeps every field
  * with its particle, and a run that sorts the particles every few steps ends
- * in the same state (by id) as one that does not, to round-off. */
+ * in the same state (by id) as one that does not, to round-off; a P2G that
+ * reuses the previous binning gives the same nodal values as one that bins. */
 #include <stdlib.h>
 #include <string.h>
 #ifdef _OPENMP
@@ -114,6 +115,25 @@ static void threads_and_spans(int dim, mrn_shape_kind shape) {
   mrn_sim_free(fresh);
 }
 
+/* USF's second P2G keeps the binning of the first (mrn_blocks_reuse): the
+ * nodal values are bitwise those of a P2G that bins again */
+static void reused_binning(int dim) {
+  mrn_sim *a = make(dim, MRN_SHAPE_QUADRATIC_BSPLINE, 20000, 11u);
+  mrn_sim *b = make(dim, MRN_SHAPE_QUADRATIC_BSPLINE, 20000, 11u);
+  CHECK(a && b);
+  set_threads(2);
+  mrn_p2g(a, dim, 1, 0);
+  mrn_blocks_reuse(&a->grid);
+  mrn_p2g(a, dim, 0, 1);
+  mrn_p2g(b, dim, 1, 0);
+  mrn_p2g(b, dim, 0, 1);
+  CHECK(a->grid.blocks->reuse == 0); /* used up */
+  CHECK(same_grid(&a->grid, &b->grid));
+  CHECK(ranges_hold(&a->grid));
+  mrn_sim_free(a);
+  mrn_sim_free(b);
+}
+
 static void permute_keeps_fields(void) {
   mrn_sim *sim = make(2, MRN_SHAPE_QUADRATIC_BSPLINE, 1000, 3u);
   CHECK(sim != NULL);
@@ -184,6 +204,7 @@ int main(void) {
     threads_and_spans(dim, MRN_SHAPE_CUBIC_BSPLINE);
     threads_and_spans(dim, MRN_SHAPE_LINEAR);
     sorted_run(dim);
+    reused_binning(dim);
   }
   permute_keeps_fields();
   CHECK_DONE();

@@ -1,0 +1,65 @@
+/* moraine: the material-point update of the explicit step (see update.h). */
+#include "solver/update.h"
+
+#include "core/error.h"
+#include "material/advance.h"
+#include "transfer/kernels.h"
+
+typedef struct chunk_ctx {
+  mrn_sim *sim;
+  double dt;
+} chunk_ctx;
+
+/* Kinematics and constitutive update of particles [lo, hi) (at most
+ * MRN_GRADIENT_CHUNK) from their velocity gradients L (9 per particle), in
+ * runs of one material; volume from J, and the energies weighted by the
+ * mid-step volume (000, Eqs. 64-65). Returns the first particle whose F
+ * would invert, or -1. A gradient sink (transfer/kernels.h). */
+static long update_chunk(void *ctx, size_t lo, size_t hi, const double *L) {
+  const chunk_ctx *c = ctx;
+  mrn_sim *sim = c->sim;
+  mrn_particles *ps = &sim->particles;
+  const int stride = ps->state_stride;
+  mrn_point_result r[MRN_GRADIENT_CHUNK];
+  long first_bad = -1;
+  for (size_t a = lo, b; a < hi; a = b) {
+    for (b = a + 1; b < hi && ps->material[b] == ps->material[a];) b++;
+    long bad = mrn_material_advance_points(sim->materials[ps->material[a]], sim->dim, MRN_F_UPDATE_MIDPOINT, c->dt,
+                                           b - a, L + 9 * (a - lo), ps->F + 9 * a, ps->stress + 6 * a,
+                                           ps->strain + 6 * a, stride ? ps->state + (size_t)stride * a : NULL,
+                                           stride, r + (a - lo));
+    if (bad >= 0 && first_bad < 0) first_bad = (long)a + bad;
+  }
+  for (size_t p = lo; p < hi; p++) {
+    const mrn_point_result *rp = &r[p - lo];
+    if (rp->inverted) continue;
+    double vol_old = ps->vol[p];
+    ps->vol[p] = ps->vol0[p] * rp->J;
+    double vol_mid = 0.5 * (vol_old + ps->vol[p]);
+    ps->e_elastic[p] += vol_mid * rp->de_elastic;
+    ps->w_plastic[p] += vol_mid * rp->dw_plastic;
+  }
+  return first_bad;
+}
+
+static int inverted_error(const mrn_sim *sim, long p, double dt) {
+  const double *x = sim->particles.x + 3 * p;
+  return mrn_error_code(MRN_ERR_STATE,
+                        "step %ld: particle %lld at (%g, %g, %g) would invert (det F <= 0); "
+                        "the time step %g s is probably too large",
+                        sim->step + 1, (long long)sim->particles.id[p], x[0], x[1], x[2], dt);
+}
+
+int mrn_update_from_grid(mrn_sim *sim, const double *gvel, double dt) {
+  chunk_ctx c = {sim, dt};
+  const mrn_gradient_sink sink = {update_chunk, &c, MRN_PHASE_STRESS};
+  const long bad = mrn_gradient(sim, sim->dim, gvel, &sink);
+  return bad >= 0 ? inverted_error(sim, bad, dt) : MRN_OK;
+}
+
+int mrn_update_with_g2p(mrn_sim *sim, double dt_move, double dt_stress) {
+  chunk_ctx c = {sim, dt_stress};
+  const mrn_gradient_sink sink = {update_chunk, &c, MRN_PHASE_STRESS};
+  const long bad = mrn_g2p_gradient(sim, sim->dim, dt_move, NULL, &sink);
+  return bad >= 0 ? inverted_error(sim, bad, dt_stress) : MRN_OK;
+}

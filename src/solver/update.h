@@ -1,0 +1,20 @@
+/* moraine: the material-point update of the explicit step — velocity
+ * gradient, kinematics and constitutive update in one pass over the
+ * particles (the gradient of a chunk of particles goes straight to the
+ * material update; no particle stores it). */
+#ifndef MRN_SOLVER_UPDATE_H
+#define MRN_SOLVER_UPDATE_H
+
+#include "solver/simulation.h"
+
+/* L from the nodal velocity gvel, then F, volume, stress and energies over
+ * dt (USF, MUSL, both halves of USAVG's first part). 0, or an error naming
+ * the first particle whose F would invert (the others are updated). */
+int mrn_update_from_grid(mrn_sim *sim, const double *gvel, double dt);
+
+/* G2P over dt_move (positions and velocities, mrn_g2p_gradient) with L from
+ * the updated grid velocity, and the material update over dt_stress (USL,
+ * USAVG's second half). Errors as mrn_update_from_grid. */
+int mrn_update_with_g2p(mrn_sim *sim, double dt_move, double dt_stress);
+
+#endif
