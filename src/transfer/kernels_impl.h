@@ -25,12 +25,7 @@
 
 #define MRN_INLINE static inline __attribute__((always_inline))
 
-static inline mrn_kernel_options KNAME(kernel_options)(const mrn_sim *sim) {
-  mrn_kernel_options o = {sim->shape, sim->kernel_boundary, sim->scheme.mls_gradient, 0};
-  for (int d = 0; d < DIM; d++)
-    if (mrn_boundary_periodic(&sim->boundary, d)) o.periodic |= 1u << d;
-  return o;
-}
+static inline mrn_kernel_options KNAME(kernel_options)(const mrn_sim *sim) { return mrn_sim_kernel_options(sim); }
 
 /* support of the fast path for these options, or 0 for the general stencil */
 static inline int KNAME(fast_support)(const mrn_kernel_options *o) {
