@@ -1,6 +1,8 @@
 # The implicit energy-momentum consistent MPM (src/implicit, paper 001, doc/implicit.md).
 # The tangent and energy-identity unit test (tests/unit/test_implicit.c) is registered with the other unit tests.
 moraine_deck_test(implicit_cylinders implicit_cylinders.lua)
+# sim:run driving the implicit integrator: ends on time, equals the imp:step() loop bit for bit, W_MPM, outputs
+moraine_deck_test(implicit_run implicit_run.lua)
 # the elasto-plastic collision (001 §7.3) to 8 s; with min_node_mass = 0 one step after 6 s needs 10 Newton
 # iterations, with the default 1e-3 at most 5 (doc/implicit.md)
 moraine_deck_test(implicit_cylinders_plastic implicit_cylinders.lua

@@ -41,6 +41,7 @@ static int material_of(const mrn_material *m, mrn_emc_material *out) {
 
 void mrn_implicit_free(mrn_implicit *im) {
   if (!im) return;
+  mrn_implicit_detach(im);
   free(im->st), free(im->res), free(im->diss), free(im->fpt), free(im->sten);
   free(im->dof), free(im->act), free(im->ijk), free(im->Kb), free(im->Mc), free(im->touched), free(im->ml), free(im->gmass);
   free(im->Gb), free(im->cellvol);

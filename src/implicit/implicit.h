@@ -98,4 +98,19 @@ int mrn_implicit_step(mrn_implicit *im, mrn_implicit_history *h);
 
 void mrn_implicit_energies(const mrn_implicit *im, mrn_implicit_energy *e);
 
+/* Make mrn_run (sim:run) advance the simulation with this integrator instead
+ * of the explicit step (implicit_run.c): each step is shortened so that a
+ * run of given duration ends on time; the work of the point forces goes to
+ * the simulation's work_external and the energy the ghost penalty removes to
+ * its work_damping, so the diagnostics' W_MPM is the implicit step's energy
+ * error. mrn_implicit_free detaches it (the explicit step again). */
+void mrn_implicit_attach(mrn_implicit *im);
+/* One step as mrn_run makes it: ending at or before t_end (HUGE_VAL: the
+ * integrator's own step), with the energy booking above. 0, MRN_STEP_NONE
+ * when what is left before t_end is a round-off sliver, or an error. */
+int mrn_implicit_advance(mrn_implicit *im, double t_end, mrn_implicit_history *h);
+void mrn_implicit_detach(mrn_implicit *im);
+/* Newton history of the last step mrn_run made */
+const mrn_implicit_history *mrn_implicit_last(const mrn_implicit *im);
+
 #endif

@@ -22,6 +22,7 @@ struct mrn_implicit {
   mrn_implicit_stencil *sten;
   double work_ext;
   double pic_loss; /* sum over steps of sum m |v_p - N v_t|^2 / 2 under PIC (001 Eq. 37) */
+  mrn_implicit_history last; /* the last step made by mrn_run (implicit_run.c) */
 
   /* active nodes of the step, in grid-index order */
   int *dof;      /* grid.n: active index or -1 */

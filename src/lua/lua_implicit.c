@@ -5,8 +5,9 @@
  *   imp:load_factor(t / 25)   -- scales every point force from the next step
  *   local h = imp:step()      -- { dt, iterations, errors = {...}, residual }
  *   local e = imp:energy()    -- { kinetic, strain, dissipated, external_work, ghost, total, momentum, angular }
- * The deck drives the time loop; every option is checked against the specs
- * below (listed by `moraine --list-options`). */
+ * Once made, the integrator also drives sim:run (implicit_run.c) until it is
+ * freed; every option is checked against the specs below (listed by
+ * `moraine --list-options`). */
 #include <lauxlib.h>
 #include <math.h>
 #include <string.h>
@@ -95,20 +96,31 @@ static int l_sim_implicit(lua_State *L) {
   lua_setiuservalue(L, -2, 1);
   b->im = mrn_implicit_new(sim, &o);
   if (!b->im) mrn_lua_error(L, where, "%s", mrn_error_message());
+  mrn_implicit_attach(b->im); /* sim:run now steps with it */
   return 1;
+}
+
+static void push_history(lua_State *L, const mrn_implicit_history *h) {
+  lua_createtable(L, 0, 4);
+  lua_pushnumber(L, h->dt), lua_setfield(L, -2, "dt");
+  lua_pushinteger(L, h->iterations), lua_setfield(L, -2, "iterations");
+  lua_pushnumber(L, h->residual), lua_setfield(L, -2, "residual");
+  lua_createtable(L, h->iterations, 0);
+  for (int k = 0; k < h->iterations; k++) lua_pushnumber(L, h->err[k]), lua_rawseti(L, -2, k + 1);
+  lua_setfield(L, -2, "errors");
 }
 
 static int l_step(lua_State *L) {
   mrn_implicit *im = check_implicit(L, 1);
   mrn_implicit_history h;
-  if (mrn_implicit_step(im, &h)) return luaL_error(L, "%s", mrn_error_message());
-  lua_createtable(L, 0, 4);
-  lua_pushnumber(L, h.dt), lua_setfield(L, -2, "dt");
-  lua_pushinteger(L, h.iterations), lua_setfield(L, -2, "iterations");
-  lua_pushnumber(L, h.residual), lua_setfield(L, -2, "residual");
-  lua_createtable(L, h.iterations, 0);
-  for (int k = 0; k < h.iterations; k++) lua_pushnumber(L, h.err[k]), lua_rawseti(L, -2, k + 1);
-  lua_setfield(L, -2, "errors");
+  if (mrn_implicit_advance(im, HUGE_VAL, &h)) return luaL_error(L, "%s", mrn_error_message());
+  push_history(L, &h);
+  return 1;
+}
+
+/* imp:last(): the Newton history of the last step (of imp:step() or sim:run) */
+static int l_last(lua_State *L) {
+  push_history(L, mrn_implicit_last(check_implicit(L, 1)));
   return 1;
 }
 
@@ -173,7 +185,7 @@ void mrn_lua_open_implicit(lua_State *L, int module) {
   luaL_newmetatable(L, MRN_LUA_IMPLICIT);
   static const luaL_Reg meta[] = {{"__gc", l_implicit_gc}, {"__close", l_implicit_gc}, {NULL, NULL}};
   luaL_setfuncs(L, meta, 0);
-  static const luaL_Reg methods[] = {{"step", l_step},           {"energy", l_energy},
+  static const luaL_Reg methods[] = {{"step", l_step}, {"last", l_last},           {"energy", l_energy},
                                      {"next_dt", l_next_dt},     {"point_force", l_point_force},
                                      {"clear_forces", l_clear_forces}, {"load_factor", l_load_factor}, {"free", l_implicit_gc},
                                      {NULL, NULL}};

@@ -83,21 +83,32 @@ int mrn_run(mrn_sim *sim, mrn_output *out, mrn_run_options *opt) {
   for (int i = 0; i < opt->nhooks; i++)
     if (opt->hooks[i].every_time > 0) opt->hooks[i].next_time = sim->time;
 
-  if (sim->affine_pending && sim->scheme.grid_velocity != MRN_VGRID_PLAIN) mrn_sim_init_affine(sim);
+  /* the affine matrices belong to the explicit transfers */
+  if (!sim->integrator.step && sim->affine_pending && sim->scheme.grid_velocity != MRN_VGRID_PLAIN)
+    mrn_sim_init_affine(sim);
   if (!sim->energy_ref_set) mrn_sim_energy_balance_start(sim);
   if (opt->thermo_every > 0 && !mrn_log_quiet()) mrn_thermo_header(stdout);
   int rc = after_step(sim, out, opt, 1);
   while (rc == MRN_OK) {
     if (step_end >= 0 && sim->step >= step_end) break;
-    double dt;
-    if ((rc = mrn_dt_compute(sim, &dt)) != MRN_OK) break;
-    if (opt->time > 0) {
-      double remaining = t_end - sim->time;
-      /* a sliver of time left over by round-off is not worth a step */
-      if (remaining <= 1e-9 * dt) break;
-      if (dt > remaining) dt = remaining;
+    if (sim->integrator.step) {
+      rc = sim->integrator.step(sim->integrator.ctx, sim, t_end);
+      if (rc == MRN_STEP_NONE) {
+        rc = MRN_OK;
+        break;
+      }
+      if (rc != MRN_OK) break;
+    } else {
+      double dt;
+      if ((rc = mrn_dt_compute(sim, &dt)) != MRN_OK) break;
+      if (opt->time > 0) {
+        double remaining = t_end - sim->time;
+        /* a sliver of time left over by round-off is not worth a step */
+        if (remaining <= 1e-9 * dt) break;
+        if (dt > remaining) dt = remaining;
+      }
+      if ((rc = mrn_sim_step_dt(sim, dt)) != MRN_OK) break;
     }
-    if ((rc = mrn_sim_step_dt(sim, dt)) != MRN_OK) break;
     rc = after_step(sim, out, opt, 0);
     if (rc == MRN_OK && mrn_interrupt_pending()) {
       rc = mrn_error_code(MRN_ERR_INTERRUPTED, "interrupted by signal %d after step %ld (t = %g s)",

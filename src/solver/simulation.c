@@ -37,6 +37,7 @@ mrn_kernel_options mrn_sim_kernel_options(const mrn_sim *sim) {
 
 void mrn_sim_free(mrn_sim *sim) {
   if (!sim) return;
+  if (sim->integrator.release) sim->integrator.release(sim->integrator.ctx);
   mrn_grid_free(&sim->grid);
   mrn_particles_free(&sim->particles);
   for (int i = 0; i < sim->nmaterials; i++) mrn_material_unref(sim->materials[i]);

@@ -30,6 +30,19 @@ typedef enum { MRN_LEAVE_STOP = 0, MRN_LEAVE_DELETE } mrn_leave_policy;
 /* "stop", "delete", NULL */
 const char *const *mrn_leave_policy_names(void);
 
+/* Another time integrator for mrn_run: step() advances the simulation by one
+ * step that ends at or before t_end (s; HUGE_VAL: no end), moving sim->time,
+ * sim->step and sim->dt, and returns 0, MRN_STEP_NONE when what is left
+ * before t_end is a round-off sliver (nothing done), or an error code with the
+ * message set. mrn_sim_free calls release(ctx) so that the integrator forgets
+ * the simulation. */
+#define MRN_STEP_NONE (-2) /* negative: not an error code (core/error.h), not MRN_STOP (-1) */
+typedef struct mrn_integrator {
+  int (*step)(void *ctx, struct mrn_sim *sim, double t_end);
+  void (*release)(void *ctx);
+  void *ctx;
+} mrn_integrator;
+
 typedef struct mrn_sim {
   int dim;
   mrn_grid grid;
@@ -70,6 +83,11 @@ typedef struct mrn_sim {
   double energy_outflow;  /* their E_k + E_g + E_el - W_pl when deleted, added back in W_MPM (J) */
   double mass_floor;    /* nodes lighter than this are treated as empty */
   int affine_pending;   /* initial velocities were assigned: initialise grad v / B at the next run */
+
+  /* an integrator that takes the place of the explicit step in mrn_run
+   * (the implicit one attaches itself: implicit/implicit.h); step == NULL:
+   * the explicit step */
+  mrn_integrator integrator;
 
   /* scratch, sized to the particle count */
   double *scratch;
