@@ -28,13 +28,6 @@ int mrn_sim_set_point_force(mrn_sim *sim, size_t p, const double f[3]) {
   return MRN_OK;
 }
 
-int mrn_sim_point_force(const mrn_sim *sim, size_t p, double f[3]) {
-  const mrn_user_field *uf = force_field(sim);
-  const mrn_particles *ps = &sim->particles;
-  for (int d = 0; d < 3; d++) f[d] = uf && uf->ncomp == 3 ? ps->user[p * ps->user_stride + uf->offset + d] : 0.0;
-  return uf && uf->ncomp == 3;
-}
-
 void mrn_sim_clear_point_forces(mrn_sim *sim) {
   const mrn_user_field *uf = force_field(sim);
   mrn_particles *ps = &sim->particles;

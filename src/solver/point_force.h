@@ -25,8 +25,6 @@ struct mrn_sim;
 /* Set the force on particle p (replaces its earlier one). 0, or MRN_ERR
  * (out of memory, or the field name is taken by another field; message set). */
 int mrn_sim_set_point_force(struct mrn_sim *sim, size_t p, const double f[3]);
-/* the force of particle p into f (zero when none); 1 if any point carries a force field */
-int mrn_sim_point_force(const struct mrn_sim *sim, size_t p, double f[3]);
 /* every point force to zero */
 void mrn_sim_clear_point_forces(struct mrn_sim *sim);
 /* multiply every point force by factor from the next step (finite; default 1) */
