@@ -29,7 +29,8 @@ sim:constrain{ region = mpm.box{ min = { -far, -far, -far }, max = { 1e-9, far, 
 sim:constrain{ region = mpm.box{ min = { -far, -far, -far }, max = { far, far, 1e-9 } }, vz = 0 }
 sim:constrain{ region = mpm.box{ min = { -far, -far, -far }, max = { far, 1e-9, far } }, vy = 0 }
 local imp = sim:implicit{ mass = "consistent", mapping = "FLIP", tol = 1e-11, dt = 0.375e-6, max_iter = 30,
-                          ghost = mpm.param("ghost", 0.1), min_node_mass = mpm.param("min_node_mass", 1e-3) }
+                          ghost = mpm.param("ghost", 0.1), min_node_mass = mpm.param("min_node_mass", 1e-3),
+                          bbar = mpm.param("bbar", false) }
 
 -- Length and mushroom radius, from the convected particle domains (each
 -- point's initial cube of side h/2 mapped by its F):

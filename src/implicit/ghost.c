@@ -74,10 +74,8 @@ int mrn_implicit_ghost_build(mrn_implicit *im) {
   memset(im->Gb, 0, im->nact * NR * sizeof(double));
   /* volume of the points in each cell (indexed by its lower corner node) */
   for (size_t p = 0; p < ps->n; p++) {
-    int c[3] = {0, 0, 0};
-    for (int d = 0; d < dim; d++) c[d] = (int)floor((ps->x[3 * p + d] - g->origin[d]) * g->inv_cell);
     if (!mrn_grid_contains(g, ps->x + 3 * p)) continue; /* the state check reports it */
-    im->cellvol[mrn_grid_index(g, c[0], c[1], c[2])] += ps->vol[p];
+    im->cellvol[mrn_implicit_point_cell(im, p)] += mrn_implicit_point_volume(im, p);
   }
   const double full = MRN_GHOST_FULL * pow(h, dim);
   const double coef = im->opt.ghost * im->ghost_modulus / h * pow(h / 6.0, dim - 1); /* gamma E h / h^2 (h/6)^(dim-1) */

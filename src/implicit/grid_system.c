@@ -248,6 +248,21 @@ void mrn_implicit_increment(const mrn_implicit *im, const mrn_implicit_stencil *
   }
 }
 
+size_t mrn_implicit_point_cell(const mrn_implicit *im, size_t p) {
+  const mrn_grid *g = &im->sim->grid;
+  const double *x = im->sim->particles.x + 3 * p;
+  int c[3] = {0, 0, 0};
+  for (int d = 0; d < im->dim; d++) {
+    c[d] = (int)floor((x[d] - g->origin[d]) * g->inv_cell);
+    c[d] = c[d] < -g->pad ? -g->pad : c[d] > g->ncell[d] + g->pad - 1 ? g->ncell[d] + g->pad - 1 : c[d];
+  }
+  return mrn_grid_index(g, c[0], c[1], c[2]);
+}
+
+double mrn_implicit_point_volume(const mrn_implicit *im, size_t p) {
+  return im->sim->particles.vol0[p] * mat_det(im->st[p].Ft);
+}
+
 /* internal forces (001 Eq. 44) and stiffness (001 Eq. A.10) at the current u */
 void mrn_implicit_assemble(mrn_implicit *im) {
   const mrn_particles *ps = &im->sim->particles;
@@ -255,11 +270,13 @@ void mrn_implicit_assemble(mrn_implicit *im) {
   const size_t NR = (size_t)im->NR;
   memset(im->fint, 0, 3 * im->nact * sizeof(double));
   memset(im->Kb, 0, im->nact * NR * 9 * sizeof(double));
+  mrn_implicit_bbar_theta(im);
   for (size_t q = 0; q < im->np; q++) {
     const mrn_implicit_stencil *s = &im->sten[q];
     double dF[9], P[9], D[81];
-    mrn_implicit_increment(im, s, dF);
+    mrn_implicit_point_increment(im, q, dF);
     mrn_emc_tangent(&im->mat[ps->material[q]], &im->st[q], dF, dim, P, D, &im->res[q]);
+    if (im->opt.bbar) mrn_implicit_bbar_point(im, q, P, D);
     const double V0 = ps->vol0[q];
     for (int k = 0; k < s->count; k++) {
       size_t a = (size_t)im->dof[s->node[k]];
@@ -289,16 +306,22 @@ void mrn_implicit_assemble(mrn_implicit *im) {
       }
     }
   }
+  mrn_implicit_bbar_cells(im);
   mrn_implicit_ghost_apply(im);
 }
 
 /* Solve M~ v = p on the free components. The consistent mass matrix is
  * singular when the points in a cell cannot tell its nodes apart (a single
  * row of points near the edge of a body), yet p = sum m N v_p always lies in
- * its range, and any solution keeps the FLIP energy identity (001 Eq. 38).
- * So the factorised matrix is M~ + delta M_lumped (delta = 1e-10) and
- * iterative refinement with the unregularised M~ converges to a solution of
- * M~ v = p. */
+ * its range, and any solution keeps the FLIP energy identity (001 Eq. 38) --
+ * but only as far as M~ v = p holds: the error (M~ v - p) . dv is an error
+ * of the step's kinetic energy. So M~ (symmetric, positive semi-definite) is
+ * solved by conjugate gradients preconditioned with the factorised
+ * M~ + delta M_lumped (delta = 1e-10): the preconditioned operator has its
+ * eigenvalues lambda / (lambda + delta) in (0, 1], clustered at 1 but for
+ * the few nearly singular directions, which conjugate gradients resolve in a
+ * few iterations (a plain iterative refinement with the same factor
+ * contracts them only by delta / (lambda + delta) per pass). */
 int mrn_implicit_project_velocity(mrn_implicit *im, const double *p, double *v) {
   const int n = im->nfree;
   const double delta = 1e-10;
@@ -317,23 +340,39 @@ int mrn_implicit_project_velocity(mrn_implicit *im, const double *p, double *v) 
   mrn_lu lu;
   if ((rc = mrn_lu_factor(&lu, &im->A))) goto out;
   size_t nn = n > 0 ? (size_t)n : 1;
-  double *res = malloc(nn * sizeof(double)), *dv = malloc(nn * sizeof(double));
-  if (!res || !dv) rc = mrn_error_code(MRN_ERR, "implicit: out of memory");
-  double pn = 0.0;
-  for (int i = 0; i < n; i++) v[i] = 0.0, res[i] = p[i], pn = fmax(pn, fabs(p[i]));
-  for (int it = 0; it < 50 && !rc; it++) {
-    if ((rc = mrn_lu_solve(&lu, &im->A, res, dv))) break;
-    for (int i = 0; i < n; i++) v[i] += dv[i];
-    mrn_csc_multiply(&M, v, res);
-    double rmax = 0.0;
-    for (int i = 0; i < n; i++) res[i] = p[i] - res[i], rmax = fmax(rmax, fabs(res[i]));
-    if (rmax <= 1e-15 * pn) break;
+  double *res = malloc(nn * sizeof(double)), *z = malloc(nn * sizeof(double)), *dir = malloc(nn * sizeof(double)),
+         *Md = malloc(nn * sizeof(double));
+  if (!res || !z || !dir || !Md) rc = mrn_error_code(MRN_ERR, "implicit: out of memory");
+  double pn = 0.0, rz = 0.0;
+  if (!rc) {
+    for (int i = 0; i < n; i++) v[i] = 0.0, res[i] = p[i], pn = fmax(pn, fabs(p[i]));
+    rc = mrn_lu_solve(&lu, &im->A, res, z);
+    for (int i = 0; i < n && !rc; i++) dir[i] = z[i], rz += res[i] * z[i];
   }
-  free(res), free(dv);
+  for (int it = 0; it < 100 && !rc && pn > 0.0; it++) {
+    mrn_csc_multiply(&M, dir, Md);
+    double dMd = 0.0;
+    for (int i = 0; i < n; i++) dMd += dir[i] * Md[i];
+    if (!(dMd > 0.0)) break; /* a direction in the null space of M~: nothing left to resolve */
+    const double alpha = rz / dMd;
+    double rmax = 0.0;
+    for (int i = 0; i < n; i++) {
+      v[i] += alpha * dir[i];
+      res[i] -= alpha * Md[i];
+      rmax = fmax(rmax, fabs(res[i]));
+    }
+    if (rmax <= 1e-15 * pn) break;
+    if ((rc = mrn_lu_solve(&lu, &im->A, res, z))) break;
+    double rz_new = 0.0;
+    for (int i = 0; i < n; i++) rz_new += res[i] * z[i];
+    const double beta = rz_new / rz;
+    rz = rz_new;
+    for (int i = 0; i < n; i++) dir[i] = z[i] + beta * dir[i];
+  }
+  free(res), free(z), free(dir), free(Md);
   mrn_lu_free(&lu);
 out:
   mrn_csc_free(&im->A);
   im->A = M;
   return rc;
 }
-

@@ -21,6 +21,7 @@ void mrn_implicit_options_default(mrn_implicit_options *o) {
   o->dt_factor = 5.0;
   o->min_node_mass = 1e-3;
   o->ghost = 0.0;
+  o->bbar = 0;
 }
 
 static int material_of(const mrn_material *m, mrn_emc_material *out) {
@@ -45,6 +46,7 @@ void mrn_implicit_free(mrn_implicit *im) {
   free(im->st), free(im->res), free(im->diss), free(im->fpt), free(im->sten);
   free(im->dof), free(im->act), free(im->ijk), free(im->Kb), free(im->Mc), free(im->touched), free(im->ml), free(im->gmass);
   free(im->Gb), free(im->cellvol);
+  free(im->bb), free(im->bb_of), free(im->bb_index), free(im->bb_slot);
   free(im->fdof), free(im->v0), free(im->u), free(im->fint), free(im->fext), free(im->p), free(im->r), free(im->du);
   mrn_csc_free(&im->A);
   free(im);
@@ -112,6 +114,8 @@ mrn_implicit *mrn_implicit_new(mrn_sim *sim, const mrn_implicit_options *o) {
   int sup = mrn_shape_support(sim->shape);
   im->R = sup - 1;
   if (o->ghost > 0 && im->R < 2) im->R = 2; /* the face jumps couple nodes two cells apart (ghost.c) */
+  /* the points of one cell reach sup + 1 nodes per axis (bbar.c) */
+  if (o->bbar && im->R < sup) im->R = sup;
   im->W = 2 * im->R + 1;
   im->NR = im->dim == 3 ? im->W * im->W * im->W : im->W * im->W;
   int r = 0;
@@ -153,6 +157,7 @@ int mrn_implicit_step(mrn_implicit *im, mrn_implicit_history *h) {
   if ((rc = mrn_implicit_setup_step(im))) return rc;
   mrn_implicit_map_to_grid(im);
   if ((rc = mrn_implicit_ghost_build(im))) return rc;
+  if ((rc = mrn_implicit_bbar_setup(im))) return rc;
   const size_t nact = im->nact;
 
   /* B: grid velocity from M~ v = p on the free components (001 Eq. 26) */
@@ -287,7 +292,7 @@ int mrn_implicit_step(mrn_implicit *im, mrn_implicit_history *h) {
   for (size_t q = 0; q < im->np; q++) {
     const mrn_implicit_stencil *s = &im->sten[q];
     double dF[9], vpic[3] = {0}, dv[3] = {0}, dx[3] = {0};
-    mrn_implicit_increment(im, s, dF);
+    mrn_implicit_point_increment(im, q, dF);
     for (int k2 = 0; k2 < s->count; k2++) {
       size_t a = (size_t)im->dof[s->node[k2]];
       for (int d = 0; d < dim; d++) {

@@ -52,9 +52,12 @@ typedef struct mrn_implicit_options {
                              * step and the points touching them get MLS functions (grid_system.c) */
   double ghost;             /* ghost penalty factor gamma (ghost.c), times the largest Young's modulus;
                              * 0: off. Linear and gimp shapes only. */
+  int bbar;                 /* 1: the divergence of each point's step increment is averaged over the
+                             * points of its cell (bbar.c), against volumetric locking */
 } mrn_implicit_options;
 
-/* consistent mass, FLIP, tol 1e-11, 20 iterations, dt_factor 5, min_node_mass 1e-3, no ghost penalty */
+/* consistent mass, FLIP, tol 1e-11, 20 iterations, dt_factor 5, min_node_mass 1e-3, no ghost penalty,
+ * no volumetric averaging */
 void mrn_implicit_options_default(mrn_implicit_options *o);
 
 typedef struct mrn_implicit_history {

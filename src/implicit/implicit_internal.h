@@ -8,6 +8,19 @@
 #include "implicit/linear_solver.h"
 #include "implicit/stencil.h"
 
+/* one cell of the volumetric averaging (bbar.c): the union of its points'
+ * stencils (active node indices), the averaged gradients g_A, the averaged
+ * divergence theta at the current iterate and the assembly's sums */
+typedef struct mrn_bbar_cell {
+  int count;
+  int node[MRN_IMPLICIT_STENCIL_MAX];
+  double g[MRN_IMPLICIT_STENCIL_MAX][3];
+  double volume; /* sum of the points' start-of-step volumes */
+  double theta;
+  double trP, S;
+  double A[MRN_IMPLICIT_STENCIL_MAX][3], B[MRN_IMPLICIT_STENCIL_MAX][3], Nn[MRN_IMPLICIT_STENCIL_MAX][3];
+} mrn_bbar_cell;
+
 struct mrn_implicit {
   mrn_sim *sim;
   mrn_implicit_options opt;
@@ -31,7 +44,7 @@ struct mrn_implicit {
   size_t nact, act_cap;
   /* node pairs: column node b and row node a = b + off[r] */
   int W, R, NR, rc; /* stencil width 2 sup - 1, reach sup - 1, pairs per node, r of a == b */
-  long off[125];
+  long off[343];
   double *Kb;    /* nact * NR * 9: K_(a i),(b k) at [(b NR + r) 9 + 3 i + k] */
   double *Mc;    /* nact * NR consistent mass */
   unsigned char *touched;
@@ -43,6 +56,12 @@ struct mrn_implicit {
    * component), points' volume per cell, the modulus E it is scaled by and
    * the energy it removed, sum over steps of u^T K_g u */
   double *Gb, *cellvol, ghost_modulus, ghost_work;
+  /* volumetric averaging (bbar.c): the cell of each point, each point's
+   * stencil slots in its cell's union, the cell of each grid index */
+  mrn_bbar_cell *bb;
+  size_t bb_n, bb_cap;
+  int *bb_of, *bb_index;
+  unsigned char (*bb_slot)[MRN_IMPLICIT_STENCIL_MAX];
   double *v0, *u, *fint, *fext, *p, *r, *du; /* 3 per active node; r, du per free dof */
   mrn_csc A;
 };
@@ -68,6 +87,13 @@ int mrn_implicit_build_matrix(mrn_implicit *im, double alpha, double beta);
 void mrn_implicit_mass_multiply(const mrn_implicit *im, const double *x, double *y);
 /* dF = I + sum_A u_A (x) grad N_A (001 Eq. 25) */
 void mrn_implicit_increment(const mrn_implicit *im, const mrn_implicit_stencil *s, double dF[9]);
+/* dF of point p: the above, with the cell-averaged divergence when the
+ * volumetric averaging is on (bbar.c) */
+void mrn_implicit_point_increment(const mrn_implicit *im, size_t p, double dF[9]);
+/* grid index of the lower corner of the cell holding point p (start of step) */
+size_t mrn_implicit_point_cell(const mrn_implicit *im, size_t p);
+/* start-of-step volume of point p, V_0 det F_t */
+double mrn_implicit_point_volume(const mrn_implicit *im, size_t p);
 /* internal forces (001 Eq. 44) and stiffness (001 Eq. A.10) at the current u */
 void mrn_implicit_assemble(mrn_implicit *im);
 /* M~ v = p on the free components (001 Eq. 26) */
@@ -79,5 +105,15 @@ int mrn_implicit_project_velocity(mrn_implicit *im, const double *p, double *v);
 int mrn_implicit_ghost_build(mrn_implicit *im);
 void mrn_implicit_ghost_apply(mrn_implicit *im);
 double mrn_implicit_ghost_work(const mrn_implicit *im);
+
+/* volumetric averaging (bbar.c), when options.bbar: the cells and their
+ * averaged gradients (after map_to_grid); the averaged divergences at the
+ * current u (first in assemble); a point's force and stiffness terms beside
+ * its own (in assemble, after the point's stress); the cells' terms (after
+ * every point) */
+int mrn_implicit_bbar_setup(mrn_implicit *im);
+void mrn_implicit_bbar_theta(mrn_implicit *im);
+void mrn_implicit_bbar_point(mrn_implicit *im, size_t p, const double P[9], const double D[81]);
+void mrn_implicit_bbar_cells(mrn_implicit *im);
 
 #endif

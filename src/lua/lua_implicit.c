@@ -40,6 +40,10 @@ static const mrn_spec implicit_specs[] = {
      "ghost penalty factor gamma, times the largest Young's modulus, on the normal-gradient jumps at cut cells "
      "(0: off; linear and gimp shapes)",
      NULL},
+    {"bbar", MRN_SPEC_BOOLEAN, 0, 0, 0, 0, 0, 0, NULL,
+     "average the divergence of each point's step increment over the points of its cell, against volumetric "
+     "locking (default false)",
+     NULL},
 };
 
 typedef struct implicit_box {
@@ -56,47 +60,138 @@ static mrn_implicit *check_implicit(lua_State *L, int idx) {
   return b->im;
 }
 
+/* The simulation keeps its integrator object alive (a deck need not hold on
+ * to it) in the registry table INTEGRATORS[sim] = imp, and the options of an
+ * integrator = "implicit" simulation, until its first run, in
+ * PENDING[sim] = options. Both have weak keys, so the pair goes with the
+ * simulation. */
+static const char *const INTEGRATORS = "moraine.integrators";
+static const char *const PENDING = "moraine.pending_integrators";
+
+static void push_weak_table(lua_State *L, const char *name) {
+  if (lua_getfield(L, LUA_REGISTRYINDEX, name) == LUA_TTABLE) return;
+  lua_pop(L, 1);
+  lua_newtable(L);
+  lua_createtable(L, 0, 1);
+  lua_pushstring(L, "k");
+  lua_setfield(L, -2, "__mode");
+  lua_setmetatable(L, -2);
+  lua_pushvalue(L, -1);
+  lua_setfield(L, LUA_REGISTRYINDEX, name);
+}
+
+/* table[key at key_idx] = value on top of the stack (popped) */
+static void set_weak(lua_State *L, const char *name, int key_idx) {
+  key_idx = lua_absindex(L, key_idx);
+  push_weak_table(L, name);
+  lua_pushvalue(L, key_idx);
+  lua_pushvalue(L, -3);
+  lua_rawset(L, -3);
+  lua_pop(L, 2);
+}
+
+/* pushes table[key at key_idx] (nil when absent) */
+static int get_weak(lua_State *L, const char *name, int key_idx) {
+  key_idx = lua_absindex(L, key_idx);
+  push_weak_table(L, name);
+  lua_pushvalue(L, key_idx);
+  int type = lua_rawget(L, -2);
+  lua_remove(L, -2);
+  return type;
+}
+
 static int l_implicit_gc(lua_State *L) {
   implicit_box *b = luaL_checkudata(L, 1, MRN_LUA_IMPLICIT);
+  if (!b->im) return 0;
   mrn_implicit_free(b->im);
   b->im = NULL;
+  /* imp:free(): the simulation forgets it and steps explicitly again */
+  if (lua_getiuservalue(L, 1, 1) == LUA_TUSERDATA) {
+    if (get_weak(L, INTEGRATORS, -1) == LUA_TUSERDATA && lua_rawequal(L, -1, 1)) {
+      lua_pushnil(L);
+      set_weak(L, INTEGRATORS, -3);
+    }
+    lua_pop(L, 1);
+  }
+  lua_pop(L, 1);
   return 0;
 }
 
-/* sim:implicit{...} */
-static int l_sim_implicit(lua_State *L) {
-  const char *where = "implicit{}";
-  mrn_sim *sim = mrn_lua_check_sim(L, 1);
-  if (lua_isnoneornil(L, 2)) lua_newtable(L), lua_replace(L, 2);
+/* the options table at idx (checked against implicit_specs) */
+static void read_options(lua_State *L, int idx, const char *where, mrn_implicit_options *o) {
   const int n = MRN_COUNT(implicit_specs);
-  mrn_lua_check_table(L, 2, where, implicit_specs, n);
-  mrn_implicit_options o;
-  mrn_implicit_options_default(&o);
-  const char *mass = mrn_lua_get_string(L, 2, where, implicit_specs, n, "mass");
-  if (mass) o.mass = !strcmp(mass, "lumped") ? MRN_MASS_LUMPED : !strcmp(mass, "effective") ? MRN_MASS_EFFECTIVE
-                                                                                            : MRN_MASS_CONSISTENT;
-  if (mrn_lua_has(L, 2, "eps")) {
-    if (o.mass != MRN_MASS_EFFECTIVE) mrn_lua_error(L, where, "eps: only used with mass = \"effective\"");
+  mrn_lua_check_table(L, idx, where, implicit_specs, n);
+  mrn_implicit_options_default(o);
+  const char *mass = mrn_lua_get_string(L, idx, where, implicit_specs, n, "mass");
+  if (mass) o->mass = !strcmp(mass, "lumped") ? MRN_MASS_LUMPED : !strcmp(mass, "effective") ? MRN_MASS_EFFECTIVE
+                                                                                             : MRN_MASS_CONSISTENT;
+  if (mrn_lua_has(L, idx, "eps")) {
+    if (o->mass != MRN_MASS_EFFECTIVE) mrn_lua_error(L, where, "eps: only used with mass = \"effective\"");
   }
-  o.eps = mrn_lua_get_number(L, 2, where, implicit_specs, n, "eps");
-  const char *map = mrn_lua_get_string(L, 2, where, implicit_specs, n, "mapping");
-  if (map && !strcmp(map, "PIC")) o.mapping = MRN_MAPPING_PIC;
-  o.tol = mrn_lua_get_number(L, 2, where, implicit_specs, n, "tol");
-  o.max_iter = (int)mrn_lua_get_integer(L, 2, where, implicit_specs, n, "max_iter");
-  if (mrn_lua_has(L, 2, "dt") && mrn_lua_has(L, 2, "dt_factor"))
+  o->eps = mrn_lua_get_number(L, idx, where, implicit_specs, n, "eps");
+  const char *map = mrn_lua_get_string(L, idx, where, implicit_specs, n, "mapping");
+  if (map && !strcmp(map, "PIC")) o->mapping = MRN_MAPPING_PIC;
+  o->tol = mrn_lua_get_number(L, idx, where, implicit_specs, n, "tol");
+  o->max_iter = (int)mrn_lua_get_integer(L, idx, where, implicit_specs, n, "max_iter");
+  if (mrn_lua_has(L, idx, "dt") && mrn_lua_has(L, idx, "dt_factor"))
     mrn_lua_error(L, where, "give either dt (fixed step) or dt_factor (adaptive), not both");
-  if (mrn_lua_has(L, 2, "dt")) o.dt = mrn_lua_get_number(L, 2, where, implicit_specs, n, "dt");
-  o.dt_factor = mrn_lua_get_number(L, 2, where, implicit_specs, n, "dt_factor");
-  o.min_node_mass = mrn_lua_get_number(L, 2, where, implicit_specs, n, "min_node_mass");
-  o.ghost = mrn_lua_get_number(L, 2, where, implicit_specs, n, "ghost");
+  if (mrn_lua_has(L, idx, "dt")) o->dt = mrn_lua_get_number(L, idx, where, implicit_specs, n, "dt");
+  o->dt_factor = mrn_lua_get_number(L, idx, where, implicit_specs, n, "dt_factor");
+  o->min_node_mass = mrn_lua_get_number(L, idx, where, implicit_specs, n, "min_node_mass");
+  o->ghost = mrn_lua_get_number(L, idx, where, implicit_specs, n, "ghost");
+  o->bbar = mrn_lua_get_boolean(L, idx, where, implicit_specs, n, "bbar", 0);
+}
+
+/* a new integrator for the simulation at sim_idx with the options table at
+ * opt_idx, attached to it (sim:run steps with it) and kept by it; pushed */
+static void new_integrator(lua_State *L, int sim_idx, int opt_idx, const char *where) {
+  sim_idx = lua_absindex(L, sim_idx);
+  mrn_sim *sim = mrn_lua_check_sim(L, sim_idx);
+  mrn_implicit_options o;
+  read_options(L, opt_idx, where, &o);
   implicit_box *b = lua_newuserdatauv(L, sizeof *b, 1);
   b->im = NULL;
   luaL_setmetatable(L, MRN_LUA_IMPLICIT);
-  lua_pushvalue(L, 1);
+  lua_pushvalue(L, sim_idx);
   lua_setiuservalue(L, -2, 1);
   b->im = mrn_implicit_new(sim, &o);
   if (!b->im) mrn_lua_error(L, where, "%s", mrn_error_message());
   mrn_implicit_attach(b->im); /* sim:run now steps with it */
+  lua_pushvalue(L, -1);
+  set_weak(L, INTEGRATORS, sim_idx);
+  lua_pushnil(L);
+  set_weak(L, PENDING, sim_idx);
+}
+
+/* sim:implicit{...} */
+static int l_sim_implicit(lua_State *L) {
+  if (lua_isnoneornil(L, 2)) lua_newtable(L), lua_replace(L, 2);
+  new_integrator(L, 1, 2, "implicit{}");
+  return 1;
+}
+
+void mrn_lua_implicit_configure(lua_State *L, int sim_idx, int opt_idx, const char *where) {
+  mrn_implicit_options o;
+  if (opt_idx) read_options(L, opt_idx, where, &o); /* errors now, at the deck line that made the simulation */
+  if (opt_idx) lua_pushvalue(L, opt_idx);
+  else lua_newtable(L);
+  set_weak(L, PENDING, sim_idx);
+}
+
+void mrn_lua_implicit_prepare(lua_State *L, int sim_idx, const char *where) {
+  if (get_weak(L, PENDING, sim_idx) == LUA_TTABLE) {
+    new_integrator(L, sim_idx, -1, where);
+    lua_pop(L, 1);
+  }
+  lua_pop(L, 1);
+}
+
+/* sim:integrator(): the implicit integrator object (made now if
+ * integrator = "implicit" and not yet made), or nil for the explicit step */
+static int l_sim_integrator(lua_State *L) {
+  mrn_lua_check_sim(L, 1);
+  mrn_lua_implicit_prepare(L, 1, "integrator()");
+  get_weak(L, INTEGRATORS, 1);
   return 1;
 }
 
@@ -198,6 +293,8 @@ void mrn_lua_open_implicit(lua_State *L, int module) {
   lua_getfield(L, -1, "__index");
   lua_pushcfunction(L, l_sim_implicit);
   lua_setfield(L, -2, "implicit");
+  lua_pushcfunction(L, l_sim_integrator);
+  lua_setfield(L, -2, "integrator");
   lua_pop(L, 2);
   mrn_spec_register_group("implicit{}", implicit_specs, MRN_COUNT(implicit_specs));
 }

@@ -38,6 +38,12 @@ void mrn_lua_open_simulation(lua_State *L, int module);
 void mrn_lua_open_warnings(lua_State *L, int module);
 /* sim:implicit{...} and the integrator object (lua_implicit.c) */
 void mrn_lua_open_implicit(lua_State *L, int module);
+/* simulation{ integrator = "implicit", implicit = {...} }: check the options
+ * table at opt_idx (0: none, the defaults) and keep it for the simulation at
+ * sim_idx; mrn_lua_implicit_prepare makes the integrator from it before the
+ * first run (particles are seeded by then) */
+void mrn_lua_implicit_configure(lua_State *L, int sim_idx, int opt_idx, const char *where);
+void mrn_lua_implicit_prepare(lua_State *L, int sim_idx, const char *where);
 
 mrn_region *mrn_lua_check_region(lua_State *L, int idx, const char *where);
 /* the engine simulation of a simulation userdata (raises if freed) */

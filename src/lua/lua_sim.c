@@ -63,6 +63,7 @@ struct mrn_sim *mrn_lua_check_sim(lua_State *L, int idx) { return check_sim(L, i
 /* ---------------------------------------------------------------- specs */
 
 static const char *const dim_doc = "2 (plane strain) or 3";
+static const char *const integrator_choices[] = {"explicit", "implicit", NULL};
 
 static const mrn_spec sim_specs[] = {
     {"dim", MRN_SPEC_INTEGER, 1, 2, 2, 3, 0, 0, "", "dimension: 2 (plane strain) or 3", NULL},
@@ -84,6 +85,10 @@ static const mrn_spec sim_specs[] = {
     {"progress", MRN_SPEC_BOOLEAN, 0, 0, 0, 0, 0, 0, NULL, "progress bar on a terminal (default true)", NULL},
     {"on_leave", MRN_SPEC_STRING, 0, 0, 0, 0, 0, 0, NULL,
      "a particle leaving the grid: stop the run (default) or delete it", NULL},
+    {"integrator", MRN_SPEC_STRING, 0, 0, 0, 0, 0, 0, NULL,
+     "time integrator: explicit (default) or implicit (001; options in `implicit`)", integrator_choices},
+    {"implicit", MRN_SPEC_TABLE, 0, 0, 0, 0, 0, 0, NULL,
+     "options of the implicit integrator (the keys of sim:implicit{}), with integrator = \"implicit\"", NULL},
 };
 
 static const mrn_spec grid_specs[] = {
@@ -548,6 +553,15 @@ static int l_simulation(lua_State *L) {
     read_output(L, -1, where, b);
     lua_pop(L, 1);
   }
+  const char *integrator = mrn_lua_get_string(L, 1, where, sim_specs, MRN_COUNT(sim_specs), "integrator");
+  const int implicit = integrator && !strcmp(integrator, "implicit");
+  if (mrn_lua_has(L, 1, "implicit") && !implicit)
+    mrn_lua_error(L, where, "implicit: the implicit integrator's options need integrator = \"implicit\"");
+  if (implicit) {
+    lua_getfield(L, 1, "implicit");
+    mrn_lua_implicit_configure(L, self, lua_isnil(L, -1) ? 0 : lua_gettop(L), "simulation{} implicit");
+    lua_pop(L, 1);
+  }
   lua_pushvalue(L, self);
   return 1;
 }
@@ -748,6 +762,7 @@ static int l_run(lua_State *L) {
   if (!mrn_lua_has(L, 2, "time") && !mrn_lua_has(L, 2, "steps"))
     mrn_lua_error(L, where, "give time = <seconds> and/or steps = <count>");
   if (b->sim->particles.n == 0) mrn_lua_error(L, where, "the simulation has no particles (add_particles first)");
+  mrn_lua_implicit_prepare(L, 1, where); /* integrator = "implicit": made at the first run */
   if (mrn_lua_has(L, 2, "output")) {
     lua_getfield(L, 2, "output");
     read_output(L, -1, where, b);

@@ -12,7 +12,11 @@
 --     the VTK series has its snapshots;
 --  5. a point force on one cylinder: its work W_external enters W_MPM, which
 --     stays within 1e-9 of E_0 + |W_external|;
---  6. imp:free() hands sim:run back to the explicit step.
+--  6. imp:free() hands sim:run back to the explicit step;
+--  7. mpm.simulation{ integrator = "implicit", implicit = {...} } makes the
+--     same integrator at the first run: bit for bit the state of sim:implicit{},
+--     even when the deck keeps no reference to the integrator and the garbage
+--     collector runs; sim:integrator() returns it.
 local T = dofile(mpm.deck_dir .. "/testlib.lua")
 local mat = mpm.material.hencky{ density = 5, E = 100, nu = 0.3 }
 local t_end = 4.3
@@ -88,5 +92,42 @@ do
   s2:run{ steps = 3 }
   T.check(s2:step() == before + 3, "explicit steps after imp:free()")
   print(string.format("implicit_run loaded: W_external %.6g J/m, W_MPM %.3g", e2.external, e2.mpm_error))
+end
+
+-- 7. the deck switch in mpm.simulation{}
+do
+  local opts = { mass = "consistent", mapping = "FLIP", tol = 1e-11, dt_factor = 1.15 }
+  local function pair(switch)
+    local s = mpm.simulation{ dim = 2, grid = { size = { 20, 12 }, cell = 2 }, shape = "linear", thermo = 0,
+                              diagnostics = false, series = false,
+                              integrator = switch and "implicit" or nil, implicit = switch and opts or nil }
+    for _, c in ipairs{ { 5.8, 5.5, 0.75 }, { 14.2, 6.5, -0.75 } } do
+      s:add_particles(mpm.disk{ center = { c[1], c[2] }, radius = 2 },
+                      { material = mat, velocity = { c[3], 0 }, per_cell = 16, placement = "regular" })
+    end
+    if not switch then s:implicit(opts) end -- no reference kept: the simulation holds it
+    return s
+  end
+  local a, b = pair(true), pair(false)
+  local e0a = a:energy().total
+  T.check(a:integrator() ~= nil and b:integrator() ~= nil, "sim:integrator() should return the implicit integrator")
+  collectgarbage("collect")
+  a:run{ time = 1.5 }
+  b:run{ time = 1.5 }
+  collectgarbage("collect")
+  a:run{ time = 0.5 }
+  b:run{ time = 0.5 }
+  local worst = 0
+  for i = 1, a:particle_count() do
+    local pa, pb = a:particle(i), b:particle(i)
+    for d = 1, 2 do worst = math.max(worst, math.abs(pa.x[d] - pb.x[d]), math.abs(pa.v[d] - pb.v[d])) end
+  end
+  T.check(worst == 0, "integrator = \"implicit\" and sim:implicit{} differ by %.3g", worst)
+  T.check(a:integrator():last().iterations > 0, "the switch's integrator made Newton steps")
+  local e = a:energy()
+  T.expect{ id = "implicit_run.switch_W_MPM", what = "integrator = \"implicit\": |W_MPM| / E_0",
+            value = math.abs(e.mpm_error) / e0a, max = 1e-9 }
+  a:integrator():free()
+  T.check(a:integrator() == nil, "sim:integrator() after imp:free() should be nil (explicit)")
 end
 T.done("implicit_run")
