@@ -9,6 +9,8 @@ moraine_deck_test(implicit_cylinders_plastic implicit_cylinders.lua
                   ARGS --set material=von_mises --set mappings=FLIP --set time=8 --set min_node_mass=1e-3)
 # the ghost penalty (src/implicit/ghost.c): momenta to round-off, energy balance with the penalty's work counted
 moraine_deck_test(implicit_cylinders_ghost implicit_cylinders.lua ARGS --set mappings=FLIP --set ghost=0.01)
+# face conditions (slip walls) and a plate of prescribed velocity: uniaxial-strain Hencky stress, the plate's work booked
+moraine_deck_test(implicit_boundary implicit_boundary.lua)
 # the volumetric averaging (src/implicit/bbar.c), elastic FLIP and PIC and elasto-plastic FLIP: energy (with the
 # dissipation) and linear momentum as without it, angular momentum to 1e-4; its tangent against differences is the
 # unit test tests/unit/test_implicit_bbar.c

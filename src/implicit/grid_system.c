@@ -118,7 +118,7 @@ int mrn_implicit_setup_step(mrn_implicit *im) {
     if (grow((void **)&im->act, c * sizeof(size_t)) || grow((void **)&im->ijk, 3 * c * sizeof(int)) ||
         grow((void **)&im->Kb, c * NR * 9 * sizeof(double)) || grow((void **)&im->Mc, c * NR * sizeof(double)) ||
         grow((void **)&im->touched, c * NR) || grow((void **)&im->ml, c * sizeof(double)) ||
-        grow((void **)&im->fdof, 3 * c * sizeof(int)) || grow((void **)&im->v0, 3 * c * sizeof(double)) ||
+        grow((void **)&im->fdof, 3 * c * sizeof(int)) || grow((void **)&im->vfix, 3 * c * sizeof(double)) || grow((void **)&im->v0, 3 * c * sizeof(double)) ||
         grow((void **)&im->u, 3 * c * sizeof(double)) || grow((void **)&im->fint, 3 * c * sizeof(double)) ||
         grow((void **)&im->fext, 3 * c * sizeof(double)) || grow((void **)&im->p, 3 * c * sizeof(double)) ||
         grow((void **)&im->r, 3 * c * sizeof(double)) || grow((void **)&im->du, 3 * c * sizeof(double)))
@@ -135,20 +135,30 @@ int mrn_implicit_setup_step(mrn_implicit *im) {
       mrn_grid_node_ijk(g, i, ijk);
       memcpy(im->ijk + 3 * a, ijk, sizeof ijk);
     }
-  /* clamped components from the grid constraints */
-  for (size_t a = 0; a < 3 * nact; a++) im->fdof[a] = 0;
+  /* fixed components: the face conditions on the nodes on and beyond each
+   * face (as the explicit step applies them, grid/boundary.h), then the grid
+   * constraints (which take precedence, as in the explicit step) */
+  for (size_t a = 0; a < 3 * nact; a++) im->fdof[a] = 0, im->vfix[a] = 0.0;
+  for (size_t a = 0; a < nact; a++)
+    for (int axis = 0; axis < im->dim; axis++)
+      for (int side = 0; side < 2; side++) {
+        const mrn_face_bc *f = &sim->boundary.face[2 * axis + side];
+        const int i = im->ijk[3 * a + axis];
+        if (side == 0 ? i > 0 : i < g->ncell[axis]) continue;
+        if (f->kind == MRN_BC_SLIP) im->fdof[im->dim * a + axis] = -1;
+        if (f->kind == MRN_BC_FIXED || f->kind == MRN_BC_VELOCITY)
+          for (int d = 0; d < im->dim; d++) {
+            im->fdof[im->dim * a + d] = -1;
+            im->vfix[3 * a + d] = f->kind == MRN_BC_VELOCITY ? f->velocity[d] : 0.0;
+          }
+      }
   for (int c = 0; c < sim->nconstraints; c++) {
     const mrn_constraint *con = &sim->constraints[c];
-    for (int d = 0; d < im->dim; d++)
-      if ((con->mask & (1u << d)) && con->velocity[d] != 0.0)
-        return mrn_error_code(MRN_ERR, "implicit: constraint %d prescribes a nonzero velocity; only clamped "
-                                       "(zero-velocity) components are supported",
-                              c + 1);
     for (size_t k = 0; k < con->count; k++) {
       int a = im->dof[con->nodes[k]];
       if (a < 0) continue;
       for (int d = 0; d < im->dim; d++)
-        if (con->mask & (1u << d)) im->fdof[im->dim * a + d] = -1;
+        if (con->mask & (1u << d)) im->fdof[im->dim * a + d] = -1, im->vfix[3 * (size_t)a + d] = con->velocity[d];
     }
   }
   im->nfree = 0;

@@ -47,7 +47,7 @@ void mrn_implicit_free(mrn_implicit *im) {
   free(im->dof), free(im->act), free(im->ijk), free(im->Kb), free(im->Mc), free(im->touched), free(im->ml), free(im->gmass);
   free(im->Gb), free(im->cellvol);
   free(im->bb), free(im->bb_of), free(im->bb_index), free(im->bb_slot);
-  free(im->fdof), free(im->v0), free(im->u), free(im->fint), free(im->fext), free(im->p), free(im->r), free(im->du);
+  free(im->fdof), free(im->vfix), free(im->v0), free(im->u), free(im->fint), free(im->fext), free(im->p), free(im->r), free(im->du);
   mrn_csc_free(&im->A);
   free(im);
 }
@@ -69,6 +69,15 @@ mrn_implicit *mrn_implicit_new(mrn_sim *sim, const mrn_implicit_options *o) {
                             "are supported, not '%s'",
                    mrn_shape_info_of(sim->shape)->name);
     return NULL;
+  }
+  for (int f = 0; f < 2 * sim->dim; f++) {
+    mrn_bc_kind kind = sim->boundary.face[f].kind;
+    if (kind == MRN_BC_FRICTION || kind == MRN_BC_PERIODIC) {
+      mrn_error_code(MRN_ERR, "implicit: the %s face is '%s'; the implicit integrator takes free, slip, fixed and "
+                              "velocity faces",
+                     mrn_face_name(f), mrn_bc_kind_name(kind));
+      return NULL;
+    }
   }
   if (sim->shape == MRN_SHAPE_CUBIC_BSPLINE) {
     mrn_error_code(MRN_ERR, "implicit: shape functions of support 4 are not supported (use linear, gimp or quadratic)");
@@ -160,11 +169,13 @@ int mrn_implicit_step(mrn_implicit *im, mrn_implicit_history *h) {
   if ((rc = mrn_implicit_bbar_setup(im))) return rc;
   const size_t nact = im->nact;
 
-  /* B: grid velocity from M~ v = p on the free components (001 Eq. 26) */
+  /* B: grid velocity from M~ v = p on the free components (001 Eq. 26),
+   * the fixed ones holding their prescribed velocity: M~_ff v_f = p_f - M~_fc v_c */
   double *rhs = im->r, *sol = im->du;
+  mrn_implicit_mass_multiply(im, im->vfix, im->fint); /* fint as scratch */
   for (size_t a = 0; a < nact; a++)
     for (int d = 0; d < dim; d++)
-      if (im->fdof[dim * a + d] >= 0) rhs[im->fdof[dim * a + d]] = im->p[3 * a + d];
+      if (im->fdof[dim * a + d] >= 0) rhs[im->fdof[dim * a + d]] = im->p[3 * a + d] - im->fint[3 * a + d];
   if ((rc = mrn_implicit_project_velocity(im, rhs, sol))) {
     char msg[512];
     snprintf(msg, sizeof msg, "%s", mrn_error_message());
@@ -180,6 +191,7 @@ int mrn_implicit_step(mrn_implicit *im, mrn_implicit_history *h) {
        * that are harmless in M v_t but not as displacements); starting from
        * dt v_t there made Newton stall in the cylinder and cantilever tests. */
       if (f >= 0) im->v0[3 * a + d] = sol[f], im->u[3 * a + d] = dt * im->p[3 * a + d] / im->ml[a];
+      else im->v0[3 * a + d] = im->vfix[3 * a + d], im->u[3 * a + d] = dt * im->vfix[3 * a + d];
     }
 
   /* the kinetic energy PIC will lose in this step: the part of the point
@@ -270,6 +282,17 @@ int mrn_implicit_step(mrn_implicit *im, mrn_implicit_history *h) {
         if (f >= 0) im->u[3 * a + d] += im->du[f];
       }
   }
+  /* the work of the forces that hold the fixed components: the residual
+   * there, r_c = f_int + (2/dt^2) M~ (u - dt v_t) - f_ext, is the force they
+   * exert, and u_c = dt v_c its displacement (0 for clamped components) */
+  double work_con = 0.0;
+  for (size_t q = 0; q < 3 * nact; q++) tmp[q] = im->u[q] - dt * im->v0[q];
+  mrn_implicit_mass_multiply(im, tmp, Mw);
+  for (size_t a = 0; a < nact; a++)
+    for (int d = 0; d < dim; d++) {
+      const size_t q = 3 * a + (size_t)d;
+      if (im->fdof[dim * a + d] < 0 && im->u[q] != 0.0) work_con += (im->fint[q] + c2 * Mw[q] - im->fext[q]) * im->u[q];
+    }
   free(tmp), free(Mw), free(uprev);
   if (rc) return rc;
   if (h) h->residual = resmax;
@@ -283,6 +306,7 @@ int mrn_implicit_step(mrn_implicit *im, mrn_implicit_history *h) {
   }
 
   im->ghost_work += mrn_implicit_ghost_work(im); /* the kinetic energy the penalty took in the step (ghost.c) */
+  im->work_con += work_con;
   /* E: grid-to-particle mapping and update (001 Eqs. 23-25, 28-30) */
   for (size_t q = 0; q < 3 * nact; q++) {
     double v1 = 2.0 * im->u[q] / dt - im->v0[q]; /* mid-point rule: u = dt (v_t + v_t+dt) / 2 */
@@ -344,7 +368,8 @@ void mrn_implicit_energies(const mrn_implicit *im, mrn_implicit_energy *e) {
     e->angular[2] += m * (x[0] * v[1] - x[1] * v[0]);
   }
   e->external_work = im->work_ext;
+  e->constraint_work = im->work_con;
   e->mapping_loss = im->pic_loss;
   e->ghost = im->ghost_work;
-  e->total = e->kinetic + e->strain + e->dissipated + e->ghost - e->external_work;
+  e->total = e->kinetic + e->strain + e->dissipated + e->ghost - e->external_work - e->constraint_work;
 }

@@ -22,12 +22,15 @@
  * positions. The step size is fixed or dt_factor times the grid-averaged
  * CFL estimate of 001 Eq. 61 (solver/timestep.h).
  *
+ * Fixed components: the simulation's free, slip, fixed and velocity faces
+ * (on the nodes on and beyond each face, as in the explicit step) and its
+ * grid constraints, with their prescribed velocities held through the step
+ * (u = dt v there); friction and periodic faces are refused.
+ *
  * Limits: materials "hencky" (elastic) and "von_mises" (its E, nu, yield,
  * hardening are used in the finite-strain Hencky form of emc_stress.h);
- * grid constraints must prescribe zero velocity (clamped components); face
- * boundary conditions of the simulation are not applied; particles may not
- * be added after the integrator is created; initial particle stresses are
- * ignored (the state starts from b_e = F F^T). */
+ * particles may not be added after the integrator is created; initial
+ * particle stresses are ignored (the state starts from b_e = F F^T). */
 #ifndef MRN_IMPLICIT_IMPLICIT_H
 #define MRN_IMPLICIT_IMPLICIT_H
 
@@ -72,8 +75,9 @@ typedef struct mrn_implicit_energy {
   double strain;        /* sum V_0 psi */
   double dissipated;    /* accumulated plastic dissipation sum V_0 dD */
   double external_work; /* work of point forces and gravity, sum f_ext . u */
+  double constraint_work; /* work of the forces holding components at a prescribed nonzero velocity */
   double ghost;         /* energy removed by the ghost penalty, sum over steps of u^T K_g u (ghost.c) */
-  double total;         /* kinetic + strain + dissipated + ghost - external_work */
+  double total;         /* kinetic + strain + dissipated + ghost - external_work - constraint_work */
   double mapping_loss;  /* kinetic energy the PIC mapping removed, sum of m |v_p - N v_t|^2 / 2 (001 Eq. 37) */
   double momentum[3];   /* sum m v */
   double angular[3];    /* sum x x m v (z only in 2D) */

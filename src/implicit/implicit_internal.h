@@ -34,6 +34,7 @@ struct mrn_implicit {
   double load_factor;  /* multiplies every point force */
   mrn_implicit_stencil *sten;
   double work_ext;
+  double work_con; /* work of the forces that hold the fixed components, sum over steps of r_c . u_c */
   double pic_loss; /* sum over steps of sum m |v_p - N v_t|^2 / 2 under PIC (001 Eq. 37) */
   mrn_implicit_history last; /* the last step made by mrn_run (implicit_run.c) */
 
@@ -51,6 +52,8 @@ struct mrn_implicit {
   double *ml;    /* lumped mass per active node */
   double *gmass; /* grid.n: lumped mass of every node, for the mass floor */
   int *fdof;     /* dim per active node: free dof index or -1 (fixed) */
+  double *vfix;  /* 3 per active node: the prescribed velocity of fixed components (face conditions and
+                  * sim:constrain{}), held through the step (0 elsewhere) */
   int nfree;
   /* ghost penalty (ghost.c): K_g per node pair (one scalar, the same for every
    * component), points' volume per cell, the modulus E it is scaled by and

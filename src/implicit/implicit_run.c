@@ -3,7 +3,8 @@
  * mrn_implicit_advance makes one implicit step, shortened so that a run of
  * given duration ends on time, and books in the simulation's energy accounts what
  * the explicit diagnostics cannot see: the work of the point forces (into
- * work_external; gravity is in E_g already) and the energy the ghost penalty
+ * work_external; gravity is in E_g already), the work of the forces holding
+ * components at a prescribed velocity (into work_external too) and the energy the ghost penalty
  * removed (into work_damping, negative). The particle fields the diagnostics
  * read (v, x, F, stress, e_elastic, w_plastic) are kept by the step itself,
  * so W_MPM (000, Eq. 68) measures the implicit step's energy error. */
@@ -30,13 +31,13 @@ int mrn_implicit_advance(mrn_implicit *im, double t_end, mrn_implicit_history *h
   if (remaining <= 1e-9 * dt) return MRN_STEP_NONE; /* a round-off sliver is not worth a step */
   const double fixed = im->opt.dt;
   if (dt > remaining) im->opt.dt = remaining; /* the last step ends on time */
-  const double ext0 = im->work_ext, ghost0 = im->ghost_work, eg0 = gravity_energy(sim);
+  const double ext0 = im->work_ext, con0 = im->work_con, ghost0 = im->ghost_work, eg0 = gravity_energy(sim);
   rc = mrn_implicit_step(im, &im->last);
   im->opt.dt = fixed;
   if (h) *h = im->last;
   if (rc) return rc;
   /* im->work_ext holds the work of gravity as well: take out -(change of E_g) */
-  sim->work_external += (im->work_ext - ext0) + (gravity_energy(sim) - eg0);
+  sim->work_external += (im->work_ext - ext0) + (gravity_energy(sim) - eg0) + (im->work_con - con0);
   sim->work_damping -= im->ghost_work - ghost0;
   return MRN_OK;
 }

@@ -233,6 +233,7 @@ static int l_energy(lua_State *L) {
   lua_pushnumber(L, e.strain), lua_setfield(L, -2, "strain");
   lua_pushnumber(L, e.dissipated), lua_setfield(L, -2, "dissipated");
   lua_pushnumber(L, e.external_work), lua_setfield(L, -2, "external_work");
+  lua_pushnumber(L, e.constraint_work), lua_setfield(L, -2, "constraint_work");
   lua_pushnumber(L, e.total), lua_setfield(L, -2, "total");
   lua_pushnumber(L, e.mapping_loss), lua_setfield(L, -2, "mapping_loss");
   lua_pushnumber(L, e.ghost), lua_setfield(L, -2, "ghost");
