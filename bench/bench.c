@@ -346,7 +346,7 @@ static void run_child(const problem *p, int threads, result *res) {
     double per = 0;
     for (int f = 0; f < mrn_particle_field_count(); f++) per += 8.0 * mrn_particle_field_at(f)->ncomp;
     per += sizeof(int32_t) + sizeof(int64_t) + 8.0 * ps->state_stride;
-    double total = per * (double)ps->cap + 8.0 * 22.0 * (double)sim->grid.n + (double)mrn_blocks_bytes(&sim->grid);
+    double total = per * (double)ps->cap + 8.0 * 19.0 * (double)sim->grid.n + (double)mrn_blocks_bytes(&sim->grid);
     res->engine_bytes_per_particle = total / (double)res->particles;
   }
   mrn_sim_free(sim);

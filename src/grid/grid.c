@@ -48,8 +48,8 @@ int mrn_grid_init(mrn_grid *g, int dim, const double origin[3], const double siz
   if (total > 400000000L) return mrn_error("grid: %ld nodes is more than this build allows (4e8)", total);
   /* a grid whose arrays alone exceed the machine's memory (a cell size typed
    * a hundred times too small) is refused with the figures, rather than
-   * swapping or being killed by the kernel half-way: 22 doubles per node */
-  double need = (double)total * 22 * sizeof(double);
+   * swapping or being killed by the kernel half-way: 19 doubles per node */
+  double need = (double)total * 19 * sizeof(double);
   long pages = sysconf(_SC_PHYS_PAGES), page = sysconf(_SC_PAGESIZE);
   if (pages > 0 && page > 0 && need > (double)pages * (double)page)
     return mrn_error("grid: %ld nodes need %.1f GB, more than this machine's %.1f GB of memory (is the cell size right?)",
@@ -60,10 +60,9 @@ int mrn_grid_init(mrn_grid *g, int dim, const double origin[3], const double siz
   g->vel = calloc(3 * g->n, sizeof(double));
   g->vel_new = calloc(3 * g->n, sizeof(double));
   g->force = calloc(3 * g->n, sizeof(double));
-  g->acc = calloc(3 * g->n, sizeof(double));
   g->vel_star = calloc(3 * g->n, sizeof(double));
   g->work = calloc(3 * g->n, sizeof(double));
-  if (!g->mass || !g->mom || !g->vel || !g->vel_new || !g->force || !g->acc || !g->vel_star || !g->work) {
+  if (!g->mass || !g->mom || !g->vel || !g->vel_new || !g->force || !g->vel_star || !g->work) {
     mrn_grid_free(g);
     return mrn_error("grid: out of memory for %zu nodes", (size_t)total);
   }
@@ -81,10 +80,9 @@ void mrn_grid_free(mrn_grid *g) {
   free(g->vel);
   free(g->vel_new);
   free(g->force);
-  free(g->acc);
   free(g->vel_star);
   free(g->work);
-  g->mass = g->mom = g->vel = g->vel_new = g->force = g->acc = g->vel_star = g->work = NULL;
+  g->mass = g->mom = g->vel = g->vel_new = g->force = g->vel_star = g->work = NULL;
   mrn_blocks_free(g->blocks);
   g->blocks = NULL;
 }

@@ -29,7 +29,6 @@ typedef struct mrn_grid {
   double *vel;      /* 3n velocity V^i (after boundary conditions) */
   double *vel_new;  /* 3n updated velocity V~^i (000, Eq. 28) */
   double *force;    /* 3n total nodal force */
-  double *acc;      /* 3n acceleration actually applied, (V~ - V)/dt after BCs */
   double *vel_star; /* 3n XPIC(m) smoothed velocity V* (see transfer/xpic.c) */
   double *work;     /* 3n scratch for the XPIC iterations */
 

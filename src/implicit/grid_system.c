@@ -270,7 +270,7 @@ size_t mrn_implicit_point_cell(const mrn_implicit *im, size_t p) {
 }
 
 double mrn_implicit_point_volume(const mrn_implicit *im, size_t p) {
-  return im->sim->particles.vol0[p] * mat_det(im->st[p].Ft);
+  return mrn_particle_volume(&im->sim->particles, p); /* the step keeps the particles' F = F_t */
 }
 
 /* internal forces (001 Eq. 44) and stiffness (001 Eq. A.10) at the current u */

@@ -342,7 +342,6 @@ int mrn_implicit_step(mrn_implicit *im, mrn_implicit_history *h) {
     /* mirror the state into the particle fields the output reads */
     memcpy(ps->F + 9 * q, F, sizeof F);
     double J = mat_det(F);
-    ps->vol[q] = ps->vol0[q] * J;
     for (int a = 0; a < 3; a++)
       for (int c = a; c < 3; c++) ps->stress[6 * q + sym_index(a, c)] = re->tau[3 * a + c] / J;
     ps->e_elastic[q] = ps->vol0[q] * re->psi;

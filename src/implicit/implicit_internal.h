@@ -95,7 +95,7 @@ void mrn_implicit_increment(const mrn_implicit *im, const mrn_implicit_stencil *
 void mrn_implicit_point_increment(const mrn_implicit *im, size_t p, double dF[9]);
 /* grid index of the lower corner of the cell holding point p (start of step) */
 size_t mrn_implicit_point_cell(const mrn_implicit *im, size_t p);
-/* start-of-step volume of point p, V_0 det F_t */
+/* start-of-step volume of point p, V_0 det F_t (particles/particles.h) */
 double mrn_implicit_point_volume(const mrn_implicit *im, size_t p);
 /* internal forces (001 Eq. 44) and stiffness (001 Eq. A.10) at the current u */
 void mrn_implicit_assemble(mrn_implicit *im);

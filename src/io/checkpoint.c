@@ -22,7 +22,7 @@ static const struct {
   const char *field, *unit3d, *unit2d;
 } field_units[] = {
     {"x", "m", "m"},         {"x0", "m", "m"},          {"v", "m/s", "m/s"},      {"mass", "kg", "kg/m"},
-    {"vol", "m^3", "m^2"},   {"vol0", "m^3", "m^2"},    {"F", "1", "1"},
+    {"vol0", "m^3", "m^2"},  {"F", "1", "1"},
     {"affine", "1/s", "1/s"}, {"stress", "Pa", "Pa"},   {"strain", "1", "1"},     {"e_elastic", "J", "J/m"},
     {"w_plastic", "J", "J/m"},
 };

@@ -13,6 +13,7 @@
 #include <string.h>
 
 #include "core/error.h"
+#include "core/tensor.h"
 #include "io/checkpoint.h"
 #include "io/checkpoint_internal.h"
 #include "io/h5util.h"
@@ -417,6 +418,18 @@ static void check_positive(mrn_h5r *r, const ck_data *d, const char *name) {
             (long long)d->id[p], name, v[p]);
 }
 
+/* The current volume is vol0 det F (mrn_particle_volume), so det F must be
+ * positive. (Files written while the volume was a field of its own hold it
+ * as /particles/vol; it is not read.) */
+static void check_det_F(mrn_h5r *r, const ck_data *d) {
+  const double *F = ck_field(d, "F");
+  for (int64_t p = 0; p < d->n && !r->failed; p++) {
+    const double J = mat_det(F + 9 * p);
+    require(r, J > 0, "/particles/F: particle %lld (id %lld) has det F = %g, expected > 0 (the volume is vol0 det F)",
+            (long long)p, (long long)d->id[p], J);
+  }
+}
+
 static void check_inside_grid(mrn_h5r *r, const ck_data *d) {
   mrn_grid g = {.dim = d->dim};
   memcpy(g.origin, d->origin, sizeof g.origin);
@@ -436,8 +449,8 @@ static void check_particles(mrn_h5r *r, const ck_data *d) {
   check_ids(r, d);
   check_finite(r, d);
   check_positive(r, d, "mass");
-  check_positive(r, d, "vol");
   check_positive(r, d, "vol0");
+  check_det_F(r, d);
   check_inside_grid(r, d);
 }
 

@@ -16,7 +16,6 @@ static void copy_field(const double *src, int ncomp, const mrn_sim *sim, void *o
 
 static void f_velocity(const mrn_sim *sim, void *out) { copy_field(sim->particles.v, 3, sim, out); }
 static void f_mass(const mrn_sim *sim, void *out) { copy_field(sim->particles.mass, 1, sim, out); }
-static void f_volume(const mrn_sim *sim, void *out) { copy_field(sim->particles.vol, 1, sim, out); }
 static void f_stress(const mrn_sim *sim, void *out) { copy_field(sim->particles.stress, 6, sim, out); }
 static void f_strain(const mrn_sim *sim, void *out) { copy_field(sim->particles.strain, 6, sim, out); }
 static void f_F(const mrn_sim *sim, void *out) { copy_field(sim->particles.F, 9, sim, out); }
@@ -26,9 +25,14 @@ static void f_displacement(const mrn_sim *sim, void *out) {
   FOR_PARTICLES(sim) for (int d = 0; d < 3; d++) o[3 * p + d] = sim->particles.x[3 * p + d] - sim->particles.x0[3 * p + d];
 }
 
+static void f_volume(const mrn_sim *sim, void *out) {
+  double *o = out;
+  FOR_PARTICLES(sim) o[p] = mrn_particle_volume(&sim->particles, p);
+}
+
 static void f_density(const mrn_sim *sim, void *out) {
   double *o = out;
-  FOR_PARTICLES(sim) o[p] = sim->particles.mass[p] / sim->particles.vol[p];
+  FOR_PARTICLES(sim) o[p] = sim->particles.mass[p] / mrn_particle_volume(&sim->particles, p);
 }
 
 /* p = -tr(sigma) / 3, compression positive */

@@ -216,14 +216,19 @@ static int l_probe(lua_State *L) {
   }
 #undef GET
   const mrn_grid *g = &sim->grid;
-  const double *arrays[] = {g->mass, g->mom, g->vel, g->vel_new, g->force, g->acc};
+  const double *arrays[] = {g->mass, g->mom, g->vel, g->vel_new, g->force, g->vel_new};
   int which = 0;
   while (strcmp(grid_field_names[which], field) != 0) which++;
   const int ncomp = which == 0 ? 1 : 3;
-  double v[3];
+  double v[3], before[3];
   if (mrn_probe_grid(sim, arrays[which], ncomp, x, v) != 0) {
     lua_pushnil(L);
     return 1;
+  }
+  if (strcmp(field, "acceleration") == 0) {
+    /* not stored: (V~ - V) / dt of the last step, interpolated */
+    mrn_probe_grid(sim, g->vel, ncomp, x, before);
+    for (int d = 0; d < 3; d++) v[d] = sim->dt > 0.0 ? (v[d] - before[d]) / sim->dt : 0.0;
   }
   if (ncomp == 1) {
     lua_pushnumber(L, v[0]);

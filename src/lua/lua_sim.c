@@ -1290,7 +1290,7 @@ static int l_particle(lua_State *L) {
   push_vec(L, ps->stress + 6 * p, 6); lua_setfield(L, -2, "stress");
   push_vec(L, ps->strain + 6 * p, 6); lua_setfield(L, -2, "strain");
   lua_pushnumber(L, ps->mass[p]); lua_setfield(L, -2, "mass");
-  lua_pushnumber(L, ps->vol[p]); lua_setfield(L, -2, "volume");
+  lua_pushnumber(L, mrn_particle_volume(ps, p)); lua_setfield(L, -2, "volume");
   lua_pushinteger(L, ps->id[p]); lua_setfield(L, -2, "id");
   lua_pushinteger(L, ps->material[p] + 1); lua_setfield(L, -2, "material");
   return 1;

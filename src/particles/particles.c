@@ -86,7 +86,7 @@ long mrn_particles_add(mrn_particles *p, const double x[3], double mass, double 
   }
   for (int d = 0; d < 3; d++) p->x[3 * i + d] = p->x0[3 * i + d] = x[d];
   p->mass[i] = mass;
-  p->vol[i] = p->vol0[i] = vol;
+  p->vol0[i] = vol;
   p->F[9 * i + 0] = p->F[9 * i + 4] = p->F[9 * i + 8] = 1.0;
   p->material[i] = material;
   p->id[i] = p->next_id++;

@@ -11,13 +11,14 @@
 #include <stddef.h>
 #include <stdint.h>
 
+#include "core/tensor.h"
+
 /* X(name, components, description) -- every double-valued field */
 #define MRN_PARTICLE_FIELDS(X)                                                              \
   X(x, 3, "position (m)")                                                                   \
   X(x0, 3, "initial position (m), for the displacement")                                    \
   X(v, 3, "velocity (m/s)")                                                                 \
   X(mass, 1, "mass (kg; kg/m in 2D, per unit thickness)")                                   \
-  X(vol, 1, "current volume (m^3; m^2 in 2D)")                                              \
   X(vol0, 1, "initial volume")                                                              \
   X(F, 9, "deformation gradient")                                                           \
   X(affine, 9, "APIC C = B D^-1 (000, Eq. 25) or Taylor grad v (000, Eq. 22) (1/s)")       \
@@ -73,6 +74,20 @@ int mrn_particles_add_user_field(mrn_particles *p, const char *name, int ncomp, 
 const mrn_user_field *mrn_particles_user_field(const mrn_particles *p, const char *name);
 /* remove particles whose keep[i] == 0, preserving order */
 void mrn_particles_compact(mrn_particles *p, const unsigned char *keep);
+
+/* Current volume of particle i (m^3; m^2 in 2D): V = J V0 with J = det F
+ * (001, after Eq. 2). In plane strain F's z row stays e_z (the step keeps
+ * it), so J is the determinant of the in-plane block. Not stored (8 bytes
+ * per particle): worked out where it is read. The kernels, whose dimension
+ * is a constant, call mrn_particle_volume_dim. */
+static inline double mrn_particle_volume_dim(const mrn_particles *p, size_t i, const int dim) {
+  const double *F = p->F + 9 * i;
+  return p->vol0[i] * (dim == 2 ? F[0] * F[4] - F[1] * F[3] : mat_det(F));
+}
+
+static inline double mrn_particle_volume(const mrn_particles *p, size_t i) {
+  return mrn_particle_volume_dim(p, i, p->dim);
+}
 
 /* field table, for output and generic access */
 typedef struct mrn_particle_field_info {

@@ -22,7 +22,7 @@ double KNAME(mrn_grid_slowness)(mrn_sim *sim, const double *modulus) {
     for (int c = 0; c < s.count; c++) {
       double *a = acc + 3 * s.node[c];
       a[0] += s.N[c] * ps->mass[p];
-      a[1] += s.N[c] * ps->vol[p];
+      a[1] += s.N[c] * mrn_particle_volume(ps, p);
       a[2] += s.N[c] * modulus[p];
     }
   }

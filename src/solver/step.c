@@ -54,8 +54,9 @@ static inline double damping_force(double D, double alpha, double f, double v, d
 }
 
 /* V~ = V + dt (f / m + g) (000, Eq. 28) with the damping force added to f,
- * boundary conditions with friction, and the acceleration the particles will
- * see, a = (V~ - V) / dt. The damping work is f_damp . (V + V~) / 2 dt. */
+ * and boundary conditions with friction. The acceleration the particles see,
+ * (V~ - V) / dt, is not stored: G2P gathers V~ - V from both velocities.
+ * The damping work is f_damp . (V + V~) / 2 dt. */
 static void grid_update(mrn_sim *sim, double dt) {
   const double t0 = mrn_phase_begin();
   mrn_grid *g = &sim->grid;
@@ -90,10 +91,6 @@ static void grid_update(mrn_sim *sim, double dt) {
   sim->work_friction += mrn_boundary_apply(&sim->boundary, g, g->vel_new, 1);
   for (int c = 0; c < sim->nconstraints; c++) mrn_constraint_apply(&sim->constraints[c], g, g->vel_new, floor_mass, dt);
   sim->work_external += mrn_point_forces_work(sim, dt);
-#pragma omp parallel for schedule(static) if (r.nodes > MRN_OMP_MIN_NODES)
-  for (long k = 0; k < r.count; k++)
-    for (long i = r.lo[k]; i < r.hi[k]; i++)
-      for (int d = 0; d < 3; d++) g->acc[3 * i + d] = (g->vel_new[3 * i + d] - g->vel[3 * i + d]) / dt;
   mrn_phase_end(MRN_PHASE_GRID, t0);
 }
 

@@ -46,7 +46,7 @@ double mrn_dt_grid_critical(mrn_sim *sim) {
   for (size_t p = 0; p < ps->n; p++) {
     const mrn_material *m = sim->materials[ps->material[p]];
     double c = m->type->wave_speed ? m->type->wave_speed(m) : 0.0;
-    modulus[p] = ps->mass[p] / ps->vol[p] * c * c; /* M_p = rho_p c_p^2 */
+    modulus[p] = ps->mass[p] / mrn_particle_volume(ps, p) * c * c; /* M_p = rho_p c_p^2 */
   }
   double slowness = sim->dim == 2 ? mrn_grid_slowness_2d(sim, modulus) : mrn_grid_slowness_3d(sim, modulus);
   free(modulus);

@@ -12,15 +12,18 @@ typedef struct chunk_ctx {
 
 /* Kinematics and constitutive update of particles [lo, hi) (at most
  * MRN_GRADIENT_CHUNK) from their velocity gradients L (9 per particle), in
- * runs of one material; volume from J, and the energies weighted by the
- * mid-step volume (000, Eqs. 64-65). Returns the first particle whose F
- * would invert, or -1. A gradient sink (transfer/kernels.h). */
+ * runs of one material, and the energies weighted by the mid-step volume
+ * (000, Eqs. 64-65), the volumes V0 det F before and after. Returns the
+ * first particle whose F would invert, or -1. A gradient sink
+ * (transfer/kernels.h). */
 static long update_chunk(void *ctx, size_t lo, size_t hi, const double *L) {
   const chunk_ctx *c = ctx;
   mrn_sim *sim = c->sim;
   mrn_particles *ps = &sim->particles;
   const int stride = ps->state_stride;
   mrn_point_result r[MRN_GRADIENT_CHUNK];
+  double vol_old[MRN_GRADIENT_CHUNK];
+  for (size_t p = lo; p < hi; p++) vol_old[p - lo] = mrn_particle_volume(ps, p);
   long first_bad = -1;
   for (size_t a = lo, b; a < hi; a = b) {
     for (b = a + 1; b < hi && ps->material[b] == ps->material[a];) b++;
@@ -33,9 +36,7 @@ static long update_chunk(void *ctx, size_t lo, size_t hi, const double *L) {
   for (size_t p = lo; p < hi; p++) {
     const mrn_point_result *rp = &r[p - lo];
     if (rp->inverted) continue;
-    double vol_old = ps->vol[p];
-    ps->vol[p] = ps->vol0[p] * rp->J;
-    double vol_mid = 0.5 * (vol_old + ps->vol[p]);
+    double vol_mid = 0.5 * (vol_old[p - lo] + ps->vol0[p] * rp->J);
     ps->e_elastic[p] += vol_mid * rp->de_elastic;
     ps->w_plastic[p] += vol_mid * rp->dw_plastic;
   }

@@ -92,7 +92,6 @@ mrn_blocks *mrn_blocks_new(const mrn_grid *g) {
 void mrn_blocks_free(mrn_blocks *b) {
   if (!b) return;
   free(b->order);
-  free(b->key);
   free(b->start);
   free(b->hist);
   free(b->list);
@@ -109,7 +108,7 @@ void mrn_blocks_free(mrn_blocks *b) {
 size_t mrn_blocks_bytes(const mrn_grid *g) {
   const mrn_blocks *b = g->blocks;
   if (!b) return 0;
-  return sizeof *b + b->cap * 2 * sizeof(uint32_t) + (b->nblocks + 1) * sizeof(size_t) +
+  return sizeof *b + b->cap * sizeof(uint32_t) + (b->nblocks + 1) * sizeof(size_t) +
          (size_t)b->hist_threads * b->nblocks * sizeof(uint32_t) + b->nblocks * sizeof(uint32_t) +
          b->nrows * (4 * sizeof(int) + 2 * sizeof(long) + sizeof(double));
 }
@@ -134,9 +133,6 @@ static int grow_particles(mrn_blocks *b, size_t n, int threads) {
     uint32_t *o = realloc(b->order, cap * sizeof *o);
     if (!o) return 0;
     b->order = o;
-    uint32_t *k = realloc(b->key, cap * sizeof *k);
-    if (!k) return 0;
-    b->key = k;
     b->cap = cap;
   }
   if (threads > b->hist_threads) {
@@ -159,7 +155,6 @@ static void clear_nodes(mrn_grid *g, long first, long count, unsigned what, int 
   if (all) {
     memset(g->vel + 3 * first, 0, 3 * (size_t)count * sizeof(double));
     memset(g->vel_new + 3 * first, 0, 3 * (size_t)count * sizeof(double));
-    memset(g->acc + 3 * first, 0, 3 * (size_t)count * sizeof(double));
   }
 }
 
@@ -187,56 +182,93 @@ static void switch_spans(mrn_blocks *b, mrn_grid *g, unsigned clear) {
   spans_to_ranges(b, g);
 }
 
-static inline uint32_t block_of(const mrn_blocks *b, const mrn_grid *g, const double *x) {
+/* What the block of a particle depends on, copied out of the grid and the
+ * blocks so that the binning loops keep it in registers (the counts they
+ * store are uint32_t, which may alias the int fields of mrn_blocks). */
+typedef struct block_map {
+  double origin[3], inv_cell, pad;
+  double top[3]; /* last padded cell along each axis */
+  int shift[3];
+  uint32_t nb[3];
+} block_map;
+
+static block_map block_map_of(const mrn_blocks *b, const mrn_grid *g) {
+  block_map m = {.inv_cell = g->inv_cell, .pad = g->pad};
+  for (int d = 0; d < 3; d++) {
+    m.origin[d] = g->origin[d];
+    m.top[d] = b->ncell[d] - 1.0;
+    m.shift[d] = b->shift[d];
+    m.nb[d] = (uint32_t)b->nb[d];
+  }
+  return m;
+}
+
+/* the block of the padded cell holding x (clamped to the grid) */
+static inline __attribute__((always_inline)) uint32_t block_of(const block_map *m, const int dim, const double *x) {
   uint32_t key = 0, mul = 1;
-  for (int d = 0; d < g->dim; d++) {
-    double xi = floor((x[d] - g->origin[d]) * g->inv_cell) + g->pad;
-    int c = xi > 0.0 ? (xi < b->ncell[d] - 1 ? (int)xi : b->ncell[d] - 1) : 0;
-    key += mul * ((uint32_t)c >> b->shift[d]);
-    mul *= (uint32_t)b->nb[d];
+  for (int d = 0; d < dim; d++) {
+    double xi = floor((x[d] - m->origin[d]) * m->inv_cell) + m->pad;
+    xi = xi > 0.0 ? xi : 0.0; /* clamped in floating point: max, min, one conversion (NaN -> 0) */
+    xi = xi < m->top[d] ? xi : m->top[d];
+    key += mul * ((uint32_t)xi >> m->shift[d]);
+    mul *= m->nb[d];
   }
   return key;
 }
 
-/* stable counting sort of the particles by block, in parallel, with the
- * same result for any number of threads */
-static void bin(mrn_blocks *b, const mrn_grid *g, const mrn_particles *ps, int threads) {
-  const size_t n = ps->n, nb = b->nblocks;
-  int used = 1;
-#pragma omp parallel num_threads(threads) if (threads > 1)
-  {
-    int t = 0, nt = 1;
+/* Stable counting sort of the particles by block, in parallel, with the
+ * same result for any number of threads: the part of one thread of the
+ * team. The second pass works the block of each particle out again rather
+ * than keeping it from the first (4 bytes per particle less; the particles
+ * have not moved in between, so it is the same block). `dim` is a constant
+ * in each instance (bin_2d, bin_3d: the parallel regions sit there, as GCC
+ * outlines a region before it inlines). */
+static inline __attribute__((always_inline)) void bin_thread(mrn_blocks *b, const mrn_particles *ps,
+                                                             const block_map map, const int dim) {
+  int t = 0, nt = 1;
 #ifdef _OPENMP
-    t = omp_get_thread_num();
-    nt = omp_get_num_threads();
+  t = omp_get_thread_num();
+  nt = omp_get_num_threads();
 #endif
-#pragma omp single
-    used = nt;
-    const size_t lo = n * (size_t)t / (size_t)nt, hi = n * (size_t)(t + 1) / (size_t)nt;
-    uint32_t *h = b->hist + (size_t)t * nb;
-    memset(h, 0, nb * sizeof *h);
-    for (size_t p = lo; p < hi; p++) {
-      uint32_t k = block_of(b, g, ps->x + 3 * p);
-      b->key[p] = k;
-      h[k]++;
-    }
+  const size_t n = ps->n, nb = b->nblocks;
+  const double *x = ps->x;
+  uint32_t *order = b->order;
+  const size_t lo = n * (size_t)t / (size_t)nt, hi = n * (size_t)(t + 1) / (size_t)nt;
+  uint32_t *h = b->hist + (size_t)t * nb;
+  memset(h, 0, nb * sizeof *h);
+  for (size_t p = lo; p < hi; p++) h[block_of(&map, dim, x + 3 * p)]++;
 #pragma omp barrier
 #pragma omp single
-    {
-      size_t run = 0;
-      for (size_t k = 0; k < nb; k++) {
-        b->start[k] = run;
-        for (int s = 0; s < used; s++) {
-          uint32_t c = b->hist[(size_t)s * nb + k];
-          b->hist[(size_t)s * nb + k] = (uint32_t)run;
-          run += c;
-        }
+  {
+    size_t run = 0;
+    for (size_t k = 0; k < nb; k++) {
+      b->start[k] = run;
+      for (int s = 0; s < nt; s++) {
+        uint32_t c = b->hist[(size_t)s * nb + k];
+        b->hist[(size_t)s * nb + k] = (uint32_t)run;
+        run += c;
       }
-      b->start[nb] = run;
     }
-    for (size_t p = lo; p < hi; p++) b->order[h[b->key[p]]++] = (uint32_t)p;
+    b->start[nb] = run;
   }
-  b->np = n;
+  for (size_t p = lo; p < hi; p++) order[h[block_of(&map, dim, x + 3 * p)]++] = (uint32_t)p;
+}
+
+static void bin_2d(mrn_blocks *b, const block_map map, const mrn_particles *ps, int threads) {
+#pragma omp parallel num_threads(threads) if (threads > 1)
+  bin_thread(b, ps, map, 2);
+}
+
+static void bin_3d(mrn_blocks *b, const block_map map, const mrn_particles *ps, int threads) {
+#pragma omp parallel num_threads(threads) if (threads > 1)
+  bin_thread(b, ps, map, 3);
+}
+
+static void bin(mrn_blocks *b, const mrn_grid *g, const mrn_particles *ps, int threads) {
+  const block_map map = block_map_of(b, g);
+  if (g->dim == 2) bin_2d(b, map, ps, threads);
+  else bin_3d(b, map, ps, threads);
+  b->np = ps->n;
 }
 
 /* non-empty blocks by colour, and the node spans they reach */

@@ -15,7 +15,7 @@
  *
  * The same binning tells which node rows (x-lines of nodes) can receive
  * anything: each row keeps a span [lo, hi) of x indices outside which every
- * nodal array (mass, momentum, force, velocities, acceleration) is zero.
+ * nodal array (mass, momentum, force, velocities) is zero.
  * P2G clears only the spans, and the grid loops of the step visit only them,
  * so an empty part of the grid costs next to nothing.
  *
@@ -48,7 +48,6 @@ typedef struct mrn_blocks {
   /* particles grouped by block: order[start[b] .. start[b + 1]) */
   size_t np, cap;
   uint32_t *order;
-  uint32_t *key;   /* block of each particle */
   size_t *start;   /* nblocks + 1 */
   uint32_t *hist;  /* per-thread block counts, hist_threads * nblocks */
   int hist_threads;

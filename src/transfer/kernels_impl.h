@@ -51,7 +51,7 @@ static void KNAME(p2g_general)(const KNAME(p2g_args) *ar, size_t p, int momentum
   const double *v = ps->v + 3 * p;
   const double *A = ps->affine + 9 * p;
   const double *sig = ps->stress + 6 * p;
-  const double vol = ps->vol[p];
+  const double vol = mrn_particle_volume_dim(ps, p, DIM);
   for (int c = 0; c < s.count; c++) {
     const size_t n = s.node[c];
     if (momentum) {
@@ -80,7 +80,7 @@ static void KNAME(p2g_general)(const KNAME(p2g_args) *ar, size_t p, int momentum
  * affine matrix, zero when off) and V sigma; components beyond DIM stay 0. */
 MRN_INLINE void KNAME(p2g_particle_terms)(const mrn_particles *ps, size_t p, int affine, double mv[3],
                                           double MA[3][3], double VS[3][3]) {
-  const double m = ps->mass[p], vol = ps->vol[p];
+  const double m = ps->mass[p], vol = mrn_particle_volume_dim(ps, p, DIM);
   const double *v = ps->v + 3 * p, *A = ps->affine + 9 * p, *sig = ps->stress + 6 * p;
   for (int a = 0; a < 3; a++) {
     mv[a] = a < DIM ? m * v[a] : 0.0;
@@ -323,14 +323,15 @@ void KNAME(mrn_p2g)(mrn_sim *sim, int momentum, int force) {
  * nodes along x at one y, z; 3 sup contiguous values) are added up with the
  * weights of y and z as whole vectors, and the x factors applied once at
  * the end:
- *   vpic = sum N v, ap = sum N a           (000, Eq. 31)
+ *   vpic = sum N v                         (000, Eq. 31) when want_pic
+ *   vold = sum N v_old                     (the velocity before the update) when want_old
  *   B    = sum N v (x) (x_i - x_p)         (000, Eq. 26) when want_b
  *   L    = sum v (x) grad N                (000, Eqs. 44-45) when want_l
  * Every output is added to. */
-MRN_INLINE void KNAME(gather_fast)(const KNAME(axes) *ax, const double *restrict gvel, const double *restrict gacc,
-                                   long s1, long s2, const int sup, const int want_pic, const int want_b,
-                                   const int want_l, double vpic[DIM], double ap[DIM], double B[DIM][DIM],
-                                   double L[DIM][DIM]) {
+MRN_INLINE void KNAME(gather_fast)(const KNAME(axes) *ax, const double *restrict gvel, const double *restrict gold,
+                                   long s1, long s2, const int sup, const int want_pic, const int want_old,
+                                   const int want_b, const int want_l, double vpic[DIM], double vold[DIM],
+                                   double B[DIM][DIM], double L[DIM][DIM]) {
   const int T = 3 * sup, NV = T / 4;
   mrn_v4 R[3] = {{0}}, RA[3] = {{0}}, RY[3] = {{0}}, RZ[3] = {{0}}, RDY[3] = {{0}}, RDZ[3] = {{0}};
   double r[12] = {0}, ra[12] = {0}, ry[12] = {0}, rz[12] = {0}, rdy[12] = {0}, rdz[12] = {0}; /* tails */
@@ -341,11 +342,11 @@ MRN_INLINE void KNAME(gather_fast)(const KNAME(axes) *ax, const double *restrict
       const double dy = ax->dw[1][j] * wz, dz = wy * ax->dw[2][k];
       const size_t row = ax->node0 + (size_t)(j * s1) + (size_t)(k * s2);
       const double *vr = gvel + 3 * row;
-      const double *arow = want_pic ? gacc + 3 * row : NULL;
+      const double *orow = want_old ? gold + 3 * row : NULL;
       for (int c = 0; c < NV; c++) {
         const mrn_v4 vv = mrn_v4_load(vr + 4 * c);
         R[c] += wr * vv;
-        if (want_pic) RA[c] += wr * mrn_v4_load(arow + 4 * c);
+        if (want_old) RA[c] += wr * mrn_v4_load(orow + 4 * c);
         if (want_b) {
           RY[c] += cy * vv;
           RZ[c] += cz * vv;
@@ -357,7 +358,7 @@ MRN_INLINE void KNAME(gather_fast)(const KNAME(axes) *ax, const double *restrict
       }
       for (int t = 4 * NV; t < T; t++) {
         r[t] += wr * vr[t];
-        if (want_pic) ra[t] += wr * arow[t];
+        if (want_old) ra[t] += wr * orow[t];
         if (want_b) {
           ry[t] += cy * vr[t];
           rz[t] += cz * vr[t];
@@ -370,7 +371,7 @@ MRN_INLINE void KNAME(gather_fast)(const KNAME(axes) *ax, const double *restrict
     }
   for (int c = 0; c < NV; c++) {
     mrn_v4_store(r + 4 * c, R[c]);
-    if (want_pic) mrn_v4_store(ra + 4 * c, RA[c]);
+    if (want_old) mrn_v4_store(ra + 4 * c, RA[c]);
     if (want_b) {
       mrn_v4_store(ry + 4 * c, RY[c]);
       mrn_v4_store(rz + 4 * c, RZ[c]);
@@ -384,10 +385,8 @@ MRN_INLINE void KNAME(gather_fast)(const KNAME(axes) *ax, const double *restrict
     for (int i = 0; i < sup; i++) {
       const int t = 3 * i + a;
       const double wx = ax->w[0][i];
-      if (want_pic) {
-        vpic[a] += wx * r[t];
-        ap[a] += wx * ra[t];
-      }
+      if (want_pic) vpic[a] += wx * r[t];
+      if (want_old) vold[a] += wx * ra[t];
       if (want_b) {
         B[a][0] += wx * ax->off[0][i] * r[t];
         B[a][1] += wx * ry[t];
@@ -403,21 +402,22 @@ MRN_INLINE void KNAME(gather_fast)(const KNAME(axes) *ax, const double *restrict
 
 #else
 /* Sums over a fast stencil, factor by factor, in 2D: along each row of nodes
- * the sums of w_x v, w_x a, w_x o_x v and dw_x v, then those of the rows
- * weighted by w_y, w_y o_y or dw_y, on (x, y) pairs as 2-wide vectors:
- *   vpic = sum N v, ap = sum N a           (000, Eq. 31)
+ * the sums of w_x v, w_x v_old, w_x o_x v and dw_x v, then those of the
+ * rows weighted by w_y, w_y o_y or dw_y, on (x, y) pairs as 2-wide vectors:
+ *   vpic = sum N v                         (000, Eq. 31) when want_pic
+ *   vold = sum N v_old                     (the velocity before the update) when want_old
  *   B    = sum N v (x) (x_i - x_p)         (000, Eq. 26) when want_b
  *   L    = sum v (x) grad N                (000, Eqs. 44-45) when want_l
  * Every output is added to. */
-MRN_INLINE void KNAME(gather_fast)(const KNAME(axes) *ax, const double *restrict gvel, const double *restrict gacc,
-                                   long s1, long s2, const int sup, const int want_pic, const int want_b,
-                                   const int want_l, double vpic[DIM], double ap[DIM], double B[DIM][DIM],
-                                   double L[DIM][DIM]) {
+MRN_INLINE void KNAME(gather_fast)(const KNAME(axes) *ax, const double *restrict gvel, const double *restrict gold,
+                                   long s1, long s2, const int sup, const int want_pic, const int want_old,
+                                   const int want_b, const int want_l, double vpic[DIM], double vold[DIM],
+                                   double B[DIM][DIM], double L[DIM][DIM]) {
   (void)s2;
   double wox[4];
   for (int i = 0; i < sup; i++) wox[i] = ax->w[0][i] * ax->off[0][i];
   /* (x, y) pairs as 2-wide vectors; Bx, By, Lx, Ly the columns of B and L */
-  mrn_v2 sv = {vpic[0], vpic[1]}, sa = {ap[0], ap[1]}, Bx = {B[0][0], B[1][0]}, By = {B[0][1], B[1][1]};
+  mrn_v2 sv = {vpic[0], vpic[1]}, sa = {vold[0], vold[1]}, Bx = {B[0][0], B[1][0]}, By = {B[0][1], B[1][1]};
   mrn_v2 Lx = {L[0][0], L[1][0]}, Ly = {L[0][1], L[1][1]};
   for (int j = 0; j < sup; j++) {
     const size_t row = ax->node0 + (size_t)(j * s1);
@@ -425,15 +425,13 @@ MRN_INLINE void KNAME(gather_fast)(const KNAME(axes) *ax, const double *restrict
     for (int i = 0; i < sup; i++) {
       const mrn_v2 vi = mrn_v2_load(gvel + 3 * (row + (size_t)i));
       rv += ax->w[0][i] * vi;
-      if (want_pic) ra += ax->w[0][i] * mrn_v2_load(gacc + 3 * (row + (size_t)i));
+      if (want_old) ra += ax->w[0][i] * mrn_v2_load(gold + 3 * (row + (size_t)i));
       if (want_b) rvx += wox[i] * vi;
       if (want_l) rdv += ax->dw[0][i] * vi;
     }
     const double wy = ax->w[1][j], woy = wy * ax->off[1][j], dwy = ax->dw[1][j];
-    if (want_pic) {
-      sv += wy * rv;
-      sa += wy * ra;
-    }
+    if (want_pic) sv += wy * rv;
+    if (want_old) sa += wy * ra;
     if (want_b) {
       Bx += wy * rvx;
       By += woy * rv;
@@ -445,7 +443,7 @@ MRN_INLINE void KNAME(gather_fast)(const KNAME(axes) *ax, const double *restrict
   }
   for (int a = 0; a < DIM; a++) {
     vpic[a] = sv[a];
-    ap[a] = sa[a];
+    vold[a] = sa[a];
     B[a][0] = Bx[a];
     B[a][1] = By[a];
     L[a][0] = Lx[a];
@@ -454,10 +452,10 @@ MRN_INLINE void KNAME(gather_fast)(const KNAME(axes) *ax, const double *restrict
 }
 #endif
 
-/* the same sums over a general stencil */
-static inline void KNAME(gather_general)(const KNAME(stencil) *s, const double *gvel, const double *gacc,
+/* the same sums over a general stencil; vold when gold is given */
+static inline void KNAME(gather_general)(const KNAME(stencil) *s, const double *gvel, const double *gold,
                                          const double *gstar, int want_pic, int want_bd, int want_l, double vpic[DIM],
-                                         double ap[DIM], double vstar[DIM], double B[DIM][DIM], double D[DIM][DIM],
+                                         double vold[DIM], double vstar[DIM], double B[DIM][DIM], double D[DIM][DIM],
                                          double L[DIM][DIM]) {
   for (int c = 0; c < s->count; c++) {
     const size_t node = s->node[c];
@@ -465,7 +463,7 @@ static inline void KNAME(gather_general)(const KNAME(stencil) *s, const double *
     if (want_pic)
       for (int d = 0; d < DIM; d++) {
         vpic[d] += s->N[c] * vi[d];
-        ap[d] += s->N[c] * gacc[3 * node + d];
+        if (gold) vold[d] += s->N[c] * gold[3 * node + d];
         if (gstar) vstar[d] += s->N[c] * gstar[3 * node + d];
       }
     if (want_bd)
@@ -523,7 +521,7 @@ MRN_INLINE void KNAME(gradient_particle)(const mrn_grid *g, const mrn_particles 
   double L[DIM][DIM] = {{0}}, none[DIM][DIM] = {{0}}, nv[DIM] = {0};
   KNAME(axes) ax;
   if (sup && KNAME(axes_build)(g, sup, ko->boundary, ps->x + 3 * p, &ax)) {
-    KNAME(gather_fast)(&ax, gvel, NULL, g->stride[1], g->stride[2], sup, 0, 0, 1, nv, nv, none, L);
+    KNAME(gather_fast)(&ax, gvel, NULL, g->stride[1], g->stride[2], sup, 0, 0, 0, 1, nv, nv, none, L);
   } else {
     KNAME(stencil) s;
     KNAME(stencil_build)(g, ko, ps->x + 3 * p, ps->vol0[p], &s);
@@ -608,10 +606,13 @@ typedef struct KNAME(g2p_args) {
 } KNAME(g2p_args);
 
 /* G2P of one particle; with `fused` the velocity gradient from the updated
- * grid velocity is written to Lout on the way (the same stencil). `sup`,
- * `gvk` and `fused` are constants at every call. */
+ * grid velocity is written to Lout on the way (the same stencil). With
+ * `want_dv` the grid velocity before the update V is gathered too, for the
+ * change dv = sum N (V~ - V) = a_p dt of FLIP's and XPIC's updates (000,
+ * Eq. 33; the grid keeps no acceleration); PIC and APIC (X = 0) do without
+ * it. `sup`, `gvk`, `fused` and `want_dv` are constants at every call. */
 MRN_INLINE void KNAME(g2p_particle)(const KNAME(g2p_args) *ar, size_t p, double *Lout, const int sup, const int gvk,
-                                    const int fused) {
+                                    const int fused, const int want_dv) {
   const mrn_grid *g = ar->g;
   mrn_particles *ps = ar->ps;
   const double dt = ar->dt, X = ar->X;
@@ -619,11 +620,12 @@ MRN_INLINE void KNAME(g2p_particle)(const KNAME(g2p_args) *ar, size_t p, double 
   const int want_bd = gvk == MRN_VGRID_AFFINE, want_l = gvk == MRN_VGRID_TAYLOR || fused;
   double *x = ps->x + 3 * p;
   double *v = ps->v + 3 * p;
-  double v_pic[3] = {0, 0, 0}, a_p[3] = {0, 0, 0}, v_star[3] = {0, 0, 0};
+  double v_pic[3] = {0, 0, 0}, v_old[3] = {0, 0, 0}, v_star[3] = {0, 0, 0};
   double B[DIM][DIM] = {{0}}, D[DIM][DIM] = {{0}}, L[DIM][DIM] = {{0}};
   KNAME(axes) ax;
   if (sup && KNAME(axes_build)(g, sup, ar->ko->boundary, x, &ax)) {
-    KNAME(gather_fast)(&ax, g->vel_new, g->acc, g->stride[1], g->stride[2], sup, 1, want_bd, want_l, v_pic, a_p, B, L);
+    KNAME(gather_fast)(&ax, g->vel_new, g->vel, g->stride[1], g->stride[2], sup, 1, want_dv, want_bd, want_l, v_pic,
+                       v_old, B, L);
     if (gvk == MRN_VGRID_AFFINE) {
       /* the full B-spline's D = sum N (x_i - x_p) (x)(x_i - x_p) is h^2/4 I
        * (quadratic) or h^2/3 I (cubic) wherever the particle is */
@@ -636,25 +638,27 @@ MRN_INLINE void KNAME(g2p_particle)(const KNAME(g2p_args) *ar, size_t p, double 
   } else {
     KNAME(stencil) s;
     KNAME(stencil_build)(g, ar->ko, x, ps->vol0[p], &s);
-    KNAME(gather_general)(&s, g->vel_new, g->acc, ar->gstar, 1, want_bd, want_l, v_pic, a_p, v_star, B, D, L);
+    KNAME(gather_general)(&s, g->vel_new, want_dv ? g->vel : NULL, ar->gstar, 1, want_bd, want_l, v_pic, v_old, v_star,
+                          B, D, L);
     if (gvk == MRN_VGRID_AFFINE) KNAME(apic_matrix)(B, D, ps->affine + 9 * p);
   }
   if (fused) KNAME(store_matrix)(L, Lout);
   if (gvk == MRN_VGRID_TAYLOR) KNAME(store_matrix)(L, ps->affine + 9 * p); /* (000, Eq. 22), updated V */
   double step[3] = {0, 0, 0};
   for (int d = 0; d < DIM; d++) {
+    const double dv = want_dv ? v_pic[d] - v_old[d] : 0.0; /* a_p dt */
     double v_new;
     if (vu == MRN_VUPDATE_XPIC) {
-      v_new = v_star[d] + a_p[d] * dt; /* (000, Eq. 40): V - (I - G P)^m V = G V* */
+      v_new = v_star[d] + dv; /* (000, Eq. 40): V - (I - G P)^m V = G V* */
     } else {
-      double v_flip = v[d] + a_p[d] * dt;        /* (000, Eq. 33) */
+      double v_flip = v[d] + dv;                 /* (000, Eq. 33) */
       v_new = X * v_flip + (1.0 - X) * v_pic[d]; /* (000, Eqs. 31, 37) */
     }
     switch (ar->xu) {
     case MRN_XUPDATE_GRID: step[d] = v_pic[d] * dt; break;  /* (000, Eq. 32) */
     case MRN_XUPDATE_PARTICLE: step[d] = v_new * dt; break; /* (000, Eqs. 36, 38) */
     case MRN_XUPDATE_XPIC:                                  /* (000, Eq. 41) */
-      step[d] = dt * (v_pic[d] - 0.5 * a_p[d] * dt - 0.5 * (v[d] - v_star[d]));
+      step[d] = dt * (v_pic[d] - 0.5 * dv - 0.5 * (v[d] - v_star[d]));
       break;
     }
     v[d] = v_new;
@@ -667,28 +671,32 @@ MRN_INLINE void KNAME(g2p_particle)(const KNAME(g2p_args) *ar, size_t p, double 
 }
 
 typedef long (*KNAME(g2p_fn))(const KNAME(g2p_args) *, const mrn_gradient_sink *, double *);
-#define MRN_G2P_VARIANT(SUP, GV, FUSED)                                                                   \
-  static long KNAME(g2p_##SUP##_##GV##FUSED)(const KNAME(g2p_args) * ar, const mrn_gradient_sink *sink,    \
-                                             double *sink_seconds) {                                      \
-    MRN_CHUNKED_LOOP((long)ar->ps->n, FUSED,                                                              \
-                     KNAME(g2p_particle)(ar, (size_t)p, L + (FUSED ? 9 * (p - lo) : 0), SUP, GV, FUSED)) \
+#define MRN_G2P_VARIANT(SUP, GV, FUSED, DV)                                                                   \
+  static long KNAME(g2p_##SUP##_##GV##FUSED##DV)(const KNAME(g2p_args) * ar, const mrn_gradient_sink *sink,    \
+                                                 double *sink_seconds) {                                      \
+    MRN_CHUNKED_LOOP((long)ar->ps->n, FUSED,                                                                  \
+                     KNAME(g2p_particle)(ar, (size_t)p, L + (FUSED ? 9 * (p - lo) : 0), SUP, GV, FUSED, DV)) \
   }
-#define MRN_G2P_VARIANTS(SUP)                                                                                  \
-  MRN_G2P_VARIANT(SUP, 0, 0) MRN_G2P_VARIANT(SUP, 1, 0) MRN_G2P_VARIANT(SUP, 2, 0) MRN_G2P_VARIANT(SUP, 0, 1) \
-      MRN_G2P_VARIANT(SUP, 1, 1) MRN_G2P_VARIANT(SUP, 2, 1)
+#define MRN_G2P_VARIANTS_DV(SUP, DV)                                                                   \
+  MRN_G2P_VARIANT(SUP, 0, 0, DV) MRN_G2P_VARIANT(SUP, 1, 0, DV) MRN_G2P_VARIANT(SUP, 2, 0, DV)          \
+      MRN_G2P_VARIANT(SUP, 0, 1, DV) MRN_G2P_VARIANT(SUP, 1, 1, DV) MRN_G2P_VARIANT(SUP, 2, 1, DV)
+#define MRN_G2P_VARIANTS(SUP) MRN_G2P_VARIANTS_DV(SUP, 0) MRN_G2P_VARIANTS_DV(SUP, 1)
 MRN_G2P_VARIANTS(0)
 MRN_G2P_VARIANTS(3)
 MRN_G2P_VARIANTS(4)
 #undef MRN_G2P_VARIANTS
+#undef MRN_G2P_VARIANTS_DV
 #undef MRN_G2P_VARIANT
 
-static KNAME(g2p_fn) KNAME(g2p_pick)(int sup, mrn_grid_velocity_kind gv, int fused) {
-  const int k = (gv == MRN_VGRID_AFFINE ? 1 : gv == MRN_VGRID_TAYLOR ? 2 : 0) + 3 * (fused != 0);
-#define MRN_PICK(SUP)                                                                                           \
-  if (sup == SUP) {                                                                                             \
-    static const KNAME(g2p_fn) fns[6] = {KNAME(g2p_##SUP##_00), KNAME(g2p_##SUP##_10), KNAME(g2p_##SUP##_20),  \
-                                         KNAME(g2p_##SUP##_01), KNAME(g2p_##SUP##_11), KNAME(g2p_##SUP##_21)}; \
-    return fns[k];                                                                                              \
+static KNAME(g2p_fn) KNAME(g2p_pick)(int sup, mrn_grid_velocity_kind gv, int fused, int dv) {
+  const int k = (gv == MRN_VGRID_AFFINE ? 1 : gv == MRN_VGRID_TAYLOR ? 2 : 0) + 3 * (fused != 0) + 6 * (dv != 0);
+#define MRN_PICK(SUP)                                                                                              \
+  if (sup == SUP) {                                                                                                \
+    static const KNAME(g2p_fn) fns[12] = {                                                                         \
+        KNAME(g2p_##SUP##_000), KNAME(g2p_##SUP##_100), KNAME(g2p_##SUP##_200), KNAME(g2p_##SUP##_010),            \
+        KNAME(g2p_##SUP##_110), KNAME(g2p_##SUP##_210), KNAME(g2p_##SUP##_001), KNAME(g2p_##SUP##_101),            \
+        KNAME(g2p_##SUP##_201), KNAME(g2p_##SUP##_011), KNAME(g2p_##SUP##_111), KNAME(g2p_##SUP##_211)};           \
+    return fns[k];                                                                                                 \
   }
   MRN_PICK(3)
   MRN_PICK(4)
@@ -707,8 +715,10 @@ static long KNAME(g2p_any)(mrn_sim *sim, double dt, double *dx, const mrn_gradie
   KNAME(g2p_args) ar = {&sim->grid, &sim->particles, &ko, dt,
                         vu == MRN_VUPDATE_FLIP ? 1.0 : vu == MRN_VUPDATE_BLEND ? sc->flip_fraction : 0.0, dx,
                         vu == MRN_VUPDATE_XPIC ? sim->grid.vel_star : NULL, vu, sc->position_update};
+  /* the change of the grid velocity, only where the update uses it */
+  const int dv = ar.X > 0.0 || vu == MRN_VUPDATE_XPIC || sc->position_update == MRN_XUPDATE_XPIC;
   double spent = 0.0;
-  const long bad = KNAME(g2p_pick)(sup, sc->grid_velocity, sink != NULL)(&ar, sink, &spent);
+  const long bad = KNAME(g2p_pick)(sup, sc->grid_velocity, sink != NULL, dv)(&ar, sink, &spent);
   mrn_phase_end_split(MRN_PHASE_G2P, sink ? sink->phase : MRN_PHASE_G2P, t0, spent,
                       sim->particles.n > MRN_OMP_MIN_ITEMS);
   return bad;

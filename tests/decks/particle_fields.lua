@@ -5,7 +5,10 @@
 --  * probes: a block translating rigidly at v (no gravity, no stress) has the
 --    nodal velocity v at every node it reaches, so the interpolated velocity
 --    inside it is v to round-off (the shape functions sum to 1, 002 Eq. 38);
---    the probed momentum is the probed mass times v; outside the grid: nil.
+--    the probed momentum is the probed mass times v; outside the grid: nil;
+--    a block falling freely (gravity only, no stress) has the nodal
+--    acceleration g (000, Eq. 28 with f = 0), which the probe works out as
+--    (velocity_new - velocity) / dt.
 local T = dofile(mpm.deck_dir .. "/testlib.lua")
 local mat = mpm.material.linear_elastic{ density = 1000, E = 1e6, nu = 0.3 }
 
@@ -58,6 +61,14 @@ for _, dim in ipairs{ 2, 3 } do
   local pm = sim:probe(c)
   for k = 1, dim do T.close(pm[k], m * v[k], 1e-12, "probed momentum component " .. k) end
   T.check(sim:probe{ field = "force", x = 1.5, y = 0.5, z = dim == 3 and 0.5 or nil } == nil, "outside: nil")
+  local g = dim == 2 and { 0, -9.81 } or { 0, 0, -9.81 }
+  local fall = mpm.simulation{ dim = dim, grid = { size = dim == 2 and { 1, 1 } or { 1, 1, 1 }, cell = 0.1 },
+                               gravity = g, thermo = 0, diagnostics = false, series = false }
+  fall:add_particles(mpm.box{ min = lo, max = hi }, { material = mat })
+  fall:run{ steps = 3 }
+  c.field = "acceleration"
+  local pa = fall:probe(c)
+  for k = 1, dim do T.close(pa[k], g[k], 1e-9, "probed acceleration component " .. k, 1e-9 * 9.81) end
   if dim == 2 then refused("z is only for a 3D simulation", sim.probe, sim, { field = "mass", x = 0.5, y = 0.5, z = 0 })
   else refused("z is required in 3D", sim.probe, sim, { field = "mass", x = 0.5, y = 0.5 }) end
 

@@ -76,7 +76,7 @@ static int ranges_hold(const mrn_grid *g) {
     ok &= g->mass[i] == 0.0;
     for (int d = 0; d < 3; d++)
       ok &= g->mom[3 * i + d] == 0.0 && g->force[3 * i + d] == 0.0 && g->vel[3 * i + d] == 0.0 &&
-            g->vel_new[3 * i + d] == 0.0 && g->acc[3 * i + d] == 0.0;
+            g->vel_new[3 * i + d] == 0.0;
   }
   free(in);
   return ok;
@@ -104,7 +104,7 @@ static void threads_and_spans(int dim, mrn_shape_kind shape) {
   memcpy(fresh->particles.v, two->particles.v, 3 * two->particles.n * sizeof(double));
   memcpy(fresh->particles.affine, two->particles.affine, 9 * two->particles.n * sizeof(double));
   memcpy(fresh->particles.stress, two->particles.stress, 6 * two->particles.n * sizeof(double));
-  memcpy(fresh->particles.vol, two->particles.vol, two->particles.n * sizeof(double));
+  memcpy(fresh->particles.F, two->particles.F, 9 * two->particles.n * sizeof(double)); /* the volumes */
   mrn_p2g(two, dim, 1, 1);
   set_threads(1);
   mrn_p2g(fresh, dim, 1, 1);

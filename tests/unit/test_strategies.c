@@ -46,7 +46,6 @@ static void transfer_once(mrn_sim *sim) {
     for (int d = 0; d < 3; d++) {
       g->vel[3 * i + d] = g->mass[i] > sim->mass_floor ? g->mom[3 * i + d] / g->mass[i] : 0.0;
       g->vel_new[3 * i + d] = g->vel[3 * i + d];
-      g->acc[3 * i + d] = 0.0;
     }
   if (sim->scheme.velocity_update == MRN_VUPDATE_XPIC) {
     static double scratch[3 * 4096];

@@ -67,7 +67,7 @@ static void run_case(int dim, mrn_shape_kind shape) {
   for (size_t n = 0; n < sim->grid.n; n++)
     for (int d = 0; d < 3; d++) {
       sim->grid.vel_new[3 * n + d] = d < dim ? 0.25 * (d + 1) : 0.0;
-      sim->grid.acc[3 * n + d] = 0.0;
+      sim->grid.vel[3 * n + d] = sim->grid.vel_new[3 * n + d]; /* no acceleration */
     }
   mrn_g2p(sim, dim, 1e-9, sim->particles.x0);
   double worst = 0;
