@@ -20,6 +20,7 @@ moraine_deck_test(implicit_cylinders_bbar_plastic implicit_cylinders.lua
 moraine_deck_test(implicit_cantilever implicit_cantilever.lua LABELS long)
 # the same cantilever with the explicit step (point forces, FLIP, USF, CFL 0.5), for the comparison in doc/implicit.md
 moraine_deck_test(explicit_cantilever explicit_cantilever.lua LABELS long)
-# the Taylor bar (001 §7.4) with ghost stabilisation, its first 10 us (27 steps, about a minute): every step's Newton
-# converged, energy balance with the penalty counted; the full 80 us is the validation case implicit_taylor
+# the Taylor bar (001 §7.4) with ghost stabilisation and volumetric averaging, its first 10 us (27 steps, about a
+# minute): every step's Newton converged, energy balance with the penalty counted; the full 80 us (compared with the
+# finite-element length and radius) is the validation case implicit_taylor
 moraine_deck_test(implicit_taylor implicit_taylor.lua ARGS --set time=10e-6 --set verbose=false LABELS long)
