@@ -118,7 +118,8 @@ int mrn_implicit_setup_step(mrn_implicit *im) {
     if (grow((void **)&im->act, c * sizeof(size_t)) || grow((void **)&im->ijk, 3 * c * sizeof(int)) ||
         grow((void **)&im->Kb, c * NR * 9 * sizeof(double)) || grow((void **)&im->Mc, c * NR * sizeof(double)) ||
         grow((void **)&im->touched, c * NR) || grow((void **)&im->ml, c * sizeof(double)) ||
-        grow((void **)&im->fdof, 3 * c * sizeof(int)) || grow((void **)&im->vfix, 3 * c * sizeof(double)) || grow((void **)&im->v0, 3 * c * sizeof(double)) ||
+        grow((void **)&im->fdof, 3 * c * sizeof(int)) || grow((void **)&im->vfix, 3 * c * sizeof(double)) ||
+        grow((void **)&im->v0, 3 * c * sizeof(double)) ||
         grow((void **)&im->u, 3 * c * sizeof(double)) || grow((void **)&im->fint, 3 * c * sizeof(double)) ||
         grow((void **)&im->fext, 3 * c * sizeof(double)) || grow((void **)&im->p, 3 * c * sizeof(double)) ||
         grow((void **)&im->r, 3 * c * sizeof(double)) || grow((void **)&im->du, 3 * c * sizeof(double)))
@@ -331,7 +332,9 @@ void mrn_implicit_assemble(mrn_implicit *im) {
  * eigenvalues lambda / (lambda + delta) in (0, 1], clustered at 1 but for
  * the few nearly singular directions, which conjugate gradients resolve in a
  * few iterations (a plain iterative refinement with the same factor
- * contracts them only by delta / (lambda + delta) per pass). */
+ * contracts them only by delta / (lambda + delta) per pass). The loop stops
+ * at max |M~ v - p| <= 1e-15 max |p|, after 100 iterations, or on a
+ * direction M~ does not see. */
 int mrn_implicit_project_velocity(mrn_implicit *im, const double *p, double *v) {
   const int n = im->nfree;
   const double delta = 1e-10;
@@ -363,7 +366,10 @@ int mrn_implicit_project_velocity(mrn_implicit *im, const double *p, double *v) 
     mrn_csc_multiply(&M, dir, Md);
     double dMd = 0.0;
     for (int i = 0; i < n; i++) dMd += dir[i] * Md[i];
-    if (!(dMd > 0.0)) break; /* a direction in the null space of M~: nothing left to resolve */
+    /* a direction M~ does not see: what is left of the residual lies where
+     * the nearly singular M~ cannot take it (1e-12 to 1e-10 of max |p| in a
+     * few steps of the Taylor bar, doc/implicit.md); stop there */
+    if (!(dMd > 0.0)) break;
     const double alpha = rz / dMd;
     double rmax = 0.0;
     for (int i = 0; i < n; i++) {
