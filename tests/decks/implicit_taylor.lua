@@ -15,10 +15,16 @@ local T = dofile(mpm.deck_dir .. "/testlib.lua")
 mpm.param("verbose", false) -- declared here too so --set verbose=... is accepted
 local run = dofile(mpm.deck_dir .. "/../../examples/implicit_taylor/deck.lua")
 T.check(run.steps > 0, "no step was taken")
+-- the reported figures first, so a failed assertion below still leaves them in the report
+if run.time >= 80e-6 - 1e-12 then
+  T.expect{ id = "implicit_taylor.length_fem", what = "final length (mm) against the finite-element value",
+            value = 1e3 * run.s.length, reference = 21.4, rtol = 0.03, unit = "mm", asserted = false }
+  T.expect{ id = "implicit_taylor.radius_fem", what = "final mushroom radius (mm, largest extent) against the "
+            .. "finite-element value", value = 1e3 * run.s.radius_max, reference = 7.0, rtol = 0.03, unit = "mm",
+            asserted = false }
+end
 T.expect{ id = "implicit_taylor.newton_final", what = "largest final f_err ratio of a step", value = run.worst_final,
           max = 1e-10 }
-T.expect{ id = "implicit_taylor.energy", what = "largest relative change of kinetic + stored + plastic + ghost energy",
-          value = run.drift, max = 1e-9 }
 T.expect{ id = "implicit_taylor.newton_iterations", what = "most Newton iterations in a step", value = run.max_iterations }
 T.expect{ id = "implicit_taylor.newton_over_six", what = "steps needing more than 6 Newton iterations",
           value = run.over_six }
@@ -29,11 +35,6 @@ T.expect{ id = "implicit_taylor.plastic_energy", what = "plastic dissipation / i
 T.expect{ id = "implicit_taylor.length_ratio", what = "final / initial length", value = run.s.length / run.s0.length }
 T.expect{ id = "implicit_taylor.radius_ratio", what = "final / initial impact-face radius (area-equivalent)",
           value = run.s.radius / run.s0.radius }
-if run.time >= 80e-6 - 1e-12 then
-  T.expect{ id = "implicit_taylor.length_fem", what = "final length (mm) against the finite-element value",
-            value = 1e3 * run.s.length, reference = 21.4, rtol = 0.03, unit = "mm", asserted = false }
-  T.expect{ id = "implicit_taylor.radius_fem", what = "final mushroom radius (mm, largest extent) against the "
-            .. "finite-element value", value = 1e3 * run.s.radius_max, reference = 7.0, rtol = 0.03, unit = "mm",
-            asserted = false }
-end
+T.expect{ id = "implicit_taylor.energy", what = "largest relative change of kinetic + stored + plastic + ghost energy",
+          value = run.drift, max = 1e-9 }
 T.done("implicit_taylor")
