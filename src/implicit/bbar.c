@@ -74,21 +74,24 @@ int mrn_implicit_bbar_setup(mrn_implicit *im) {
   size_t ncell = 0;
   for (size_t p = 0; p < np; p++) {
     size_t key = mrn_implicit_point_cell(im, p);
-    if (im->bb_index[key] < 0) im->bb_index[key] = (int)ncell++;
+    if (im->bb_index[key] < 0) {
+      if ((size_t)ncell >= im->bb_cap) {
+        size_t cap = im->bb_cap ? 2 * im->bb_cap : 64;
+        if (grow((void **)&im->bb, cap * sizeof *im->bb)) return MRN_ERR;
+        im->bb_cap = cap;
+      }
+      im->bb[ncell].count = 0;
+      im->bb[ncell].cell = key;
+      im->bb_index[key] = (int)ncell++;
+    }
     im->bb_of[p] = im->bb_index[key];
   }
-  if (ncell > im->bb_cap) {
-    if (grow((void **)&im->bb, ncell * sizeof *im->bb)) return MRN_ERR;
-    im->bb_cap = ncell;
-  }
   im->bb_n = ncell;
-  for (size_t c = 0; c < ncell; c++) im->bb[c].count = 0, im->bb[c].volume = 0.0;
-  for (size_t p = 0; p < np; p++) im->bb[im->bb_of[p]].volume += mrn_implicit_point_volume(im, p);
   /* union of the stencils and the averaged gradients g_A */
   for (size_t p = 0; p < np; p++) {
     mrn_bbar_cell *c = &im->bb[im->bb_of[p]];
     const mrn_implicit_stencil *s = &im->sten[p];
-    const double w = mrn_implicit_point_volume(im, p) / c->volume;
+    const double w = mrn_particle_volume(&im->sim->particles, p) / im->cellvol[c->cell];
     for (int k = 0; k < s->count; k++) {
       int slot = union_slot(c, im->dof[s->node[k]]);
       if (slot < 0)

@@ -61,22 +61,14 @@ int mrn_implicit_ghost_build(mrn_implicit *im) {
   if (!(im->opt.ghost > 0)) return 0;
   const mrn_sim *sim = im->sim;
   const mrn_grid *g = &sim->grid;
-  const mrn_particles *ps = &sim->particles;
   const int dim = im->dim;
   const size_t NR = (size_t)im->NR;
   const double h = g->cell;
-  void *q = realloc(im->cellvol, g->n * sizeof(double));
-  void *gq = q ? realloc(im->Gb, im->act_cap * NR * sizeof(double)) : NULL;
-  if (q) im->cellvol = q;
-  if (gq) im->Gb = gq;
-  if (!q || !gq) return mrn_error_code(MRN_ERR, "implicit: out of memory for the ghost penalty");
-  memset(im->cellvol, 0, g->n * sizeof(double));
+  void *gq = realloc(im->Gb, im->act_cap * NR * sizeof(double));
+  if (!gq) return mrn_error_code(MRN_ERR, "implicit: out of memory for the ghost penalty");
+  im->Gb = gq;
   memset(im->Gb, 0, im->nact * NR * sizeof(double));
-  /* volume of the points in each cell (indexed by its lower corner node) */
-  for (size_t p = 0; p < ps->n; p++) {
-    if (!mrn_grid_contains(g, ps->x + 3 * p)) continue; /* the state check reports it */
-    im->cellvol[mrn_implicit_point_cell(im, p)] += mrn_implicit_point_volume(im, p);
-  }
+  /* im->cellvol: the points' volume in each cell (mrn_implicit_cell_volumes) */
   const double full = MRN_GHOST_FULL * pow(h, dim);
   const double coef = im->opt.ghost * im->ghost_modulus / h * pow(h / 6.0, dim - 1); /* gamma E h / h^2 (h/6)^(dim-1) */
   static const double cn[3] = {1.0, -2.0, 1.0};

@@ -270,8 +270,15 @@ size_t mrn_implicit_point_cell(const mrn_implicit *im, size_t p) {
   return mrn_grid_index(g, c[0], c[1], c[2]);
 }
 
-double mrn_implicit_point_volume(const mrn_implicit *im, size_t p) {
-  return mrn_particle_volume(&im->sim->particles, p); /* the step keeps the particles' F = F_t */
+int mrn_implicit_cell_volumes(mrn_implicit *im) {
+  if (!(im->opt.ghost > 0) && !im->opt.bbar) return 0;
+  const mrn_grid *g = &im->sim->grid;
+  const mrn_particles *ps = &im->sim->particles;
+  if (grow((void **)&im->cellvol, g->n * sizeof(double))) return MRN_ERR;
+  memset(im->cellvol, 0, g->n * sizeof(double));
+  /* V_0 det F: the step keeps the particles' F = F_t */
+  for (size_t p = 0; p < ps->n; p++) im->cellvol[mrn_implicit_point_cell(im, p)] += mrn_particle_volume(ps, p);
+  return 0;
 }
 
 /* internal forces (001 Eq. 44) and stiffness (001 Eq. A.10) at the current u */

@@ -165,8 +165,8 @@ int mrn_implicit_step(mrn_implicit *im, mrn_implicit_history *h) {
   if (rc) return rc;
   if ((rc = mrn_implicit_setup_step(im))) return rc;
   mrn_implicit_map_to_grid(im);
-  if ((rc = mrn_implicit_ghost_build(im))) return rc;
-  if ((rc = mrn_implicit_bbar_setup(im))) return rc;
+  if ((rc = mrn_implicit_cell_volumes(im)) || (rc = mrn_implicit_ghost_build(im)) || (rc = mrn_implicit_bbar_setup(im)))
+    return rc;
   const size_t nact = im->nact;
 
   /* B: grid velocity from M~ v = p on the free components (001 Eq. 26),
@@ -284,10 +284,9 @@ int mrn_implicit_step(mrn_implicit *im, mrn_implicit_history *h) {
   }
   /* the work of the forces that hold the fixed components: the residual
    * there, r_c = f_int + (2/dt^2) M~ (u - dt v_t) - f_ext, is the force they
-   * exert, and u_c = dt v_c its displacement (0 for clamped components) */
+   * exert, and u_c = dt v_c its displacement (0 for clamped components);
+   * Mw = M~ (u - dt v_t) and f_int are those of the accepted iterate */
   double work_con = 0.0;
-  for (size_t q = 0; q < 3 * nact; q++) tmp[q] = im->u[q] - dt * im->v0[q];
-  mrn_implicit_mass_multiply(im, tmp, Mw);
   for (size_t a = 0; a < nact; a++)
     for (int d = 0; d < dim; d++) {
       const size_t q = 3 * a + (size_t)d;

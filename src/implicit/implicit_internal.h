@@ -15,7 +15,7 @@ typedef struct mrn_bbar_cell {
   int count;
   int node[MRN_IMPLICIT_STENCIL_MAX];
   double g[MRN_IMPLICIT_STENCIL_MAX][3];
-  double volume; /* sum of the points' start-of-step volumes */
+  size_t cell; /* grid index of its lower corner (im->cellvol) */
   double theta;
   double trP, S;
   double A[MRN_IMPLICIT_STENCIL_MAX][3], B[MRN_IMPLICIT_STENCIL_MAX][3], Nn[MRN_IMPLICIT_STENCIL_MAX][3];
@@ -93,10 +93,13 @@ void mrn_implicit_increment(const mrn_implicit *im, const mrn_implicit_stencil *
 /* dF of point p: the above, with the cell-averaged divergence when the
  * volumetric averaging is on (bbar.c) */
 void mrn_implicit_point_increment(const mrn_implicit *im, size_t p, double dF[9]);
-/* grid index of the lower corner of the cell holding point p (start of step) */
+/* grid index of the lower corner of the cell holding point p (start of
+ * step; a point beyond the padded grid counts in its edge cell) */
 size_t mrn_implicit_point_cell(const mrn_implicit *im, size_t p);
-/* start-of-step volume of point p, V_0 det F_t (particles/particles.h) */
-double mrn_implicit_point_volume(const mrn_implicit *im, size_t p);
+/* im->cellvol: the start-of-step volume of the points in each cell, indexed
+ * by its lower corner (for the ghost penalty and the volumetric averaging;
+ * nothing when both are off) */
+int mrn_implicit_cell_volumes(mrn_implicit *im);
 /* internal forces (001 Eq. 44) and stiffness (001 Eq. A.10) at the current u */
 void mrn_implicit_assemble(mrn_implicit *im);
 /* M~ v = p on the free components (001 Eq. 26) */

@@ -45,6 +45,7 @@ static mrn_implicit *make(int dim, mrn_shape_kind shape, int bbar) {
   CHECK(im != NULL);
   CHECK(mrn_implicit_setup_step(im) == 0);
   mrn_implicit_map_to_grid(im);
+  CHECK(mrn_implicit_cell_volumes(im) == 0);
   CHECK(mrn_implicit_bbar_setup(im) == 0);
   return im;
 }
