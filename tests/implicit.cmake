@@ -24,3 +24,7 @@ moraine_deck_test(explicit_cantilever explicit_cantilever.lua LABELS long)
 # minute): every step's Newton converged, energy balance with the penalty counted; the full 80 us (compared with the
 # finite-element length and radius) is the validation case implicit_taylor
 moraine_deck_test(implicit_taylor implicit_taylor.lua ARGS --set time=10e-6 --set verbose=false LABELS long)
+# cutbacks: a step not converged in max_iter iterations is retried at half dt (the elasto-plastic cylinders with
+# max_iter = 3): without cutbacks the run stops with the error, with them every accepted step converges within the
+# limit, dt halves per cut, energy + dissipation and momentum as without cuts
+moraine_deck_test(implicit_cutbacks implicit_cutbacks.lua)

@@ -22,6 +22,7 @@ void mrn_implicit_options_default(mrn_implicit_options *o) {
   o->min_node_mass = 1e-3;
   o->ghost = 0.0;
   o->bbar = 0;
+  o->cutbacks = 0;
 }
 
 static int material_of(const mrn_material *m, mrn_emc_material *out) {
@@ -55,10 +56,10 @@ void mrn_implicit_free(mrn_implicit *im) {
 mrn_implicit *mrn_implicit_new(mrn_sim *sim, const mrn_implicit_options *o) {
   if (o->max_iter < 2 || o->max_iter > MRN_IMPLICIT_MAX_ITER || !(o->tol > 0) || o->eps < 0 || o->eps > 1 ||
       !(o->dt > 0 || o->dt_factor > 0) || !(o->min_node_mass >= 0 && o->min_node_mass < 1) ||
-      !(o->ghost >= 0 && isfinite(o->ghost))) {
+      !(o->ghost >= 0 && isfinite(o->ghost)) || o->cutbacks < 0 || o->cutbacks > MRN_IMPLICIT_MAX_CUTBACKS) {
     mrn_error_code(MRN_ERR, "implicit: invalid options (max_iter 2..%d, tol > 0, eps in [0, 1], dt or dt_factor > 0, "
-                            "ghost >= 0)",
-                   MRN_IMPLICIT_MAX_ITER);
+                            "ghost >= 0, cutbacks 0..%d)",
+                   MRN_IMPLICIT_MAX_ITER, MRN_IMPLICIT_MAX_CUTBACKS);
     return NULL;
   }
   if (o->ghost > 0 && sim->shape != MRN_SHAPE_LINEAR && sim->shape != MRN_SHAPE_GIMP) {
@@ -153,16 +154,16 @@ int mrn_implicit_next_dt(mrn_implicit *im, double *dt) {
   return 0;
 }
 
-int mrn_implicit_step(mrn_implicit *im, mrn_implicit_history *h) {
+/* One attempt at a step of length dt. Nothing that outlives the step
+ * (particles, accumulated energies) changes unless Newton converges:
+ * *converged = 0 with return 0 leaves the state as it was, so that the step
+ * can be tried again with a shorter dt. */
+static int step_attempt(mrn_implicit *im, double dt, mrn_implicit_history *h, int *converged_out) {
   mrn_sim *sim = im->sim;
   mrn_particles *ps = &sim->particles;
-  if (ps->n != im->np)
-    return mrn_error_code(MRN_ERR, "implicit: the particle count changed (%zu -> %zu) after the integrator was made",
-                          im->np, ps->n);
   const int dim = im->dim;
-  double dt;
-  int rc = mrn_implicit_next_dt(im, &dt);
-  if (rc) return rc;
+  int rc;
+  *converged_out = 0;
   if ((rc = mrn_implicit_setup_step(im))) return rc;
   mrn_implicit_map_to_grid(im);
   if ((rc = mrn_implicit_cell_volumes(im)) || (rc = mrn_implicit_ghost_build(im)) || (rc = mrn_implicit_bbar_setup(im)))
@@ -197,13 +198,14 @@ int mrn_implicit_step(mrn_implicit *im, mrn_implicit_history *h) {
   /* the kinetic energy PIC will lose in this step: the part of the point
    * velocities the grid cannot represent, sum m |v_p - N v_t|^2 / 2; with the
    * consistent mass FLIP keeps it (001 Eqs. 37-38) */
+  double pic_loss = 0.0;
   if (im->opt.mapping == MRN_MAPPING_PIC)
     for (size_t q = 0; q < im->np; q++) {
       const mrn_implicit_stencil *s = &im->sten[q];
       double w[3] = {ps->v[3 * q], ps->v[3 * q + 1], ps->v[3 * q + 2]};
       for (int k2 = 0; k2 < s->count; k2++)
         for (int d = 0; d < dim; d++) w[d] -= s->N[k2] * im->v0[3 * (size_t)im->dof[s->node[k2]] + d];
-      im->pic_loss += 0.5 * ps->mass[q] * (w[0] * w[0] + w[1] * w[1] + w[2] * w[2]);
+      pic_loss += 0.5 * ps->mass[q] * (w[0] * w[0] + w[1] * w[1] + w[2] * w[2]);
     }
 
   /* C, D: Newton-Raphson on the mid-point residual (001 Eqs. 20, 27, §3.4) */
@@ -215,7 +217,7 @@ int mrn_implicit_step(mrn_implicit *im, mrn_implicit_history *h) {
   }
   double err1 = 0.0, resmax = 0.0;
   int k, converged = 0;
-  if (h) memset(h, 0, sizeof *h), h->dt = dt;
+  memset(h, 0, sizeof *h), h->dt = dt;
   /* backtracking on |r|_2 (Armijo) keeps Newton on course when the first
    * full step overshoots; near the solution the full step is always taken,
    * so the convergence stays quadratic */
@@ -257,7 +259,7 @@ int mrn_implicit_step(mrn_implicit *im, mrn_implicit_history *h) {
       for (int f = 0; f < im->nfree; f++) err += fabs(im->r[f]) * fabs(alpha * im->du[f]);
       if (k == 1) err1 = err;
       double rel = err1 > 0.0 ? err / err1 : 0.0;
-      if (h) h->err[k - 1] = rel, h->iterations = k;
+      h->err[k - 1] = rel, h->iterations = k;
       /* converged on the relative measure, or the residual is at round-off
        * of the terms that make it (a body at rest, a rigid translation) */
       if ((k >= 2 && rel < im->opt.tol) || err1 == 0.0 || resmax <= 1e-14 * scale) {
@@ -294,16 +296,11 @@ int mrn_implicit_step(mrn_implicit *im, mrn_implicit_history *h) {
     }
   free(tmp), free(Mw), free(uprev);
   if (rc) return rc;
-  if (h) h->residual = resmax;
-  if (!converged) {
-    char hist[256] = "";
-    for (int q = 0, len = 0; h && q < h->iterations && len < 200; q++)
-      len += snprintf(hist + len, sizeof hist - (size_t)len, " %.2g", h->err[q]);
-    return mrn_error_code(MRN_ERR_STATE, "implicit: step %ld (t = %g s, dt = %g s): Newton did not converge in %d "
-                                         "iterations (f_err ratios:%s; tol %.3g, max |r| %.3g N)",
-                          sim->step + 1, sim->time, dt, im->opt.max_iter, hist, im->opt.tol, resmax);
-  }
+  h->residual = resmax;
+  if (!converged) return 0;
 
+  *converged_out = 1;
+  im->pic_loss += pic_loss;
   im->ghost_work += mrn_implicit_ghost_work(im); /* the kinetic energy the penalty took in the step (ghost.c) */
   im->work_con += work_con;
   /* E: grid-to-particle mapping and update (001 Eqs. 23-25, 28-30) */
@@ -350,6 +347,41 @@ int mrn_implicit_step(mrn_implicit *im, mrn_implicit_history *h) {
   sim->step++;
   sim->dt = dt;
   return mrn_sim_check_state(sim);
+}
+
+/* A step that does not converge in max_iter iterations is tried again with
+ * half the time step, up to `cutbacks` times; the history is that of the
+ * accepted attempt, with the cuts and the iterations the rejected attempts
+ * spent. */
+int mrn_implicit_step(mrn_implicit *im, mrn_implicit_history *h) {
+  mrn_sim *sim = im->sim;
+  if (sim->particles.n != im->np)
+    return mrn_error_code(MRN_ERR, "implicit: the particle count changed (%zu -> %zu) after the integrator was made",
+                          im->np, sim->particles.n);
+  mrn_implicit_history local;
+  if (!h) h = &local;
+  double dt;
+  int rc = mrn_implicit_next_dt(im, &dt), converged = 0, rejected = 0, cut = 0;
+  if (rc) return rc;
+  const double dt_first = dt;
+  for (;; cut++, dt *= 0.5) {
+    if ((rc = step_attempt(im, dt, h, &converged))) return rc;
+    if (converged || cut == im->opt.cutbacks) break;
+    rejected += h->iterations;
+  }
+  if (!converged) {
+    char hist[256] = "";
+    for (int q = 0, len = 0; q < h->iterations && len < 200; q++)
+      len += snprintf(hist + len, sizeof hist - (size_t)len, " %.2g", h->err[q]);
+    char cuts[96] = "";
+    if (cut > 0) snprintf(cuts, sizeof cuts, " after %d cutback%s from dt = %g s", cut, cut > 1 ? "s" : "", dt_first);
+    return mrn_error_code(MRN_ERR_STATE, "implicit: step %ld (t = %g s, dt = %g s%s): Newton did not converge in %d "
+                                         "iterations (f_err ratios:%s; tol %.3g, max |r| %.3g N)",
+                          sim->step + 1, sim->time, dt, cuts, im->opt.max_iter, hist, im->opt.tol, h->residual);
+  }
+  h->cuts = cut;
+  h->rejected_iterations = rejected;
+  return MRN_OK;
 }
 
 void mrn_implicit_energies(const mrn_implicit *im, mrn_implicit_energy *e) {

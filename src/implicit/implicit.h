@@ -14,7 +14,9 @@
  *   D  Newton-Raphson from u = dt p / m_lumped, J = 2/dt^2 M~ + K (001 Eq. 27
  *      and §3.4), with a backtracking line search, until the
  *      error f_err^(k) = sum_I |r_I^(k)| |du_I^(k)| falls below tol times
- *      f_err^(1) (001 §3.4);
+ *      f_err^(1) (001 §3.4); a step not converged in max_iter iterations
+ *      fails, or with options.cutbacks > 0 is started again from B with
+ *      half the time step (nothing of the abandoned attempt is kept);
  *   E  v_{t+dt} = 2 u / dt - v_t on the grid; particles by PIC (001 Eq. 28)
  *      or FLIP (001 Eq. 29), positions x += N u (001 Eq. 30),
  *      F = dF F_t (001 Eq. 25).
@@ -42,6 +44,7 @@ typedef enum { MRN_MASS_CONSISTENT = 0, MRN_MASS_LUMPED, MRN_MASS_EFFECTIVE } mr
 typedef enum { MRN_MAPPING_FLIP = 0, MRN_MAPPING_PIC } mrn_mapping_kind;
 
 #define MRN_IMPLICIT_MAX_ITER 50
+#define MRN_IMPLICIT_MAX_CUTBACKS 10
 
 typedef struct mrn_implicit_options {
   mrn_mass_kind mass;
@@ -57,10 +60,12 @@ typedef struct mrn_implicit_options {
                              * 0: off. Linear and gimp shapes only. */
   int bbar;                 /* 1: the divergence of each point's step increment is averaged over the
                              * points of its cell (bbar.c), against volumetric locking */
+  int cutbacks;             /* a step not converged in max_iter iterations is tried again with half the
+                             * time step, at most this many times (0..MRN_IMPLICIT_MAX_CUTBACKS); 0: it fails */
 } mrn_implicit_options;
 
 /* consistent mass, FLIP, tol 1e-11, 20 iterations, dt_factor 5, min_node_mass 1e-3, no ghost penalty,
- * no volumetric averaging */
+ * no volumetric averaging, no cutbacks */
 void mrn_implicit_options_default(mrn_implicit_options *o);
 
 typedef struct mrn_implicit_history {
@@ -68,6 +73,8 @@ typedef struct mrn_implicit_history {
   int iterations;                   /* linear solves after the grid velocity projection */
   double err[MRN_IMPLICIT_MAX_ITER]; /* f_err^(k) / f_err^(1), k = 1 .. iterations */
   double residual;                  /* max |r_I| at the accepted state (N) */
+  int cuts;                         /* times the step was halved before Newton converged (cutbacks) */
+  int rejected_iterations;          /* Newton iterations of the attempts that were cut */
 } mrn_implicit_history;
 
 typedef struct mrn_implicit_energy {

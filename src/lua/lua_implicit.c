@@ -3,7 +3,7 @@
  *   local imp = sim:implicit{ mass = "consistent", mapping = "FLIP", tol = 1e-11, dt_factor = 5 }
  *   imp:point_force{ region = mpm.box{...}, force = { 0, -5e5 } }
  *   imp:load_factor(t / 25)   -- scales every point force from the next step
- *   local h = imp:step()      -- { dt, iterations, errors = {...}, residual }
+ *   local h = imp:step()      -- { dt, iterations, errors = {...}, residual, cuts, rejected_iterations }
  *   local e = imp:energy()    -- { kinetic, strain, dissipated, external_work, ghost, total, momentum, angular }
  * Once made, the integrator also drives sim:run (implicit_run.c) until it is
  * freed; every option is checked against the specs below (listed by
@@ -31,6 +31,9 @@ static const mrn_spec implicit_specs[] = {
      mapping_choices},
     {"tol", MRN_SPEC_NUMBER, 0, 1e-11, 0, 1, 1, 0, "", "Newton tolerance on f_err^(k) / f_err^(1) (001 §3.4)", NULL},
     {"max_iter", MRN_SPEC_INTEGER, 0, 20, 2, MRN_IMPLICIT_MAX_ITER, 0, 0, "", "Newton iterations before a step fails", NULL},
+    {"cutbacks", MRN_SPEC_INTEGER, 0, 0, 0, MRN_IMPLICIT_MAX_CUTBACKS, 0, 0, "",
+     "times a step not converged in max_iter iterations is tried again with half the time step (0: the run stops)",
+     NULL},
     {"dt", MRN_SPEC_NUMBER, 0, 0, 0, HUGE_VAL, 1, 0, "s", "fixed time step (default: adaptive, see dt_factor)", NULL},
     {"dt_factor", MRN_SPEC_NUMBER, 0, 5, 0, HUGE_VAL, 1, 0, "",
      "adaptive step: this factor times the grid-averaged CFL estimate of 001 Eq. 61", NULL},
@@ -140,6 +143,7 @@ static void read_options(lua_State *L, int idx, const char *where, mrn_implicit_
   o->min_node_mass = mrn_lua_get_number(L, idx, where, implicit_specs, n, "min_node_mass");
   o->ghost = mrn_lua_get_number(L, idx, where, implicit_specs, n, "ghost");
   o->bbar = mrn_lua_get_boolean(L, idx, where, implicit_specs, n, "bbar", 0);
+  o->cutbacks = (int)mrn_lua_get_integer(L, idx, where, implicit_specs, n, "cutbacks");
 }
 
 /* a new integrator for the simulation at sim_idx with the options table at
@@ -196,8 +200,10 @@ static int l_sim_integrator(lua_State *L) {
 }
 
 static void push_history(lua_State *L, const mrn_implicit_history *h) {
-  lua_createtable(L, 0, 4);
+  lua_createtable(L, 0, 6);
   lua_pushnumber(L, h->dt), lua_setfield(L, -2, "dt");
+  lua_pushinteger(L, h->cuts), lua_setfield(L, -2, "cuts");
+  lua_pushinteger(L, h->rejected_iterations), lua_setfield(L, -2, "rejected_iterations");
   lua_pushinteger(L, h->iterations), lua_setfield(L, -2, "iterations");
   lua_pushnumber(L, h->residual), lua_setfield(L, -2, "residual");
   lua_createtable(L, h->iterations, 0);
