@@ -28,3 +28,6 @@ moraine_deck_test(implicit_taylor implicit_taylor.lua ARGS --set time=10e-6 --se
 # max_iter = 3): without cutbacks the run stops with the error, with them every accepted step converges within the
 # limit, dt halves per cut, energy + dissipation and momentum as without cuts
 moraine_deck_test(implicit_cutbacks implicit_cutbacks.lua)
+# restart: a checkpoint of an elasto-plastic implicit run holds the points' history (b_e, tau, psi, xi in the
+# implicit_* particle fields); loaded with a new integrator it continues bit for bit as the straight run
+moraine_deck_test(implicit_restart implicit_restart.lua)

@@ -112,13 +112,11 @@ mrn_implicit *mrn_implicit_new(mrn_sim *sim, const mrn_implicit_options *o) {
     mrn_implicit_free(im);
     return NULL;
   }
-  for (size_t p = 0; p < n; p++) {
-    mrn_emc_state *s = &im->st[p];
-    const double *F = ps->F + 9 * p;
-    memcpy(s->Ft, F, sizeof s->Ft);
-    for (int a = 0; a < 3; a++)
-      for (int c = 0; c < 3; c++) s->be[3 * a + c] = F[3 * a] * F[3 * c] + F[3 * a + 1] * F[3 * c + 1] + F[3 * a + 2] * F[3 * c + 2];
-    mrn_emc_hencky(&im->mat[ps->material[p]], s->be, s->tau, &s->psi);
+  /* the points' history: from the particle fields a checkpoint or an earlier
+   * integrator left, else b_e = F F^T (point_state.c) */
+  if (mrn_implicit_state_load(im)) {
+    mrn_implicit_free(im);
+    return NULL;
   }
   /* node pairs reachable through one particle */
   int sup = mrn_shape_support(sim->shape);
@@ -343,6 +341,7 @@ static int step_attempt(mrn_implicit *im, double dt, mrn_implicit_history *h, in
     ps->e_elastic[q] = ps->vol0[q] * re->psi;
     ps->w_plastic[q] = -im->diss[q];
   }
+  mrn_implicit_state_store(im);
   sim->time += dt;
   sim->step++;
   sim->dt = dt;

@@ -32,7 +32,10 @@
  * Limits: materials "hencky" (elastic) and "von_mises" (its E, nu, yield,
  * hardening are used in the finite-strain Hencky form of emc_stress.h);
  * particles may not be added after the integrator is created; initial
- * particle stresses are ignored (the state starts from b_e = F F^T). */
+ * particle stresses are ignored (the state starts from b_e = F F^T). Each
+ * point's history (b_e, tau, psi, xi) is kept in the registered particle
+ * fields implicit_* (point_state.c), so checkpoints hold it and a new
+ * integrator continues from it. */
 #ifndef MRN_IMPLICIT_IMPLICIT_H
 #define MRN_IMPLICIT_IMPLICIT_H
 
