@@ -102,7 +102,6 @@ size_t mrn_implicit_point_cell(const mrn_implicit *im, size_t p);
 int mrn_implicit_cell_volumes(mrn_implicit *im);
 /* internal forces (001 Eq. 44) and stiffness (001 Eq. A.10) at the current u */
 void mrn_implicit_assemble(mrn_implicit *im);
-/* M~ v = p on the free components (001 Eq. 26) */
 /* point_state.c: the points' history (b_e, tau, psi, xi) in the particle
  * fields implicit_be, implicit_tau, implicit_psi, implicit_xi, registered if
  * absent, so that checkpoints keep it. load fills im->st and im->diss from
@@ -110,6 +109,7 @@ void mrn_implicit_assemble(mrn_implicit *im);
 int mrn_implicit_state_load(mrn_implicit *im);
 void mrn_implicit_state_store(mrn_implicit *im);
 
+/* M~ v = p on the free components (001 Eq. 26) */
 int mrn_implicit_project_velocity(mrn_implicit *im, const double *p, double *v);
 
 /* ghost stabilisation (ghost.c): the penalty matrix K_g of the step's cut

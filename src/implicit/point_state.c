@@ -25,7 +25,7 @@ static const struct {
   const char *unit;
 } fields[4] = {{"implicit_be", 9, ""}, {"implicit_tau", 9, "Pa"}, {"implicit_psi", 1, "J/m^3"}, {"implicit_xi", 1, ""}};
 
-/* the four fields, registered if absent; NULL entries on error (message set) */
+/* the four fields in f, registered if absent; 0, or an error (message set) */
 static int find_fields(mrn_particles *ps, const mrn_user_field *f[4]) {
   for (int i = 0; i < 4; i++) {
     f[i] = mrn_particles_user_field(ps, fields[i].name);
