@@ -9,6 +9,7 @@
 --     elastic energy) and its integrator's history fields are bit for bit
 --     those of the straight run, and so are the stored energy and the
 --     accumulated dissipation;
+--   the same after imp:free() and a new integrator on the same simulation;
 --   the history matters: some point hardened (xi > 0) and the plastic
 --     points' b_e is far from the F F^T a fresh start would assume (> 1e-3;
 --     0.41 measured).
@@ -17,12 +18,16 @@ local steps, half = mpm.param("steps", 16), mpm.param("half", 8)
 local opts = { dt = 0.25, mapping = "FLIP", min_node_mass = 1e-3 }
 local mat = mpm.material.von_mises{ density = 5, E = 100, nu = 0.3, yield = math.sqrt(1.5) * 10, hardening = 20 }
 
-local sim = mpm.simulation{ dim = 2, grid = { size = { 20, 12 }, cell = 2 }, shape = "linear", thermo = 0,
+local function cylinders()
+  local s = mpm.simulation{ dim = 2, grid = { size = { 20, 12 }, cell = 2 }, shape = "linear", thermo = 0,
                             diagnostics = false, series = false }
-sim:add_particles(mpm.disk{ center = { 5.8, 5.5 }, radius = 2 },
+  s:add_particles(mpm.disk{ center = { 5.8, 5.5 }, radius = 2 },
                   { material = mat, velocity = { 0.75, 0 }, per_cell = 16, placement = "regular" })
-sim:add_particles(mpm.disk{ center = { 14.2, 6.5 }, radius = 2 },
+  s:add_particles(mpm.disk{ center = { 14.2, 6.5 }, radius = 2 },
                   { material = mat, velocity = { -0.75, 0 }, per_cell = 16, placement = "regular" })
+  return s
+end
+local sim = cylinders()
 local imp = sim:implicit(opts)
 for _ = 1, half do imp:step() end
 local path = sim:save("implicit_restart.h5")
@@ -51,24 +56,39 @@ local imp2 = loaded:implicit(opts)
 for _ = half + 1, steps do imp2:step() end
 local e_loaded = imp2:energy()
 
-local worst = 0
-for _, name in ipairs{ "displacement", "velocity", "deformation_gradient", "stress", "implicit_be", "implicit_tau",
-                       "implicit_psi", "implicit_xi", "elastic_energy" } do
-  local a, b = sim:field(name), loaded:field(name)
-  T.check(#a == #b, "%s: %d values in the straight run, %d after the restart", name, #a, #b)
-  for k = 1, #a do worst = math.max(worst, math.abs(a[k] - b[k])) end
+-- a new integrator on the same simulation after imp:free() continues the same way
+local again = cylinders()
+local first = again:implicit(opts)
+for _ = 1, half do first:step() end
+first:free()
+local second = again:implicit(opts)
+for _ = half + 1, steps do second:step() end
+
+local function difference(other)
+  local worst = 0
+  for _, name in ipairs{ "displacement", "velocity", "deformation_gradient", "stress", "implicit_be", "implicit_tau",
+                         "implicit_psi", "implicit_xi", "elastic_energy" } do
+    local a, b = sim:field(name), other:field(name)
+    T.check(#a == #b, "%s: %d values in the straight run, %d in the other", name, #a, #b)
+    for k = 1, #a do worst = math.max(worst, math.abs(a[k] - b[k])) end
+  end
+  return worst
 end
+local worst, worst_again = difference(loaded), difference(again)
 local xi = sim:field("implicit_xi")
 local xmax = 0
 for k = 1, #xi do xmax = math.max(xmax, xi[k]) end
-print(string.format("implicit restart after %d of %d steps: largest difference %.3g; dissipated %.6g (straight) "
+print(string.format("implicit restart after %d of %d steps: largest difference %.3g (after imp:free() and a new "
+                    .. "integrator %.3g); dissipated %.6g (straight) "
                     .. "%.6g (restarted) J/m; largest xi %.4g; largest |b_e - F F^T| %.3g", half, steps, worst,
-                    e_straight.dissipated, e_loaded.dissipated, xmax, off_fresh))
+                    worst_again, e_straight.dissipated, e_loaded.dissipated, xmax, off_fresh))
 T.check(same_saved, "the loaded implicit_be differs from the saved one")
 T.check(xmax > 0, "no point hardened: the test does not exercise the plastic history")
 T.check(off_fresh > 1e-3, "b_e stays F F^T (%g): the test does not exercise the plastic history", off_fresh)
 T.expect{ id = "implicit_restart.difference", what = "largest difference of the particle fields, restarted vs straight",
           value = worst, max = 0 }
+T.expect{ id = "implicit_restart.again", what = "largest difference, new integrator after imp:free() vs straight",
+          value = worst_again, max = 0 }
 T.expect{ id = "implicit_restart.dissipation", what = "accumulated dissipation, restarted vs straight (J/m)",
           value = e_loaded.dissipated, reference = e_straight.dissipated, rtol = 0 }
 T.expect{ id = "implicit_restart.strain", what = "stored energy, restarted vs straight (J/m)", value = e_loaded.strain,
