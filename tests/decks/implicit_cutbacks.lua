@@ -20,15 +20,8 @@ local tfinal = mpm.param("time", 8.0)
 local dt = 0.5
 local mat = mpm.material.von_mises{ density = 5, E = 100, nu = 0.3, yield = math.sqrt(1.5) * 10, hardening = 0 }
 
-local function make()
-  local sim = mpm.simulation{ dim = 2, grid = { size = { 20, 12 }, cell = 2 }, shape = "linear", thermo = 0,
-                              diagnostics = false, series = false }
-  sim:add_particles(mpm.disk{ center = { 5.8, 5.5 }, radius = 2 },
-                    { material = mat, velocity = { 0.75, 0 }, per_cell = 16, placement = "regular" })
-  sim:add_particles(mpm.disk{ center = { 14.2, 6.5 }, radius = 2 },
-                    { material = mat, velocity = { -0.75, 0 }, per_cell = 16, placement = "regular" })
-  return sim
-end
+local colliding_cylinders = dofile(mpm.deck_dir .. "/colliding_cylinders.lua")
+local function make() return colliding_cylinders(mat) end
 
 local function run(cutbacks)
   local sim = make()

@@ -19,6 +19,7 @@
 -- above; angular momentum is not exact under the averaging and is held to
 -- 1e-4 of sum m|x||v| (measured 3.5e-5 elastic, 5e-5 elasto-plastic).
 local T = dofile(mpm.deck_dir .. "/testlib.lua")
+local colliding_cylinders = dofile(mpm.deck_dir .. "/colliding_cylinders.lua")
 local model = mpm.param("material", "hencky")
 local tfinal = mpm.param("time", 8.0)
 local per_cell = mpm.param("per_cell", 64)
@@ -35,12 +36,7 @@ else
 end
 
 local function run(mapping)
-  local sim = mpm.simulation{ dim = 2, grid = { size = { 20, 12 }, cell = 2 }, shape = "linear", thermo = 0,
-                              diagnostics = false, series = false }
-  sim:add_particles(mpm.disk{ center = { 5.8, 5.5 }, radius = 2 },
-                    { material = mat, velocity = { 0.75, 0 }, per_cell = per_cell, placement = "regular" })
-  sim:add_particles(mpm.disk{ center = { 14.2, 6.5 }, radius = 2 },
-                    { material = mat, velocity = { -0.75, 0 }, per_cell = per_cell, placement = "regular" })
+  local sim = colliding_cylinders(mat, { per_cell = per_cell })
   local imp = sim:implicit{ mass = "consistent", mapping = mapping, tol = 1e-11, dt_factor = mpm.param("dt_factor", 1.15),
                             min_node_mass = mpm.param("min_node_mass", 0), ghost = ghost,
                             bbar = bbar }

@@ -18,15 +18,8 @@ local steps, half = mpm.param("steps", 16), mpm.param("half", 8)
 local opts = { dt = 0.25, mapping = "FLIP", min_node_mass = 1e-3 }
 local mat = mpm.material.von_mises{ density = 5, E = 100, nu = 0.3, yield = math.sqrt(1.5) * 10, hardening = 20 }
 
-local function cylinders()
-  local s = mpm.simulation{ dim = 2, grid = { size = { 20, 12 }, cell = 2 }, shape = "linear", thermo = 0,
-                            diagnostics = false, series = false }
-  s:add_particles(mpm.disk{ center = { 5.8, 5.5 }, radius = 2 },
-                  { material = mat, velocity = { 0.75, 0 }, per_cell = 16, placement = "regular" })
-  s:add_particles(mpm.disk{ center = { 14.2, 6.5 }, radius = 2 },
-                  { material = mat, velocity = { -0.75, 0 }, per_cell = 16, placement = "regular" })
-  return s
-end
+local colliding_cylinders = dofile(mpm.deck_dir .. "/colliding_cylinders.lua")
+local function cylinders() return colliding_cylinders(mat) end
 local sim = cylinders()
 local imp = sim:implicit(opts)
 for _ = 1, half do imp:step() end

@@ -18,17 +18,13 @@
 --     even when the deck keeps no reference to the integrator and the garbage
 --     collector runs; sim:integrator() returns it.
 local T = dofile(mpm.deck_dir .. "/testlib.lua")
+local colliding_cylinders = dofile(mpm.deck_dir .. "/colliding_cylinders.lua")
 local mat = mpm.material.hencky{ density = 5, E = 100, nu = 0.3 }
 local t_end = 4.3
 
 local function cylinders(output)
-  local sim = mpm.simulation{ dim = 2, grid = { size = { 20, 12 }, cell = 2 }, shape = "linear", thermo = 0,
-                              diagnostics = output and "diagnostics.csv" or false, series = false,
-                              output = output and { vtk = "cyl", every = 1.0 } or nil }
-  for _, c in ipairs{ { 5.8, 5.5, 0.75 }, { 14.2, 6.5, -0.75 } } do
-    sim:add_particles(mpm.disk{ center = { c[1], c[2] }, radius = 2 },
-                      { material = mat, velocity = { c[3], 0 }, per_cell = 16, placement = "regular" })
-  end
+  local sim = colliding_cylinders(mat, { diagnostics = output and "diagnostics.csv" or false,
+                                         output = output and { vtk = "cyl", every = 1.0 } or nil })
   local imp = sim:implicit{ mass = "consistent", mapping = "FLIP", tol = 1e-11, dt_factor = 1.15 }
   return sim, imp
 end
