@@ -104,7 +104,7 @@ static double *scratch(mrn_sim *sim, size_t count) {
   return sim->scratch;
 }
 
-/* The end of the step, in one parallel pass over the particles:
+/* The end of the step, particle by particle:
  * - a particle that left through a periodic face re-enters through the other;
  * - a wall (fixed, slip, friction or velocity face) holds the nodes on and
  *   beyond it, but a particle moved by the interpolated grid velocity can
@@ -114,25 +114,98 @@ static double *scratch(mrn_sim *sim, size_t count) {
  * - the state check of mrn_sim_check_state, reporting the first bad particle
  *   (the lowest index, for any thread count); with on_leave = delete, a
  *   finite particle outside the grid is marked instead and deleted after the
- *   pass (delete_leaving). */
+ *   pass (delete_leaving).
+ * Where the step ends with G2P moving the particles (USF, USL, USAVG) and no
+ * particle is to be deleted, this runs inside G2P on each chunk of particles
+ * just moved (end_chunk, a mrn_particle_pass): a separate pass would read
+ * every position, velocity and stress from memory again. Otherwise it is a
+ * pass of its own (end_of_step). */
+typedef struct end_ctx {
+  mrn_particles *ps;
+  const mrn_sim *sim;
+  int dim;
+  int periodic[3], wall[3][2];
+  double lo[3], hi[3], len[3];
+} end_ctx;
+
+static end_ctx end_setup(mrn_sim *sim) {
+  const mrn_grid *g = &sim->grid;
+  end_ctx e = {.ps = &sim->particles, .sim = sim, .dim = sim->dim};
+  for (int d = 0; d < e.dim; d++) {
+    e.periodic[d] = mrn_boundary_periodic(&sim->boundary, d);
+    for (int side = 0; side < 2; side++) {
+      mrn_bc_kind kind = sim->boundary.face[2 * d + side].kind;
+      e.wall[d][side] = kind != MRN_BC_FREE && kind != MRN_BC_PERIODIC;
+    }
+    e.lo[d] = g->origin[d];
+    e.len[d] = g->size[d];
+    e.hi[d] = g->origin[d] + g->size[d];
+  }
+  return e;
+}
+
+/* the periodic wrap and the wall clamp of particle p */
+static inline void wrap_and_clamp(const end_ctx *e, long p) {
+  mrn_particles *ps = e->ps;
+  for (int d = 0; d < e->dim; d++) {
+    double *x = ps->x + 3 * p + d, *v = ps->v + 3 * p + d;
+    if (e->periodic[d] && (*x < e->lo[d] || *x >= e->hi[d])) {
+      double shift = e->len[d] * floor((*x - e->lo[d]) / e->len[d]);
+      *x -= shift;
+      ps->x0[3 * p + d] -= shift; /* the displacement stays continuous */
+      if (*x >= e->hi[d]) *x = e->lo[d]; /* round-off at the seam */
+    }
+    if (e->wall[d][0] && *x < e->lo[d]) {
+      *x = e->lo[d];
+      if (*v < 0) *v = 0.0;
+    }
+    if (e->wall[d][1] && *x > e->hi[d]) {
+      *x = e->hi[d];
+      if (*v > 0) *v = 0.0;
+    }
+  }
+}
+
+/* Whether every particle of [lo, hi) is strictly inside the grid along each
+ * axis (lo <= x < hi) with a finite position, velocity and stress: then the
+ * wrap and the clamp leave it alone and it passes the state check. One loop
+ * without branches over the chunk; `dim` is a constant at each call. */
+static inline __attribute__((always_inline)) int all_inside(const end_ctx *e, long lo, long hi, const int dim) {
+  const double *restrict x = e->ps->x;
+  double a[3], b[3];
+  for (int d = 0; d < dim; d++) {
+    a[d] = e->lo[d];
+    b[d] = e->hi[d];
+  }
+  int out = 0;
+  for (long p = lo; p < hi; p++) {
+    int inside = mrn_sim_particle_finite(e->sim, (size_t)p);
+    for (int d = 0; d < dim; d++) inside &= (x[3 * p + d] >= a[d]) & (x[3 * p + d] < b[d]);
+    out |= !inside;
+  }
+  return !out;
+}
+
+/* the end of the step of particles [lo, hi) without deletion: the lowest bad
+ * index, or -1 (a mrn_particle_pass) */
+static long end_chunk(void *ctx, size_t lo, size_t hi) {
+  const end_ctx *e = ctx;
+  if (e->dim == 2 ? all_inside(e, (long)lo, (long)hi, 2) : all_inside(e, (long)lo, (long)hi, 3)) return -1;
+  long first_bad = -1;
+  for (long p = (long)lo; p < (long)hi; p++) {
+    wrap_and_clamp(e, p);
+    if (first_bad < 0 && !mrn_sim_particle_ok(e->sim, (size_t)p)) first_bad = p;
+  }
+  return first_bad;
+}
+
+/* the end of the step as a pass of its own */
 static void delete_leaving(mrn_sim *sim, const unsigned char *keep);
 
 static int end_of_step(mrn_sim *sim) {
   const mrn_grid *g = &sim->grid;
   mrn_particles *ps = &sim->particles;
-  const int dim = sim->dim;
-  int periodic[3] = {0}, wall[3][2] = {{0}};
-  double lo[3], hi[3], len[3];
-  for (int d = 0; d < dim; d++) {
-    periodic[d] = mrn_boundary_periodic(&sim->boundary, d);
-    for (int side = 0; side < 2; side++) {
-      mrn_bc_kind kind = sim->boundary.face[2 * d + side].kind;
-      wall[d][side] = kind != MRN_BC_FREE && kind != MRN_BC_PERIODIC;
-    }
-    lo[d] = g->origin[d];
-    len[d] = g->size[d];
-    hi[d] = g->origin[d] + g->size[d];
-  }
+  const end_ctx e = end_setup(sim);
   const long n = (long)ps->n;
   long first_bad = n, leaving = 0;
   unsigned char *keep = NULL;
@@ -142,23 +215,7 @@ static int end_of_step(mrn_sim *sim) {
   }
 #pragma omp parallel for schedule(static) if (n > MRN_OMP_MIN_ITEMS) reduction(min : first_bad) reduction(+ : leaving)
   for (long p = 0; p < n; p++) {
-    for (int d = 0; d < dim; d++) {
-      double *x = ps->x + 3 * p + d, *v = ps->v + 3 * p + d;
-      if (periodic[d] && (*x < lo[d] || *x >= hi[d])) {
-        double shift = len[d] * floor((*x - lo[d]) / len[d]);
-        *x -= shift;
-        ps->x0[3 * p + d] -= shift; /* the displacement stays continuous */
-        if (*x >= hi[d]) *x = lo[d]; /* round-off at the seam */
-      }
-      if (wall[d][0] && *x < lo[d]) {
-        *x = lo[d];
-        if (*v < 0) *v = 0.0;
-      }
-      if (wall[d][1] && *x > hi[d]) {
-        *x = hi[d];
-        if (*v > 0) *v = 0.0;
-      }
-    }
+    wrap_and_clamp(&e, p);
     if (keep) {
       const int finite = mrn_sim_particle_finite(sim, (size_t)p);
       keep[p] = !finite || mrn_grid_contains(g, ps->x + 3 * p);
@@ -205,6 +262,11 @@ int mrn_sim_step_dt(mrn_sim *sim, double dt) {
   const int dim = sim->dim;
   int rc = MRN_OK;
   sim->dt = dt;
+  /* the end of the step inside G2P, chunk by chunk (see end_ctx) */
+  end_ctx e = end_setup(sim);
+  const mrn_particle_pass end_pass = {end_chunk, &e};
+  const mrn_particle_pass *after = sim->on_leave == MRN_LEAVE_DELETE ? NULL : &end_pass;
+  long end_bad = -1;
   switch (sim->scheme.stress_update) {
   case MRN_STRESS_USF:
     mrn_p2g(sim, dim, 1, 0);
@@ -213,13 +275,13 @@ int mrn_sim_step_dt(mrn_sim *sim, double dt) {
     mrn_blocks_reuse(&sim->grid); /* the particles have not moved since the first P2G */
     mrn_p2g(sim, dim, 0, 1);
     grid_update(sim, dt);
-    mrn_g2p(sim, dim, dt, NULL);
+    mrn_g2p_then(sim, dim, dt, NULL, NULL, after, &end_bad);
     break;
   case MRN_STRESS_USL:
     mrn_p2g(sim, dim, 1, 1);
     if ((rc = grid_velocity_stage(sim))) return rc;
     grid_update(sim, dt);
-    if ((rc = mrn_update_with_g2p(sim, dt, dt))) return rc; /* G2P, grad v from V~ */
+    if ((rc = mrn_update_with_g2p(sim, dt, dt, after, &end_bad))) return rc; /* G2P, grad v from V~ */
     break;
   case MRN_STRESS_USAVG:
     /* half the strain increment from V^i before the forces, half from V~^i
@@ -230,7 +292,7 @@ int mrn_sim_step_dt(mrn_sim *sim, double dt) {
     mrn_blocks_reuse(&sim->grid); /* the particles have not moved since the first P2G */
     mrn_p2g(sim, dim, 0, 1);
     grid_update(sim, dt);
-    if ((rc = mrn_update_with_g2p(sim, dt, 0.5 * dt))) return rc; /* G2P, grad v from V~ */
+    if ((rc = mrn_update_with_g2p(sim, dt, 0.5 * dt, after, &end_bad))) return rc; /* G2P, grad v from V~ */
     break;
   case MRN_STRESS_MUSL: {
     mrn_p2g(sim, dim, 1, 1);
@@ -247,12 +309,14 @@ int mrn_sim_step_dt(mrn_sim *sim, double dt) {
     if ((rc = mrn_update_from_grid(sim, sim->grid.vel, dt))) return rc;
     mrn_particles *ps = &sim->particles;
     for (size_t i = 0; i < 3 * ps->n; i++) ps->x[i] += dx[i];
+    after = NULL; /* the particles moved after G2P */
     break;
   }
   }
   sim->time += dt;
   sim->step++;
-  return end_of_step(sim);
+  if (!after) return end_of_step(sim);
+  return end_bad >= 0 ? mrn_sim_particle_error(sim, (size_t)end_bad) : MRN_OK;
 }
 
 int mrn_sim_step(mrn_sim *sim) {

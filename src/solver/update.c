@@ -58,9 +58,10 @@ int mrn_update_from_grid(mrn_sim *sim, const double *gvel, double dt) {
   return bad >= 0 ? inverted_error(sim, bad, dt) : MRN_OK;
 }
 
-int mrn_update_with_g2p(mrn_sim *sim, double dt_move, double dt_stress) {
+int mrn_update_with_g2p(mrn_sim *sim, double dt_move, double dt_stress, const mrn_particle_pass *after,
+                        long *after_bad) {
   chunk_ctx c = {sim, dt_stress};
   const mrn_gradient_sink sink = {update_chunk, &c, MRN_PHASE_STRESS};
-  const long bad = mrn_g2p_gradient(sim, sim->dim, dt_move, NULL, &sink);
+  const long bad = mrn_g2p_then(sim, sim->dim, dt_move, NULL, &sink, after, after_bad);
   return bad >= 0 ? inverted_error(sim, bad, dt_stress) : MRN_OK;
 }

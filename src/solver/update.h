@@ -6,15 +6,19 @@
 #define MRN_SOLVER_UPDATE_H
 
 #include "solver/simulation.h"
+#include "transfer/kernels.h"
 
 /* L from the nodal velocity gvel, then F, volume, stress and energies over
  * dt (USF, MUSL, both halves of USAVG's first part). 0, or an error naming
  * the first particle whose F would invert (the others are updated). */
 int mrn_update_from_grid(mrn_sim *sim, const double *gvel, double dt);
 
-/* G2P over dt_move (positions and velocities, mrn_g2p_gradient) with L from
+/* G2P over dt_move (positions and velocities, mrn_g2p_then) with L from
  * the updated grid velocity, and the material update over dt_stress (USL,
- * USAVG's second half). Errors as mrn_update_from_grid. */
-int mrn_update_with_g2p(mrn_sim *sim, double dt_move, double dt_stress);
+ * USAVG's second half); then each chunk goes to `after` when it is not NULL
+ * (*after_bad: what it rejected first, or -1). Errors as
+ * mrn_update_from_grid. */
+int mrn_update_with_g2p(mrn_sim *sim, double dt_move, double dt_stress, const mrn_particle_pass *after,
+                        long *after_bad);
 
 #endif

@@ -29,6 +29,16 @@ typedef struct mrn_gradient_sink {
   mrn_phase phase;
 } mrn_gradient_sink;
 
+/* Work on particles [lo, hi) (at most MRN_GRADIENT_CHUNK) that G2P, and the
+ * gradient sink if any, have just finished, while their values are still in
+ * the cache (the end-of-step wrap, wall clamp and state check of the
+ * explicit step). Runs on the thread that did the chunk; returns the lowest
+ * index of [lo, hi) it rejects, or -1. */
+typedef struct mrn_particle_pass {
+  long (*chunk)(void *ctx, size_t lo, size_t hi);
+  void *ctx;
+} mrn_particle_pass;
+
 /* P2G: nodal mass and momentum (000, Eqs. 6, 16), with the affine (000,
  * Eqs. 23-24) or Taylor (000, Eqs. 19-20) term of the scheme, when
  * `momentum` is set; internal force -sum V sigma . grad N (002, Fig. 1 step 3)
@@ -52,11 +62,15 @@ long mrn_gradient_3d(struct mrn_sim *sim, const double *gvel, const mrn_gradient
  * otherwise the increments are stored there (3 per particle). */
 void mrn_g2p_2d(struct mrn_sim *sim, double dt, double *dx);
 void mrn_g2p_3d(struct mrn_sim *sim, double dt, double *dx);
-/* mrn_gradient from the updated grid velocity (grid.vel_new) and mrn_g2p,
- * in one pass over the particles (the same stencil serves both); a chunk's
- * gradients go to the sink after its particles have moved */
-long mrn_g2p_gradient_2d(struct mrn_sim *sim, double dt, double *dx, const mrn_gradient_sink *sink);
-long mrn_g2p_gradient_3d(struct mrn_sim *sim, double dt, double *dx, const mrn_gradient_sink *sink);
+/* mrn_g2p, and with a sink mrn_gradient from the updated grid velocity
+ * (grid.vel_new) in the same pass over the particles (the same stencil
+ * serves both): a chunk's gradients go to the sink after its particles have
+ * moved, then the chunk goes to `after` (either may be NULL). Returns what
+ * the sink rejected first; *after_bad is what `after` rejected first, or -1. */
+long mrn_g2p_then_2d(struct mrn_sim *sim, double dt, double *dx, const mrn_gradient_sink *sink,
+                     const mrn_particle_pass *after, long *after_bad);
+long mrn_g2p_then_3d(struct mrn_sim *sim, double dt, double *dx, const mrn_gradient_sink *sink,
+                     const mrn_particle_pass *after, long *after_bad);
 
 /* G = interpolation of a nodal field to the particles (000, Eq. 11), 3 per particle */
 void mrn_grid_to_particles_2d(struct mrn_sim *sim, const double *gvel, double *pvel);
@@ -77,9 +91,9 @@ static inline long mrn_gradient(struct mrn_sim *sim, int dim, const double *gvel
 static inline void mrn_g2p(struct mrn_sim *sim, int dim, double dt, double *dx) {
   MRN_DISPATCH(mrn_g2p, dim, sim, dt, dx);
 }
-static inline long mrn_g2p_gradient(struct mrn_sim *sim, int dim, double dt, double *dx,
-                                    const mrn_gradient_sink *sink) {
-  return MRN_DISPATCH(mrn_g2p_gradient, dim, sim, dt, dx, sink);
+static inline long mrn_g2p_then(struct mrn_sim *sim, int dim, double dt, double *dx, const mrn_gradient_sink *sink,
+                                const mrn_particle_pass *after, long *after_bad) {
+  return MRN_DISPATCH(mrn_g2p_then, dim, sim, dt, dx, sink, after, after_bad);
 }
 static inline void mrn_grid_to_particles(struct mrn_sim *sim, int dim, const double *gvel, double *pvel) {
   MRN_DISPATCH(mrn_grid_to_particles, dim, sim, gvel, pvel);

@@ -487,20 +487,27 @@ static inline void KNAME(store_matrix)(const double M[DIM][DIM], double *out) {
 /* The body of a kernel instance that may hand gradients on: the particles
  * in chunks of MRN_GRADIENT_CHUNK, the chunks in parallel; EACH handles
  * particle p of the chunk [lo, hi), writing its gradient to L + 9 (p - lo)
- * when HAND_OVER, and the chunk's gradients then go to `sink`. Returns the
- * lowest index the sink rejected, or -1, and sets *sink_seconds. */
+ * when HAND_OVER, and the chunk's gradients then go to `sink`; then, when
+ * `after` is not NULL, the chunk goes to it (mrn_particle_pass). Returns the
+ * lowest index the sink rejected, or -1, sets *sink_seconds and, with
+ * `after`, *after_bad (the lowest index it rejected, or -1). */
 #define MRN_CHUNKED_LOOP(N, HAND_OVER, EACH)                                                                  \
   const long n_ = (N), nchunks_ = (n_ + MRN_GRADIENT_CHUNK - 1) / MRN_GRADIENT_CHUNK;                        \
-  long first_bad = n_;                                                                                       \
+  long first_bad = n_, first_after = n_;                                                                     \
   double spent = 0.0;                                                                                        \
-  _Pragma("omp parallel for schedule(static) if (n_ > MRN_OMP_MIN_ITEMS) reduction(min : first_bad) reduction(+ : spent)") \
+  _Pragma("omp parallel for schedule(static) if (n_ > MRN_OMP_MIN_ITEMS) reduction(min : first_bad, first_after) reduction(+ : spent)") \
   for (long c = 0; c < nchunks_; c++) {                                                                      \
     const long lo = c * MRN_GRADIENT_CHUNK, hi = lo + MRN_GRADIENT_CHUNK < n_ ? lo + MRN_GRADIENT_CHUNK : n_; \
     double L[(HAND_OVER) ? 9 * MRN_GRADIENT_CHUNK : 1];                                                       \
     for (long p = lo; p < hi; p++) EACH;                                                                     \
     if (HAND_OVER) KNAME(hand_over)(sink, lo, hi, L, &first_bad, &spent);                                    \
+    if (after) {                                                                                             \
+      const long bad_ = after->chunk(after->ctx, (size_t)lo, (size_t)hi);                                    \
+      if (bad_ >= 0 && bad_ < first_after) first_after = bad_;                                               \
+    }                                                                                                        \
   }                                                                                                          \
   *sink_seconds = spent;                                                                                     \
+  if (after) *after_bad = first_after < n_ ? first_after : -1;                                               \
   return first_bad < n_ ? first_bad : -1;
 
 /* Hands the gradients L of particles [lo, hi) to the sink; keeps the lowest
@@ -538,6 +545,9 @@ MRN_INLINE void KNAME(gradient_particle)(const mrn_grid *g, const mrn_particles 
                                     const mrn_gradient_sink *sink, double *sink_seconds) {            \
     const mrn_grid *g = &sim->grid;                                                                   \
     const mrn_particles *ps = &sim->particles;                                                        \
+    const mrn_particle_pass *after = NULL;                                                            \
+    long *after_bad = NULL;                                                                           \
+    (void)after_bad;                                                                                  \
     MRN_CHUNKED_LOOP((long)ps->n, 1,                                                                  \
                      KNAME(gradient_particle)(g, ps, ko, gvel, (size_t)p, L + 9 * (p - lo), SUP))     \
   }
@@ -670,10 +680,12 @@ MRN_INLINE void KNAME(g2p_particle)(const KNAME(g2p_args) *ar, size_t p, double 
   }
 }
 
-typedef long (*KNAME(g2p_fn))(const KNAME(g2p_args) *, const mrn_gradient_sink *, double *);
+typedef long (*KNAME(g2p_fn))(const KNAME(g2p_args) *, const mrn_gradient_sink *, double *,
+                              const mrn_particle_pass *, long *);
 #define MRN_G2P_VARIANT(SUP, GV, FUSED, DV)                                                                   \
   static long KNAME(g2p_##SUP##_##GV##FUSED##DV)(const KNAME(g2p_args) * ar, const mrn_gradient_sink *sink,    \
-                                                 double *sink_seconds) {                                      \
+                                                 double *sink_seconds, const mrn_particle_pass *after,        \
+                                                 long *after_bad) {                                           \
     MRN_CHUNKED_LOOP((long)ar->ps->n, FUSED,                                                                  \
                      KNAME(g2p_particle)(ar, (size_t)p, L + (FUSED ? 9 * (p - lo) : 0), SUP, GV, FUSED, DV)) \
   }
@@ -705,7 +717,8 @@ static KNAME(g2p_fn) KNAME(g2p_pick)(int sup, mrn_grid_velocity_kind gv, int fus
   return NULL;
 }
 
-static long KNAME(g2p_any)(mrn_sim *sim, double dt, double *dx, const mrn_gradient_sink *sink) {
+static long KNAME(g2p_any)(mrn_sim *sim, double dt, double *dx, const mrn_gradient_sink *sink,
+                           const mrn_particle_pass *after, long *after_bad) {
   const double t0 = mrn_phase_begin();
   const mrn_kernel_options ko = KNAME(kernel_options)(sim);
   /* XPIC's smoothed velocity is gathered by the general form only */
@@ -718,16 +731,17 @@ static long KNAME(g2p_any)(mrn_sim *sim, double dt, double *dx, const mrn_gradie
   /* the change of the grid velocity, only where the update uses it */
   const int dv = ar.X > 0.0 || vu == MRN_VUPDATE_XPIC || sc->position_update == MRN_XUPDATE_XPIC;
   double spent = 0.0;
-  const long bad = KNAME(g2p_pick)(sup, sc->grid_velocity, sink != NULL, dv)(&ar, sink, &spent);
+  const long bad = KNAME(g2p_pick)(sup, sc->grid_velocity, sink != NULL, dv)(&ar, sink, &spent, after, after_bad);
   mrn_phase_end_split(MRN_PHASE_G2P, sink ? sink->phase : MRN_PHASE_G2P, t0, spent,
                       sim->particles.n > MRN_OMP_MIN_ITEMS);
   return bad;
 }
 
-void KNAME(mrn_g2p)(mrn_sim *sim, double dt, double *dx) { KNAME(g2p_any)(sim, dt, dx, NULL); }
+void KNAME(mrn_g2p)(mrn_sim *sim, double dt, double *dx) { KNAME(g2p_any)(sim, dt, dx, NULL, NULL, NULL); }
 
-long KNAME(mrn_g2p_gradient)(mrn_sim *sim, double dt, double *dx, const mrn_gradient_sink *sink) {
-  return KNAME(g2p_any)(sim, dt, dx, sink);
+long KNAME(mrn_g2p_then)(mrn_sim *sim, double dt, double *dx, const mrn_gradient_sink *sink,
+                         const mrn_particle_pass *after, long *after_bad) {
+  return KNAME(g2p_any)(sim, dt, dx, sink, after, after_bad);
 }
 
 /* ---- XPIC's projections -------------------------------------------------------------- */

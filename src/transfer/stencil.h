@@ -165,17 +165,23 @@ typedef struct KNAME(axes) {
 static inline __attribute__((always_inline)) int KNAME(axes_build)(const mrn_grid *g, const int sup,
                                                                    const mrn_kernel_boundary mode, const double *x,
                                                                    KNAME(axes) *a) {
+  /* the grid's values in locals: the stores into `a` could alias them, and
+   * the compiler would load them again for every node */
+  const double inv_cell = g->inv_cell, cell = g->cell;
+  const int pad = g->pad;
   size_t node0 = 0;
   for (int d = 0; d < DIM; d++) {
-    const double xi = (x[d] - g->origin[d]) * g->inv_cell;
-    double *w = a->w[d], *dw = a->dw[d];
+    const double origin = g->origin[d], xd = x[d];
+    const double xi = (xd - origin) * inv_cell;
+    double w[4], dw[4];
     const int base = sup == 3 ? mrn_shape_quadratic_1d(xi, w, dw) : mrn_bspline_cubic_axis(xi, w, dw);
     if (mode != MRN_KERNEL_EXTENDED && (base < 0 || base + sup - 1 > g->ncell[d])) return 0;
     for (int k = 0; k < sup; k++) {
-      dw[k] *= g->inv_cell;
-      a->off[d][k] = g->origin[d] + (base + k) * g->cell - x[d];
+      a->w[d][k] = w[k];
+      a->dw[d][k] = dw[k] * inv_cell;
+      a->off[d][k] = origin + (base + k) * cell - xd;
     }
-    node0 += (size_t)(base + g->pad) * (size_t)g->stride[d];
+    node0 += (size_t)(base + pad) * (size_t)g->stride[d];
   }
   a->node0 = node0;
   return 1;
