@@ -656,7 +656,14 @@ MRN_INLINE void KNAME(g2p_particle)(const KNAME(g2p_args) *ar, size_t p, double 
   if (gvk == MRN_VGRID_TAYLOR) KNAME(store_matrix)(L, ps->affine + 9 * p); /* (000, Eq. 22), updated V */
   double step[3] = {0, 0, 0};
   for (int d = 0; d < DIM; d++) {
-    const double dv = want_dv ? v_pic[d] - v_old[d] : 0.0; /* a_p dt */
+    if (!want_dv) {
+      /* PIC and APIC (X = 0, no XPIC): v = v_pic, and both the grid and the
+       * particle position updates move by v_pic dt */
+      v[d] = v_pic[d];
+      step[d] = v_pic[d] * dt;
+      continue;
+    }
+    const double dv = v_pic[d] - v_old[d]; /* a_p dt */
     double v_new;
     if (vu == MRN_VUPDATE_XPIC) {
       v_new = v_star[d] + dv; /* (000, Eq. 40): V - (I - G P)^m V = G V* */
