@@ -134,8 +134,9 @@ static inline void KNAME(stencil_build)(const mrn_grid *g, const mrn_kernel_opti
  * fall in fixed intervals: [1, 2), [0, 1), [-1, 0), [-2, -1)) */
 static inline int mrn_bspline_cubic_axis(double xi, double *w, double *dw) {
   const int base = (int)floor(xi) - 1;
-  const double r0 = xi - (double)base, r1 = xi - (double)(base + 1);
-  const double a2 = -(xi - (double)(base + 2)), a3 = -(xi - (double)(base + 3));
+  const double b0 = (double)base; /* b0 + k is (double)(base + k) exactly, without a conversion each */
+  const double r0 = xi - b0, r1 = xi - (b0 + 1.0);
+  const double a2 = -(xi - (b0 + 2.0)), a3 = -(xi - (b0 + 3.0));
   const double t0 = 2.0 - r0, t3 = 2.0 - a3;
   w[0] = t0 * t0 * t0 / 6.0;
   dw[0] = -0.5 * t0 * t0;
@@ -176,10 +177,11 @@ static inline __attribute__((always_inline)) int KNAME(axes_build)(const mrn_gri
     double w[4], dw[4];
     const int base = sup == 3 ? mrn_shape_quadratic_1d(xi, w, dw) : mrn_bspline_cubic_axis(xi, w, dw);
     if (mode != MRN_KERNEL_EXTENDED && (base < 0 || base + sup - 1 > g->ncell[d])) return 0;
+    const double b0 = (double)base;
     for (int k = 0; k < sup; k++) {
       a->w[d][k] = w[k];
       a->dw[d][k] = dw[k] * inv_cell;
-      a->off[d][k] = origin + (base + k) * cell - xd;
+      a->off[d][k] = origin + (b0 + k) * cell - xd; /* b0 + k: (double)(base + k) exactly */
     }
     node0 += (size_t)(base + pad) * (size_t)g->stride[d];
   }
