@@ -271,9 +271,7 @@ int mrn_sim_step_dt(mrn_sim *sim, double dt) {
   case MRN_STRESS_USF:
     mrn_p2g(sim, dim, 1, 0);
     if ((rc = grid_velocity_stage(sim))) return rc;
-    if ((rc = mrn_update_from_grid(sim, sim->grid.vel, dt))) return rc;
-    mrn_blocks_reuse(&sim->grid); /* the particles have not moved since the first P2G */
-    mrn_p2g(sim, dim, 0, 1);
+    if ((rc = mrn_update_then_force(sim, sim->grid.vel, dt))) return rc;
     grid_update(sim, dt);
     mrn_g2p_then(sim, dim, dt, NULL, NULL, after, &end_bad);
     break;
@@ -288,9 +286,7 @@ int mrn_sim_step_dt(mrn_sim *sim, double dt) {
      * after the motion: two constitutive calls per step (000 §3.4) */
     mrn_p2g(sim, dim, 1, 0);
     if ((rc = grid_velocity_stage(sim))) return rc;
-    if ((rc = mrn_update_from_grid(sim, sim->grid.vel, 0.5 * dt))) return rc;
-    mrn_blocks_reuse(&sim->grid); /* the particles have not moved since the first P2G */
-    mrn_p2g(sim, dim, 0, 1);
+    if ((rc = mrn_update_then_force(sim, sim->grid.vel, 0.5 * dt))) return rc;
     grid_update(sim, dt);
     if ((rc = mrn_update_with_g2p(sim, dt, 0.5 * dt, after, &end_bad))) return rc; /* G2P, grad v from V~ */
     break;

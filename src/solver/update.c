@@ -3,6 +3,7 @@
 
 #include "core/error.h"
 #include "material/advance.h"
+#include "transfer/blocks.h"
 #include "transfer/kernels.h"
 
 typedef struct chunk_ctx {
@@ -55,6 +56,20 @@ int mrn_update_from_grid(mrn_sim *sim, const double *gvel, double dt) {
   chunk_ctx c = {sim, dt};
   const mrn_gradient_sink sink = {update_chunk, &c, MRN_PHASE_STRESS};
   const long bad = mrn_gradient(sim, sim->dim, gvel, &sink);
+  return bad >= 0 ? inverted_error(sim, bad, dt) : MRN_OK;
+}
+
+int mrn_update_then_force(mrn_sim *sim, const double *gvel, double dt) {
+  if (!mrn_update_force_fused(sim, sim->dim)) {
+    int rc = mrn_update_from_grid(sim, gvel, dt);
+    if (rc) return rc;
+    mrn_blocks_reuse(&sim->grid); /* the particles have not moved since the first P2G */
+    mrn_p2g(sim, sim->dim, 0, 1);
+    return MRN_OK;
+  }
+  chunk_ctx c = {sim, dt};
+  const mrn_gradient_sink sink = {update_chunk, &c, MRN_PHASE_STRESS};
+  const long bad = mrn_update_force(sim, sim->dim, gvel, &sink);
   return bad >= 0 ? inverted_error(sim, bad, dt) : MRN_OK;
 }
 

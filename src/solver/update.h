@@ -13,6 +13,13 @@
  * the first particle whose F would invert (the others are updated). */
 int mrn_update_from_grid(mrn_sim *sim, const double *gvel, double dt);
 
+/* mrn_update_from_grid, then the internal force of the updated stresses
+ * scattered to the grid (P2G with force only), the particles unmoved since
+ * the last P2G (USF, USAVG's first half). For plain B-splines both happen
+ * in one pass (mrn_update_force in transfer/kernels.h). Errors as
+ * mrn_update_from_grid. */
+int mrn_update_then_force(mrn_sim *sim, const double *gvel, double dt);
+
 /* G2P over dt_move (positions and velocities, mrn_g2p_then) with L from
  * the updated grid velocity, and the material update over dt_stress (USL,
  * USAVG's second half); then each chunk goes to `after` when it is not NULL

@@ -56,6 +56,20 @@ void mrn_p2g_3d(struct mrn_sim *sim, int momentum, int force);
 long mrn_gradient_2d(struct mrn_sim *sim, const double *gvel, const mrn_gradient_sink *sink);
 long mrn_gradient_3d(struct mrn_sim *sim, const double *gvel, const mrn_gradient_sink *sink);
 
+/* USF's material update and internal force in one pass over the particles,
+ * for plain quadratic and cubic B-splines (mrn_update_force_fused says
+ * whether the options allow it): the same as mrn_gradient from gvel with
+ * `sink`, then mrn_p2g with force only (keeping the binning of the last
+ * P2G: the particles must not have moved since), but each particle's
+ * stencil serves both. Particles go block by block as in P2G, in runs of
+ * consecutive indices handed to the sink together; the result is bitwise
+ * that of the two passes, for any thread count. Returns what the sink
+ * rejected first, or -1 (the forces are scattered in any case). */
+int mrn_update_force_fused_2d(const struct mrn_sim *sim);
+int mrn_update_force_fused_3d(const struct mrn_sim *sim);
+long mrn_update_force_2d(struct mrn_sim *sim, const double *gvel, const mrn_gradient_sink *sink);
+long mrn_update_force_3d(struct mrn_sim *sim, const double *gvel, const mrn_gradient_sink *sink);
+
 /* G2P: new particle velocities by the scheme (000, Eqs. 31, 33, 37, 40), the
  * affine/Taylor matrices (000, Eqs. 22, 25-27) and the position increments
  * (000, Eqs. 32, 36, 38, 41). When `dx` is NULL positions are moved at once,
@@ -87,6 +101,12 @@ static inline void mrn_p2g(struct mrn_sim *sim, int dim, int momentum, int force
 }
 static inline long mrn_gradient(struct mrn_sim *sim, int dim, const double *gvel, const mrn_gradient_sink *sink) {
   return MRN_DISPATCH(mrn_gradient, dim, sim, gvel, sink);
+}
+static inline int mrn_update_force_fused(const struct mrn_sim *sim, int dim) {
+  return MRN_DISPATCH(mrn_update_force_fused, dim, sim);
+}
+static inline long mrn_update_force(struct mrn_sim *sim, int dim, const double *gvel, const mrn_gradient_sink *sink) {
+  return MRN_DISPATCH(mrn_update_force, dim, sim, gvel, sink);
 }
 static inline void mrn_g2p(struct mrn_sim *sim, int dim, double dt, double *dx) {
   MRN_DISPATCH(mrn_g2p, dim, sim, dt, dx);

@@ -522,13 +522,22 @@ MRN_INLINE void KNAME(hand_over)(const mrn_gradient_sink *sink, long lo, long hi
 
 /* ---- velocity gradient ---------------------------------------------------------- */
 
+/* L of a particle with a fast stencil into out (9 values) */
+MRN_INLINE void KNAME(gradient_fast)(const mrn_grid *g, const KNAME(axes) *ax, const double *gvel, double *out,
+                                     const int sup) {
+  double L[DIM][DIM] = {{0}}, none[DIM][DIM] = {{0}}, nv[DIM] = {0};
+  KNAME(gather_fast)(ax, gvel, NULL, g->stride[1], g->stride[2], sup, 0, 0, 0, 1, nv, nv, none, L);
+  KNAME(store_matrix)(L, out);
+}
+
 /* one particle's L into out (9 values); `sup` is a constant at every call */
 MRN_INLINE void KNAME(gradient_particle)(const mrn_grid *g, const mrn_particles *ps, const mrn_kernel_options *ko,
                                          const double *gvel, size_t p, double *out, const int sup) {
   double L[DIM][DIM] = {{0}}, none[DIM][DIM] = {{0}}, nv[DIM] = {0};
   KNAME(axes) ax;
   if (sup && KNAME(axes_build)(g, sup, ko->boundary, ps->x + 3 * p, &ax)) {
-    KNAME(gather_fast)(&ax, gvel, NULL, g->stride[1], g->stride[2], sup, 0, 0, 0, 1, nv, nv, none, L);
+    KNAME(gradient_fast)(g, &ax, gvel, out, sup);
+    return;
   } else {
     KNAME(stencil) s;
     KNAME(stencil_build)(g, ko, ps->x + 3 * p, ps->vol0[p], &s);
@@ -567,6 +576,93 @@ long KNAME(mrn_gradient)(mrn_sim *sim, const double *gvel, const mrn_gradient_si
   default: bad = KNAME(gradient_0)(sim, &ko, gvel, sink, &spent); break;
   }
   mrn_phase_end_split(MRN_PHASE_G2P, sink->phase, t0, spent, sim->particles.n > MRN_OMP_MIN_ITEMS);
+  return bad;
+}
+
+/* ---- USF: material update and internal force in one pass ---------------------- */
+
+/* particles per hand-over in the fused pass (their stencils are kept) */
+enum { MRN_FUSED_RUN = 64 };
+
+/* The particles order[from .. to) of one block (or from .. to when order is
+ * NULL), in runs of consecutive indices: each particle's stencil is built
+ * once, its L gathered from gvel, the run's L handed to the sink (the
+ * material update), and then the internal force of the updated stress
+ * scattered with the same stencils. A particle that needs the general
+ * stencil is a run of its own. `sup` (3 or 4) is a constant. */
+MRN_INLINE void KNAME(update_force_range)(const KNAME(p2g_args) *ar, const double *gvel, const uint32_t *order,
+                                          size_t from, size_t to, const mrn_gradient_sink *sink, long *first_bad,
+                                          double *spent, const int sup) {
+  const mrn_grid *g = ar->g;
+  const mrn_particles *ps = ar->ps;
+  KNAME(axes) ax[MRN_FUSED_RUN];
+  double L[9 * MRN_FUSED_RUN];
+  size_t q = from;
+  while (q < to) {
+    const size_t p0 = order ? order[q] : q;
+    size_t n = 0;
+    while (q < to && n < MRN_FUSED_RUN && (order ? order[q] : q) == p0 + n &&
+           KNAME(axes_build)(g, sup, ar->ko.boundary, ps->x + 3 * (p0 + n), &ax[n])) {
+      KNAME(gradient_fast)(g, &ax[n], gvel, L + 9 * n, sup);
+      n++;
+      q++;
+    }
+    if (!n) { /* the general stencil, for this particle alone */
+      KNAME(gradient_particle)(g, ps, &ar->ko, gvel, p0, L, 0);
+      KNAME(hand_over)(sink, (long)p0, (long)p0 + 1, L, first_bad, spent);
+      KNAME(p2g_general)(ar, p0, 0, 1, 0);
+      q++;
+      continue;
+    }
+    KNAME(hand_over)(sink, (long)p0, (long)(p0 + n), L, first_bad, spent);
+    for (size_t j = 0; j < n; j++) KNAME(p2g_fast)(ar, &ax[j], p0 + j, sup, 0, 1, 0);
+  }
+}
+
+/* the parallel region sits in each instance (see MRN_GRADIENT_VARIANT) */
+#define MRN_UPDATE_FORCE_VARIANT(SUP)                                                                            \
+  static long KNAME(update_force_##SUP)(const KNAME(p2g_args) * ar, const mrn_blocks *b, const double *gvel,     \
+                                        const mrn_gradient_sink *sink, double *sink_seconds) {                   \
+    const long n_ = (long)ar->ps->n;                                                                             \
+    long first_bad = n_;                                                                                         \
+    double spent = 0.0;                                                                                          \
+    if (!b) {                                                                                                    \
+      KNAME(update_force_range)(ar, gvel, NULL, 0, (size_t)n_, sink, &first_bad, &spent, SUP);                   \
+    } else {                                                                                                     \
+      const int threads __attribute__((unused)) = !b->dense && n_ > MRN_OMP_MIN_ITEMS;                          \
+      _Pragma("omp parallel if (threads) reduction(min : first_bad) reduction(+ : spent)")                       \
+      for (int c = 0; c < b->colours; c++) {                                                                     \
+        const long first = (long)b->colour_first[c], count = (long)b->colour_first[c + 1] - first;               \
+        _Pragma("omp for schedule(dynamic, 1)")                                                                   \
+        for (long k = 0; k < count; k++) {                                                                       \
+          const uint32_t blk = b->list[first + k];                                                               \
+          KNAME(update_force_range)(ar, gvel, b->order, b->start[blk], b->start[blk + 1], sink, &first_bad,      \
+                                    &spent, SUP);                                                                \
+        }                                                                                                        \
+      }                                                                                                          \
+    }                                                                                                            \
+    *sink_seconds = spent;                                                                                       \
+    return first_bad < n_ ? first_bad : -1;                                                                      \
+  }
+MRN_UPDATE_FORCE_VARIANT(3)
+MRN_UPDATE_FORCE_VARIANT(4)
+#undef MRN_UPDATE_FORCE_VARIANT
+
+int KNAME(mrn_update_force_fused)(const mrn_sim *sim) {
+  const mrn_kernel_options ko = KNAME(kernel_options)(sim);
+  return KNAME(fast_support)(&ko) != 0;
+}
+
+long KNAME(mrn_update_force)(mrn_sim *sim, const double *gvel, const mrn_gradient_sink *sink) {
+  const double t0 = mrn_phase_begin(), sort0 = KNAME(sort_seconds)();
+  mrn_blocks_reuse(&sim->grid); /* the particles have not moved since the first P2G */
+  const mrn_blocks *b = mrn_blocks_prepare(sim, MRN_CLEAR_FORCE);
+  KNAME(p2g_args) ar = {&sim->grid, &sim->particles, KNAME(kernel_options)(sim)};
+  double spent = 0.0;
+  const long bad = KNAME(fast_support)(&ar.ko) == 3 ? KNAME(update_force_3)(&ar, b, gvel, sink, &spent)
+                                                    : KNAME(update_force_4)(&ar, b, gvel, sink, &spent);
+  mrn_phase_end_split(MRN_PHASE_P2G, sink->phase, t0 + (KNAME(sort_seconds)() - sort0), spent,
+                      b && !b->dense && sim->particles.n > MRN_OMP_MIN_ITEMS);
   return bad;
 }
 

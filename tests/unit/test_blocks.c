@@ -4,7 +4,9 @@
  * cover every node with mass; reordering the particles keeps every field
  * with its particle, and a run that sorts the particles every few steps ends
  * in the same state (by id) as one that does not, to round-off; a P2G that
- * reuses the previous binning gives the same nodal values as one that bins. */
+ * reuses the previous binning gives the same nodal values as one that bins;
+ * USF's fused material update and force scatter (mrn_update_force) gives
+ * bitwise the particle state and nodal forces of the two passes it fuses. */
 #include <stdlib.h>
 #include <string.h>
 #ifdef _OPENMP
@@ -14,6 +16,7 @@
 #include "check.h"
 #include "particles/sort.h"
 #include "solver/simulation.h"
+#include "solver/update.h"
 #include "transfer/blocks.h"
 #include "transfer/kernels.h"
 
@@ -198,6 +201,40 @@ static void sorted_run(int dim) {
   mrn_sim_free(b);
 }
 
+/* mrn_update_then_force (one pass for B-splines) against mrn_update_from_grid
+ * and a force-only P2G, from the same random nodal velocities: the particles
+ * in random order (runs of one particle) or sorted by block (long runs) */
+static void fused_update_force(int dim, mrn_shape_kind shape, int sorted, int threads) {
+  mrn_sim *a = make(dim, shape, 20000, 5u), *b = make(dim, shape, 20000, 5u);
+  CHECK(a && b);
+  CHECK(mrn_update_force_fused(b, dim));
+  set_threads(threads);
+  if (sorted) {
+    mrn_blocks_set_sort_every(&a->grid, 1);
+    mrn_blocks_set_sort_every(&b->grid, 1);
+  }
+  mrn_p2g(a, dim, 1, 0);
+  mrn_p2g(b, dim, 1, 0);
+  const size_t nodes = a->grid.n;
+  double *gvel = malloc(3 * nodes * sizeof(double));
+  unsigned seed = 99u;
+  for (size_t i = 0; i < 3 * nodes; i++) gvel[i] = (i % 3 < (size_t)dim) ? 0.02 * (rnd(&seed) - 0.5) : 0.0;
+  CHECK(mrn_update_from_grid(a, gvel, 1e-3) == 0);
+  mrn_blocks_reuse(&a->grid);
+  mrn_p2g(a, dim, 0, 1);
+  CHECK(mrn_update_then_force(b, gvel, 1e-3) == 0);
+  const mrn_particles *pa = &a->particles, *pb = &b->particles;
+  const size_t n = pa->n;
+  CHECK(!memcmp(pa->stress, pb->stress, 6 * n * sizeof(double)) && !memcmp(pa->F, pb->F, 9 * n * sizeof(double)) &&
+        !memcmp(pa->strain, pb->strain, 6 * n * sizeof(double)) &&
+        !memcmp(pa->e_elastic, pb->e_elastic, n * sizeof(double)));
+  CHECK(!memcmp(a->grid.force, b->grid.force, 3 * nodes * sizeof(double)));
+  CHECK(ranges_hold(&b->grid));
+  free(gvel);
+  mrn_sim_free(a);
+  mrn_sim_free(b);
+}
+
 int main(void) {
   for (int dim = 2; dim <= 3; dim++) {
     threads_and_spans(dim, MRN_SHAPE_QUADRATIC_BSPLINE);
@@ -205,6 +242,11 @@ int main(void) {
     threads_and_spans(dim, MRN_SHAPE_LINEAR);
     sorted_run(dim);
     reused_binning(dim);
+    for (int sorted = 0; sorted <= 1; sorted++)
+      for (int threads = 1; threads <= 2; threads++) {
+        fused_update_force(dim, MRN_SHAPE_QUADRATIC_BSPLINE, sorted, threads);
+        fused_update_force(dim, MRN_SHAPE_CUBIC_BSPLINE, sorted, threads);
+      }
   }
   permute_keeps_fields();
   CHECK_DONE();
