@@ -275,7 +275,10 @@ static inline __attribute__((always_inline)) void bin_thread(mrn_blocks *b, cons
     }
     b->start[nb] = total;
   }
-  uint32_t at_key = 0, at = h[0];
+  /* the first particle's block starts the first run; every change of block
+   * starts another */
+  uint32_t at_key = lo < hi ? block_of(&map, dim, x + 3 * lo) : 0, at = h[at_key];
+  size_t runs = lo < hi;
   for (size_t c = lo; c < hi; c += BIN_CHUNK) {
     const size_t len = hi - c < BIN_CHUNK ? hi - c : BIN_CHUNK;
     block_keys(&map, dim, x, c, len, key);
@@ -284,11 +287,14 @@ static inline __attribute__((always_inline)) void bin_thread(mrn_blocks *b, cons
         h[at_key] = at;
         at_key = key[i];
         at = h[at_key];
+        runs++;
       }
       order[at++] = (uint32_t)(c + i);
     }
   }
   h[at_key] = at;
+#pragma omp atomic
+  b->runs += runs;
 }
 
 static void bin_2d(mrn_blocks *b, const block_map map, const mrn_particles *ps, int threads) {
@@ -303,6 +309,7 @@ static void bin_3d(mrn_blocks *b, const block_map map, const mrn_particles *ps, 
 
 static void bin(mrn_blocks *b, const mrn_grid *g, const mrn_particles *ps, int threads) {
   const block_map map = block_map_of(b, g);
+  b->runs = 0;
   if (g->dim == 2) bin_2d(b, map, ps, threads);
   else bin_3d(b, map, ps, threads);
   b->np = ps->n;
@@ -397,6 +404,8 @@ mrn_blocks *mrn_blocks_prepare(mrn_sim *sim, unsigned clear) {
     double t0 = mrn_phase_begin();
     if (mrn_particles_permute(&sim->particles, b->order) == MRN_OK) {
       for (size_t i = 0; i < ps->n; i++) b->order[i] = (uint32_t)i;
+      b->runs = 0; /* now one run per non-empty block */
+      for (size_t k = 0; k < b->nblocks; k++) b->runs += b->start[k + 1] > b->start[k];
       b->sorted_step = sim->step;
     }
     mrn_phase_end(MRN_PHASE_SORT, t0);

@@ -51,6 +51,7 @@ typedef struct mrn_blocks {
   size_t *start;   /* nblocks + 1 */
   uint32_t *hist;  /* per-thread block counts, hist_threads * nblocks */
   int hist_threads;
+  size_t runs;     /* runs of consecutive particle indices in `order` (within a block) */
   uint32_t *list;  /* non-empty blocks, by colour */
   size_t colour_first[9];
 

@@ -14,6 +14,10 @@ struct mrn_sim;
 /* particles per chunk of velocity gradients handed on together */
 enum { MRN_GRADIENT_CHUNK = 256 };
 
+/* the mean run of consecutive particle indices within a block (of the last
+ * binning) from which mrn_update_force is used */
+enum { MRN_FUSED_MIN_RUN = 16 };
+
 /* Where the velocity gradients go. They are not stored per particle: the
  * kernels form them for a chunk of consecutive particles [lo, hi) (at most
  * MRN_GRADIENT_CHUNK) in a buffer, L holding 9 values per particle
@@ -57,8 +61,9 @@ long mrn_gradient_2d(struct mrn_sim *sim, const double *gvel, const mrn_gradient
 long mrn_gradient_3d(struct mrn_sim *sim, const double *gvel, const mrn_gradient_sink *sink);
 
 /* USF's material update and internal force in one pass over the particles,
- * for plain quadratic and cubic B-splines (mrn_update_force_fused says
- * whether the options allow it): the same as mrn_gradient from gvel with
+ * for plain quadratic and cubic B-splines and particles that lie in long
+ * runs of consecutive indices within the blocks of the last binning
+ * (mrn_update_force_fused says whether the options and the order allow it): the same as mrn_gradient from gvel with
  * `sink`, then mrn_p2g with force only (keeping the binning of the last
  * P2G: the particles must not have moved since), but each particle's
  * stencil serves both. Particles go block by block as in P2G, in runs of

@@ -650,7 +650,13 @@ MRN_UPDATE_FORCE_VARIANT(4)
 
 int KNAME(mrn_update_force_fused)(const mrn_sim *sim) {
   const mrn_kernel_options ko = KNAME(kernel_options)(sim);
-  return KNAME(fast_support)(&ko) != 0;
+  if (!KNAME(fast_support)(&ko)) return 0;
+  /* In block order the material update reaches F, stress and strain run by
+   * run: worth it when the runs are long (particles as seeded, or sorted),
+   * not when they are scattered (after a long flow, unsorted: runs of one
+   * or two, where the separate passes, in index order, are twice as fast) */
+  const mrn_blocks *b = sim->grid.blocks;
+  return b->np != sim->particles.n || !b->runs || b->np >= MRN_FUSED_MIN_RUN * b->runs;
 }
 
 long KNAME(mrn_update_force)(mrn_sim *sim, const double *gvel, const mrn_gradient_sink *sink) {

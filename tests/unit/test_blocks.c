@@ -14,6 +14,7 @@
 #endif
 
 #include "check.h"
+#include "material/advance.h"
 #include "particles/sort.h"
 #include "solver/simulation.h"
 #include "solver/update.h"
@@ -201,38 +202,65 @@ static void sorted_run(int dim) {
   mrn_sim_free(b);
 }
 
-/* mrn_update_then_force (one pass for B-splines) against mrn_update_from_grid
- * and a force-only P2G, from the same random nodal velocities: the particles
- * in random order (runs of one particle) or sorted by block (long runs) */
+/* a gradient sink that advances the points of [lo, hi) (material 0) */
+static long advance_sink(void *ctx, size_t lo, size_t hi, const double *L) {
+  mrn_sim *sim = ctx;
+  mrn_particles *ps = &sim->particles;
+  mrn_point_result r[MRN_GRADIENT_CHUNK];
+  long bad = mrn_material_advance_points(sim->materials[0], sim->dim, MRN_F_UPDATE_MIDPOINT, 1e-3, hi - lo, L,
+                                         ps->F + 9 * lo, ps->stress + 6 * lo, ps->strain + 6 * lo, NULL, 0, r);
+  return bad >= 0 ? (long)lo + bad : -1;
+}
+
+static int same_state(const mrn_sim *a, const mrn_sim *b) {
+  const mrn_particles *pa = &a->particles, *pb = &b->particles;
+  const size_t n = pa->n;
+  return !memcmp(pa->stress, pb->stress, 6 * n * sizeof(double)) && !memcmp(pa->F, pb->F, 9 * n * sizeof(double)) &&
+         !memcmp(pa->strain, pb->strain, 6 * n * sizeof(double)) &&
+         !memcmp(pa->e_elastic, pb->e_elastic, n * sizeof(double)) &&
+         !memcmp(a->grid.force, b->grid.force, 3 * a->grid.n * sizeof(double));
+}
+
+/* USF's fused material update and force scatter against the two passes it
+ * replaces, from the same random nodal velocities, with the particles in
+ * random order (runs of one particle) or sorted by block (long runs):
+ * - the kernel (mrn_update_force) with a sink of its own against
+ *   mrn_gradient with that sink and a force-only P2G, in either order;
+ * - the step's mrn_update_then_force against mrn_update_from_grid and a
+ *   force-only P2G: it fuses for the sorted particles only (mean run >=
+ *   MRN_FUSED_MIN_RUN), bitwise the same state either way. */
 static void fused_update_force(int dim, mrn_shape_kind shape, int sorted, int threads) {
-  mrn_sim *a = make(dim, shape, 20000, 5u), *b = make(dim, shape, 20000, 5u);
-  CHECK(a && b);
-  CHECK(mrn_update_force_fused(b, dim));
-  set_threads(threads);
-  if (sorted) {
-    mrn_blocks_set_sort_every(&a->grid, 1);
-    mrn_blocks_set_sort_every(&b->grid, 1);
+  mrn_sim *sim[4];
+  for (int k = 0; k < 4; k++) {
+    sim[k] = make(dim, shape, 20000, 5u);
+    CHECK(sim[k] != NULL);
+    if (sorted) mrn_blocks_set_sort_every(&sim[k]->grid, 1);
   }
-  mrn_p2g(a, dim, 1, 0);
-  mrn_p2g(b, dim, 1, 0);
-  const size_t nodes = a->grid.n;
+  set_threads(threads);
+  for (int k = 0; k < 4; k++) mrn_p2g(sim[k], dim, 1, 0);
+  const size_t nodes = sim[0]->grid.n;
   double *gvel = malloc(3 * nodes * sizeof(double));
   unsigned seed = 99u;
   for (size_t i = 0; i < 3 * nodes; i++) gvel[i] = (i % 3 < (size_t)dim) ? 0.02 * (rnd(&seed) - 0.5) : 0.0;
-  CHECK(mrn_update_from_grid(a, gvel, 1e-3) == 0);
-  mrn_blocks_reuse(&a->grid);
-  mrn_p2g(a, dim, 0, 1);
-  CHECK(mrn_update_then_force(b, gvel, 1e-3) == 0);
-  const mrn_particles *pa = &a->particles, *pb = &b->particles;
-  const size_t n = pa->n;
-  CHECK(!memcmp(pa->stress, pb->stress, 6 * n * sizeof(double)) && !memcmp(pa->F, pb->F, 9 * n * sizeof(double)) &&
-        !memcmp(pa->strain, pb->strain, 6 * n * sizeof(double)) &&
-        !memcmp(pa->e_elastic, pb->e_elastic, n * sizeof(double)));
-  CHECK(!memcmp(a->grid.force, b->grid.force, 3 * nodes * sizeof(double)));
-  CHECK(ranges_hold(&b->grid));
+  /* the kernel */
+  const mrn_gradient_sink s0 = {advance_sink, sim[0], MRN_PHASE_STRESS}, s1 = {advance_sink, sim[1], MRN_PHASE_STRESS};
+  CHECK(mrn_gradient(sim[0], dim, gvel, &s0) == -1);
+  mrn_blocks_reuse(&sim[0]->grid);
+  mrn_p2g(sim[0], dim, 0, 1);
+  CHECK(mrn_update_force(sim[1], dim, gvel, &s1) == -1);
+  CHECK(same_state(sim[0], sim[1]));
+  CHECK(ranges_hold(&sim[1]->grid));
+  /* the step's choice */
+  const mrn_blocks *b = sim[3]->grid.blocks;
+  CHECK(mrn_update_force_fused(sim[3], dim) == (b->np >= MRN_FUSED_MIN_RUN * b->runs));
+  CHECK(mrn_update_force_fused(sim[3], dim) == sorted);
+  CHECK(mrn_update_from_grid(sim[2], gvel, 1e-3) == 0);
+  mrn_blocks_reuse(&sim[2]->grid);
+  mrn_p2g(sim[2], dim, 0, 1);
+  CHECK(mrn_update_then_force(sim[3], gvel, 1e-3) == 0);
+  CHECK(same_state(sim[2], sim[3]));
   free(gvel);
-  mrn_sim_free(a);
-  mrn_sim_free(b);
+  for (int k = 0; k < 4; k++) mrn_sim_free(sim[k]);
 }
 
 int main(void) {
