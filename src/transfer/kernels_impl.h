@@ -533,16 +533,15 @@ MRN_INLINE void KNAME(gradient_fast)(const mrn_grid *g, const KNAME(axes) *ax, c
 /* one particle's L into out (9 values); `sup` is a constant at every call */
 MRN_INLINE void KNAME(gradient_particle)(const mrn_grid *g, const mrn_particles *ps, const mrn_kernel_options *ko,
                                          const double *gvel, size_t p, double *out, const int sup) {
-  double L[DIM][DIM] = {{0}}, none[DIM][DIM] = {{0}}, nv[DIM] = {0};
   KNAME(axes) ax;
   if (sup && KNAME(axes_build)(g, sup, ko->boundary, ps->x + 3 * p, &ax)) {
     KNAME(gradient_fast)(g, &ax, gvel, out, sup);
     return;
-  } else {
-    KNAME(stencil) s;
-    KNAME(stencil_build)(g, ko, ps->x + 3 * p, ps->vol0[p], &s);
-    KNAME(gather_general)(&s, gvel, NULL, NULL, 0, 0, 1, nv, nv, nv, none, none, L);
   }
+  double L[DIM][DIM] = {{0}}, none[DIM][DIM] = {{0}}, nv[DIM] = {0};
+  KNAME(stencil) s;
+  KNAME(stencil_build)(g, ko, ps->x + 3 * p, ps->vol0[p], &s);
+  KNAME(gather_general)(&s, gvel, NULL, NULL, 0, 0, 1, nv, nv, nv, none, none, L);
   KNAME(store_matrix)(L, out);
 }
 
