@@ -33,6 +33,8 @@ moraine_deck_test(simple_shear simple_shear.lua)
 moraine_deck_test(settling settling.lua)
 moraine_deck_test(disks_cfl disks_cfl.lua)
 moraine_deck_test(checkpoint_workflow checkpoint_workflow.lua)
+# sort_every: the same physics by id, changed indices, kept by checkpoints
+moraine_deck_test(sort_every sort_every.lua)
 moraine_deck_test(rotating_cube rotating_cube.lua ARGS --set time=10)
 # the parameter-sweep helper lua/moraine/sweep.lua (runs axial_bar.lua four times)
 moraine_deck_test(sweep sweep.lua LABELS lua)

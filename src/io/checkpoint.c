@@ -13,6 +13,7 @@
 #include "io/atomic_file.h"
 #include "io/checkpoint_internal.h"
 #include "io/h5util.h"
+#include "transfer/blocks.h"
 
 /* ---- units of the particle fields ------------------------------------------ */
 
@@ -98,6 +99,7 @@ static void save_simulation(mrn_h5w *w, const mrn_sim *sim) {
   mrn_h5w_double(w, g, "outflow_mass", sim->outflow_mass);
   mrn_h5w_double(w, g, "energy_outflow", sim->energy_outflow);
   mrn_h5w_double(w, g, "mass_floor", sim->mass_floor);
+  mrn_h5w_int64(w, g, "sort_every", sim->grid.blocks->sort_every);
   mrn_h5w_int32(w, g, "affine_pending", sim->affine_pending);
   H5Gclose(g);
 }
@@ -470,6 +472,7 @@ static mrn_sim *build_sim(const ck_data *d, mrn_checkpoint_info *info) {
   sim->outflow_mass = d->outflow_mass;
   sim->energy_outflow = d->energy_outflow;
   sim->affine_pending = d->affine_pending;
+  mrn_blocks_set_sort_every(&sim->grid, (long)d->sort_every);
   for (int i = 0; i < d->nmaterials; i++)
     if (mrn_sim_add_material(sim, d->materials[i]) < 0) goto fail;
   if (take_particles(sim, d)) goto fail;

@@ -32,6 +32,7 @@ typedef struct ck_data {
   int on_leave; /* mrn_leave_policy */
   double outflow_mass, energy_outflow;
   int64_t step, outflow_particles;
+  int64_t sort_every; /* reorder the particles every N steps (transfer/blocks.h) */
   /* /grid */
   double origin[3], size[3], cell;
   int ncell[3];

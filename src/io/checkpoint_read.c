@@ -127,6 +127,9 @@ static void read_simulation(mrn_h5r *r, ck_data *d) {
     read_finite(r, g, "energy_outflow", -HUGE_VAL, &d->energy_outflow);
   }
   read_finite(r, g, "mass_floor", 0.0, &d->mass_floor);
+  /* files written before the option existed have none: never */
+  d->sort_every = 0;
+  if (mrn_h5r_has_attr(r, g, "sort_every")) read_int_in(r, g, "sort_every", 0, CK_MAX_COUNTER, &d->sort_every);
   read_int_in(r, g, "affine_pending", 0, 1, &affine_pending);
   d->energy_ref_set = (int)energy_ref_set;
   d->affine_pending = (int)affine_pending;

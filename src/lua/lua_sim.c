@@ -16,6 +16,7 @@
 #include "solver/run.h"
 #include "solver/simulation.h"
 #include "solver/suspicious.h"
+#include "transfer/blocks.h"
 
 #define MAX_HOOKS 32
 
@@ -89,6 +90,8 @@ static const mrn_spec sim_specs[] = {
      "time integrator: explicit (default) or implicit (001; options in `implicit`)", integrator_choices},
     {"implicit", MRN_SPEC_TABLE, 0, 0, 0, 0, 0, 0, NULL,
      "options of the implicit integrator (the keys of sim:implicit{}), with integrator = \"implicit\"", NULL},
+    {"sort_every", MRN_SPEC_INTEGER, 0, 0, 0, 1e12, 0, 0, "steps",
+     "reorder the particles by grid block every N explicit steps (0: never; indices change, ids stay)", NULL},
 };
 
 static const mrn_spec grid_specs[] = {
@@ -505,6 +508,8 @@ static int l_simulation(lua_State *L) {
   b->sim = mrn_sim_new(&cfg);
   if (!b->sim) mrn_lua_error(L, where, "%s", mrn_error_message());
   read_on_leave(L, 1, where, sim_specs, MRN_COUNT(sim_specs), b->sim);
+  if (mrn_lua_has(L, 1, "sort_every"))
+    mrn_blocks_set_sort_every(&b->sim->grid, mrn_lua_get_integer(L, 1, where, sim_specs, MRN_COUNT(sim_specs), "sort_every"));
   for (int i = 0; i < MRN_FACE_COUNT; i++) b->sim->boundary.face[i].kind = MRN_BC_SLIP;
   mrn_output_set_csv(&b->out, "diagnostics.csv", 10);
   const char *name = mrn_lua_get_string(L, 1, where, sim_specs, MRN_COUNT(sim_specs), "name");
@@ -956,6 +961,8 @@ static const mrn_spec load_specs[] = {
     {"output", MRN_SPEC_TABLE, 0, 0, 0, 0, 0, 0, NULL, "VTK output settings, as in simulation{}", NULL},
     {"on_leave", MRN_SPEC_STRING, 0, 0, 0, 0, 0, 0, NULL,
      "a particle leaving the grid: stop or delete (default: as saved)", NULL},
+    {"sort_every", MRN_SPEC_INTEGER, 0, 0, 0, 1e12, 0, 0, "steps",
+     "reorder the particles by grid block every N explicit steps (default: as saved)", NULL},
 };
 
 /* mpm.load(path [, options]): a simulation continuing from a checkpoint */
@@ -999,6 +1006,9 @@ static int l_load(lua_State *L) {
       lua_pop(L, 1);
     }
     read_on_leave(L, 2, where, load_specs, MRN_COUNT(load_specs), b->sim);
+    if (mrn_lua_has(L, 2, "sort_every"))
+      mrn_blocks_set_sort_every(&b->sim->grid,
+                                mrn_lua_get_integer(L, 2, where, load_specs, MRN_COUNT(load_specs), "sort_every"));
   }
   lua_pushvalue(L, self);
   return 1;
@@ -1313,6 +1323,7 @@ static int l_info(lua_State *L) {
   push_vec(L, s->grid.origin, s->dim); lua_setfield(L, -2, "origin");
   push_vec(L, s->grid.size, s->dim); lua_setfield(L, -2, "size");
   push_vec(L, s->gravity, s->dim); lua_setfield(L, -2, "gravity");
+  lua_pushinteger(L, s->grid.blocks->sort_every); lua_setfield(L, -2, "sort_every");
   lua_pushstring(L, b->out.dir); lua_setfield(L, -2, "output_dir");
   return 1;
 }
