@@ -75,7 +75,7 @@ int mrn_implicit_bbar_setup(mrn_implicit *im) {
   for (size_t p = 0; p < np; p++) {
     size_t key = mrn_implicit_point_cell(im, p);
     if (im->bb_index[key] < 0) {
-      if ((size_t)ncell >= im->bb_cap) {
+      if (ncell >= im->bb_cap) {
         size_t cap = im->bb_cap ? 2 * im->bb_cap : 64;
         if (grow((void **)&im->bb, cap * sizeof *im->bb)) return MRN_ERR;
         im->bb_cap = cap;

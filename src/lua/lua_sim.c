@@ -508,8 +508,7 @@ static int l_simulation(lua_State *L) {
   b->sim = mrn_sim_new(&cfg);
   if (!b->sim) mrn_lua_error(L, where, "%s", mrn_error_message());
   read_on_leave(L, 1, where, sim_specs, MRN_COUNT(sim_specs), b->sim);
-  if (mrn_lua_has(L, 1, "sort_every"))
-    mrn_blocks_set_sort_every(&b->sim->grid, mrn_lua_get_integer(L, 1, where, sim_specs, MRN_COUNT(sim_specs), "sort_every"));
+  mrn_blocks_set_sort_every(&b->sim->grid, mrn_lua_get_integer(L, 1, where, sim_specs, MRN_COUNT(sim_specs), "sort_every"));
   for (int i = 0; i < MRN_FACE_COUNT; i++) b->sim->boundary.face[i].kind = MRN_BC_SLIP;
   mrn_output_set_csv(&b->out, "diagnostics.csv", 10);
   const char *name = mrn_lua_get_string(L, 1, where, sim_specs, MRN_COUNT(sim_specs), "name");
