@@ -78,6 +78,12 @@ static inline double mat_det(const double A[9]) {
          A[2] * (A[3] * A[7] - A[4] * A[6]);
 }
 
+/* det A of a deformation gradient in `dim` dimensions: in plane strain (dim
+ * 2) F's z row and column are e_z, so the in-plane block's determinant */
+static inline double mat_det_dim(const double A[9], const int dim) {
+  return dim == 2 ? A[0] * A[4] - A[1] * A[3] : mat_det(A);
+}
+
 /* B = A^-1 for 3x3; returns 1 (B untouched) when A is singular */
 static inline int mat_inverse(const double A[9], double B[9]) {
   double det = mat_det(A);

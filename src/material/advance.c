@@ -91,15 +91,16 @@ MRN_ALWAYS_INLINE void jaumann_rotate(const int dim, const double L[9], double d
 }
 
 /* F advanced over the step, J its determinant after, and before in *J_old
- * unless J_old is NULL. Returns 1 (F unchanged) when the increment would
+ * unless J_old is NULL (the determinants of the dimension, mat_det_dim, as
+ * the particle volume is formed). Returns 1 (F unchanged) when the increment would
  * invert F. */
 MRN_ALWAYS_INLINE int advance_F(const int dim, const double L[9], double dt, mrn_f_update f_update, double F[9],
                                 double *J_old, double *J) {
   double A[9], Fn[9];
   if (increment(dim, L, dt, f_update, A)) return 1;
   apply_increment(dim, A, F, Fn);
-  if (J_old) *J_old = mat_det(F);
-  *J = mat_det(Fn);
+  if (J_old) *J_old = mat_det_dim(F, dim);
+  *J = mat_det_dim(Fn, dim);
   if (!(*J > 0.0)) return 1;
   memcpy(F, Fn, (dim == 3 ? 9 : 6) * sizeof(double)); /* plane strain: the z row is unchanged */
   return 0;
@@ -125,20 +126,25 @@ MRN_ALWAYS_INLINE int kinematics(const int dim, const mrn_material *mat, const d
   return 0;
 }
 
+/* the mid-step volume V0 (J_old + J) / 2 that weights the energies of the
+ * step (000, Eqs. 64-65) */
+MRN_ALWAYS_INLINE double mid_volume(double vol0, double J_old, double J) { return 0.5 * (vol0 * J_old + vol0 * J); }
+
 /* A `pure_hooke` model (material.h): the kinematics and the model's update
  * of each point in one loop straight on the arrays, the same arithmetic as
  * kinematics() followed by the model's update without the hand-over through
  * mrn_material_point and the call per batch. */
 MRN_ALWAYS_INLINE long advance_hooke(const int dim, const mrn_material *mat, mrn_f_update f_update, double dt,
                                      size_t n, const double *L, double *F, double *stress, double *strain,
-                                     mrn_point_result *out) {
+                                     const mrn_energy_sums *energy, mrn_point_result *out) {
   const double lambda = mat->derived[0], shear = mat->derived[1];
   long first_bad = -1;
   for (size_t i = 0; i < n; i++) {
     const double *Li = L + 9 * i;
-    double J;
-    if (advance_F(dim, Li, dt, f_update, F + 9 * i, NULL, &J)) {
-      out[i].inverted = 1;
+    double *Fi = F + 9 * i;
+    double J_old, J;
+    if (advance_F(dim, Li, dt, f_update, Fi, &J_old, &J)) {
+      if (out) out[i].inverted = 1;
       if (first_bad < 0) first_bad = (long)i;
       continue;
     }
@@ -152,7 +158,9 @@ MRN_ALWAYS_INLINE long advance_hooke(const int dim, const mrn_material *mat, mrn
       double *restrict e = strain + 6 * i;
       for (int c = 0; c < 6; c++) e[c] += de[c];
     }
-    out[i] = (mrn_point_result){J, de_elastic, 0.0, 0};
+    /* no plastic work: w_plastic is left as it is */
+    if (energy) energy->e_elastic[i] += mid_volume(energy->vol0[i], J_old, J) * de_elastic;
+    if (out) out[i] = (mrn_point_result){J, de_elastic, 0.0, 0};
   }
   return first_bad;
 }
@@ -161,8 +169,9 @@ enum { BATCH = 32 }; /* points per call of the model's update */
 
 MRN_ALWAYS_INLINE long advance_points(const int dim, const mrn_material *mat, mrn_f_update f_update, double dt,
                                       size_t n, const double *L, double *F, double *stress, double *strain,
-                                      double *state, int state_stride, mrn_point_result *out) {
-  if (mat->type->pure_hooke) return advance_hooke(dim, mat, f_update, dt, n, L, F, stress, strain, out);
+                                      double *state, int state_stride, const mrn_energy_sums *energy,
+                                      mrn_point_result *out) {
+  if (mat->type->pure_hooke) return advance_hooke(dim, mat, f_update, dt, n, L, F, stress, strain, energy, out);
   long first_bad = -1;
   if (!mat->type->nstate) state = NULL;
   for (size_t lo = 0; lo < n; lo += BATCH) {
@@ -173,7 +182,7 @@ MRN_ALWAYS_INLINE long advance_points(const int dim, const mrn_material *mat, mr
     for (size_t i = lo; i < hi; i++) {
       double *st = state ? state + (size_t)state_stride * i : NULL;
       if (kinematics(dim, mat, L + 9 * i, dt, f_update, F + 9 * i, stress + 6 * i, st, &pts[k])) {
-        out[i].inverted = 1;
+        if (out) out[i].inverted = 1;
         if (first_bad < 0) first_bad = (long)i;
         continue;
       }
@@ -188,7 +197,12 @@ MRN_ALWAYS_INLINE long advance_points(const int dim, const mrn_material *mat, mr
         double *restrict e = strain + 6 * i;
         for (int c = 0; c < 6; c++) e[c] += pt->dstrain[c];
       }
-      out[i] = (mrn_point_result){pt->J, pt->de_elastic, pt->dw_plastic, 0};
+      if (energy) {
+        const double vol_mid = mid_volume(energy->vol0[i], pt->J_old, pt->J);
+        energy->e_elastic[i] += vol_mid * pt->de_elastic;
+        energy->w_plastic[i] += vol_mid * pt->dw_plastic;
+      }
+      if (out) out[i] = (mrn_point_result){pt->J, pt->de_elastic, pt->dw_plastic, 0};
     }
   }
   return first_bad;
@@ -198,8 +212,9 @@ MRN_ALWAYS_INLINE long advance_points(const int dim, const mrn_material *mat, mr
 #define MRN_ADVANCE_VARIANT(DIM, FU)                                                                            \
   static long advance_points_##DIM##d_##FU(const mrn_material *mat, double dt, size_t n, const double *L,       \
                                            double *F, double *stress, double *strain, double *state,            \
-                                           int state_stride, mrn_point_result *out) {                           \
-    return advance_points(DIM, mat, MRN_F_UPDATE_##FU, dt, n, L, F, stress, strain, state, state_stride, out); \
+                                           int state_stride, const mrn_energy_sums *energy, mrn_point_result *out) { \
+    return advance_points(DIM, mat, MRN_F_UPDATE_##FU, dt, n, L, F, stress, strain, state, state_stride, energy,    \
+                          out);                                                                                     \
   }
 MRN_ADVANCE_VARIANT(2, MIDPOINT)
 MRN_ADVANCE_VARIANT(2, EULER)
@@ -209,14 +224,14 @@ MRN_ADVANCE_VARIANT(3, EULER)
 
 long mrn_material_advance_points(const mrn_material *mat, int dim, mrn_f_update f_update, double dt, size_t n,
                                  const double *L, double *F, double *stress, double *strain, double *state,
-                                 int state_stride, mrn_point_result *out) {
+                                 int state_stride, const mrn_energy_sums *energy, mrn_point_result *out) {
   const int mid = f_update == MRN_F_UPDATE_MIDPOINT;
   return (dim == 2 ? (mid ? advance_points_2d_MIDPOINT : advance_points_2d_EULER)
                    : (mid ? advance_points_3d_MIDPOINT : advance_points_3d_EULER))(mat, dt, n, L, F, stress, strain,
-                                                                                  state, state_stride, out);
+                                                                                  state, state_stride, energy, out);
 }
 
 int mrn_material_advance(const mrn_material *mat, const double L[9], double dt, mrn_f_update f_update, double F[9],
                          double stress[6], double strain[6], double *state, mrn_point_result *out) {
-  return mrn_material_advance_points(mat, 3, f_update, dt, 1, L, F, stress, strain, state, 0, out) >= 0;
+  return mrn_material_advance_points(mat, 3, f_update, dt, 1, L, F, stress, strain, state, 0, NULL, out) >= 0;
 }

@@ -7,7 +7,8 @@
  *           a rigid spin stays a pure rotation) or A = I + L dt (002, Eq. 27);
  *   rate-form models get the stress co-rotated by the Jaumann spin
  *   (002, Eqs. 28-30) and the strain increment sym(L) dt;
- *   the energies per unit volume are returned for the caller to weight.
+ *   the energies per unit volume are weighted by the mid-step volume and
+ *   added to the points' sums, or returned for the caller to weight.
  * Points are advanced in batches of one material: the kinematics are
  * specialised by dimension (in plane strain L and A have no z coupling) and
  * the model's update is called once per batch, not once per point. */
@@ -27,16 +28,28 @@ typedef struct mrn_point_result {
   int inverted;           /* 1: the increment would invert F; the point was left unchanged */
 } mrn_point_result;
 
+/* Where a batch's energies go (000, Eqs. 64-65): each point's increments
+ * per unit volume (de_elastic, dw_plastic of mrn_material_point), weighted
+ * by its mid-step volume V0 (J_old + J) / 2, are added to e_elastic and
+ * w_plastic. Each pointer is to the batch's first point, laid out as the
+ * particle arrays (one value per point). */
+typedef struct mrn_energy_sums {
+  const double *vol0; /* reference volumes V0 */
+  double *e_elastic;
+  double *w_plastic;
+} mrn_energy_sums;
+
 /* Advances n points of one material whose data lie in the particle arrays'
  * layout: L and F 9 values per point, stress and strain 6 (strain may be
  * NULL), state `state_stride` (may be NULL). dim 2 is plane strain: L must
  * have no z row or column (as the 2D gradient kernels store it); dim 3 is
- * general. out[i] receives point i's result. Returns the index of the first
- * point whose increment would invert F, or -1; such points are left
- * unchanged, the others are advanced. */
+ * general. The energies are added as `energy` says (may be NULL); out[i]
+ * receives point i's result (out may be NULL). Returns the index of the
+ * first point whose increment would invert F, or -1; such points are left
+ * unchanged (energies included), the others are advanced. */
 long mrn_material_advance_points(const mrn_material *mat, int dim, mrn_f_update f_update, double dt, size_t n,
                                  const double *L, double *F, double *stress, double *strain, double *state,
-                                 int state_stride, mrn_point_result *out);
+                                 int state_stride, const mrn_energy_sums *energy, mrn_point_result *out);
 
 /* One point (3D, general L). Updates F, stress, strain (may be NULL) and
  * state in place. Returns 0, or 1 when the increment would invert F

@@ -19,20 +19,18 @@ int mrn_driver_init(mrn_driver *d, const mrn_material *m, const double stress0[6
   return MRN_OK;
 }
 
-/* One step on d itself, through the same mrn_material_advance as the step,
+/* One step on d itself, through the same mrn_material_advance_points as the step,
  * for a single particle of unit reference volume. */
 static int advance(mrn_driver *d, const double L[9], double dt) {
+  static const double unit_volume = 1.0;
+  const mrn_energy_sums energy = {&unit_volume, &d->e_elastic, &d->w_plastic};
   mrn_point_result r;
   mrn_f_update kind = d->kinematics == MRN_DRIVER_F_MIDPOINT ? MRN_F_UPDATE_MIDPOINT : MRN_F_UPDATE_EULER;
-  const double J_old = mat_det(d->F);
-  if (mrn_material_advance(d->mat, L, dt, kind, d->F, d->stress, d->strain, d->mat->type->nstate ? d->state : NULL,
-                           &r))
+  if (mrn_material_advance_points(d->mat, 3, kind, dt, 1, L, d->F, d->stress, d->strain,
+                                  d->mat->type->nstate ? d->state : NULL, 0, &energy, &r) >= 0)
     return mrn_error("driver: the increment would invert F at t = %g s", d->time + dt);
-  double vol_mid = 0.5 * (J_old + r.J);
   d->de_elastic = r.de_elastic;
   d->dw_plastic = r.dw_plastic;
-  d->e_elastic += vol_mid * r.de_elastic;
-  d->w_plastic += vol_mid * r.dw_plastic;
   d->time += dt;
   return MRN_OK;
 }

@@ -81,8 +81,7 @@ void mrn_particles_compact(mrn_particles *p, const unsigned char *keep);
  * per particle): worked out where it is read. The kernels, whose dimension
  * is a constant, call mrn_particle_volume_dim. */
 static inline double mrn_particle_volume_dim(const mrn_particles *p, size_t i, const int dim) {
-  const double *F = p->F + 9 * i;
-  return p->vol0[i] * (dim == 2 ? F[0] * F[4] - F[1] * F[3] : mat_det(F));
+  return p->vol0[i] * mat_det_dim(p->F + 9 * i, dim);
 }
 
 static inline double mrn_particle_volume(const mrn_particles *p, size_t i) {

@@ -13,33 +13,23 @@ typedef struct chunk_ctx {
 
 /* Kinematics and constitutive update of particles [lo, hi) (at most
  * MRN_GRADIENT_CHUNK) from their velocity gradients L (9 per particle), in
- * runs of one material, and the energies weighted by the mid-step volume
- * (000, Eqs. 64-65), the volumes V0 det F before and after. Returns the
- * first particle whose F would invert, or -1. A gradient sink
- * (transfer/kernels.h). */
+ * runs of one material, with the energies weighted by the mid-step volume
+ * (000, Eqs. 64-65) added in the same pass. Returns the first particle whose
+ * F would invert, or -1. A gradient sink (transfer/kernels.h). */
 static long update_chunk(void *ctx, size_t lo, size_t hi, const double *L) {
   const chunk_ctx *c = ctx;
   mrn_sim *sim = c->sim;
   mrn_particles *ps = &sim->particles;
   const int stride = ps->state_stride;
-  mrn_point_result r[MRN_GRADIENT_CHUNK];
-  double vol_old[MRN_GRADIENT_CHUNK];
-  for (size_t p = lo; p < hi; p++) vol_old[p - lo] = mrn_particle_volume(ps, p);
   long first_bad = -1;
   for (size_t a = lo, b; a < hi; a = b) {
     for (b = a + 1; b < hi && ps->material[b] == ps->material[a];) b++;
+    const mrn_energy_sums energy = {ps->vol0 + a, ps->e_elastic + a, ps->w_plastic + a};
     long bad = mrn_material_advance_points(sim->materials[ps->material[a]], sim->dim, MRN_F_UPDATE_MIDPOINT, c->dt,
                                            b - a, L + 9 * (a - lo), ps->F + 9 * a, ps->stress + 6 * a,
                                            ps->strain + 6 * a, stride ? ps->state + (size_t)stride * a : NULL,
-                                           stride, r + (a - lo));
+                                           stride, &energy, NULL);
     if (bad >= 0 && first_bad < 0) first_bad = (long)a + bad;
-  }
-  for (size_t p = lo; p < hi; p++) {
-    const mrn_point_result *rp = &r[p - lo];
-    if (rp->inverted) continue;
-    double vol_mid = 0.5 * (vol_old[p - lo] + ps->vol0[p] * rp->J);
-    ps->e_elastic[p] += vol_mid * rp->de_elastic;
-    ps->w_plastic[p] += vol_mid * rp->dw_plastic;
   }
   return first_bad;
 }

@@ -91,8 +91,8 @@ static void test_plane_vs_general(const mrn_material_type *type) {
     }
     for (int kind = 0; kind < 2; kind++) {
       mrn_f_update fu = kind ? MRN_F_UPDATE_EULER : MRN_F_UPDATE_MIDPOINT;
-      CHECK(mrn_material_advance_points(m, 2, fu, dt, NP, L[0], F2[0], s2[0], e2[0], ns ? st2[0] : NULL, 2, r2) < 0);
-      CHECK(mrn_material_advance_points(m, 3, fu, dt, NP, L[0], F3[0], s3[0], e3[0], ns ? st3[0] : NULL, 2, r3) < 0);
+      CHECK(mrn_material_advance_points(m, 2, fu, dt, NP, L[0], F2[0], s2[0], e2[0], ns ? st2[0] : NULL, 2, NULL, r2) < 0);
+      CHECK(mrn_material_advance_points(m, 3, fu, dt, NP, L[0], F3[0], s3[0], e3[0], ns ? st3[0] : NULL, 2, NULL, r3) < 0);
       for (int p = 0; p < NP; p++) {
         CHECK(mrn_material_advance(m, L[p], dt, fu, F1[p], s1[p], e1[p], ns ? st1[p] : NULL, &r1) == 0);
         /* the batched 3D path is the one-point path, bit for bit */
@@ -131,7 +131,7 @@ static void test_inversion(void) {
   const double dt = 1e-2;
   for (int p = 0; p < 3; p++) mat_identity(F[p]), L[p][1] = 1.0;
   L[1][0] = -2.0 / dt; /* Euler: F_xx = 1 - 2 < 0 */
-  CHECK(mrn_material_advance_points(m, 2, MRN_F_UPDATE_EULER, dt, 3, L[0], F[0], s[0], e[0], NULL, 0, r) == 1);
+  CHECK(mrn_material_advance_points(m, 2, MRN_F_UPDATE_EULER, dt, 3, L[0], F[0], s[0], e[0], NULL, 0, NULL, r) == 1);
   CHECK(r[1].inverted && !r[0].inverted && !r[2].inverted);
   CHECK(F[1][0] == 1.0 && F[1][1] == 0.0 && s[1][SXY] == 0.0);
   CHECK(F[0][1] == dt && F[2][1] == dt && s[0][SXY] > 0.0);

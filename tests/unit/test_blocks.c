@@ -208,7 +208,7 @@ static long advance_sink(void *ctx, size_t lo, size_t hi, const double *L) {
   mrn_particles *ps = &sim->particles;
   mrn_point_result r[MRN_GRADIENT_CHUNK];
   long bad = mrn_material_advance_points(sim->materials[0], sim->dim, MRN_F_UPDATE_MIDPOINT, 1e-3, hi - lo, L,
-                                         ps->F + 9 * lo, ps->stress + 6 * lo, ps->strain + 6 * lo, NULL, 0, r);
+                                         ps->F + 9 * lo, ps->stress + 6 * lo, ps->strain + 6 * lo, NULL, 0, NULL, r);
   return bad >= 0 ? (long)lo + bad : -1;
 }
 
