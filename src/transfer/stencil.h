@@ -129,31 +129,44 @@ static inline void KNAME(stencil_build)(const mrn_grid *g, const mrn_kernel_opti
 /* ---- plain B-splines one axis at a time (the fast path of the kernels) ---- */
 #ifndef MRN_STENCIL_BSPLINE_AXIS
 #define MRN_STENCIL_BSPLINE_AXIS
-/* cubic B-spline weights and d/dxi of the 4 nodes from floor(xi) - 1, the
- * same values as mrn_shape_cubic_1d without its branches (the node distances
- * fall in fixed intervals: [1, 2), [0, 1), [-1, 0), [-2, -1)) */
-static inline int mrn_bspline_cubic_axis(double xi, double *w, double *dw) {
-  const int base = (int)floor(xi) - 1;
-  const double b0 = (double)base; /* b0 + k is (double)(base + k) exactly, without a conversion each */
-  const double r0 = xi - b0, r1 = xi - (b0 + 1.0);
-  const double a2 = -(xi - (b0 + 2.0)), a3 = -(xi - (b0 + 3.0));
-  const double t0 = 2.0 - r0, t3 = 2.0 - a3;
-  w[0] = t0 * t0 * t0 / 6.0;
-  dw[0] = -0.5 * t0 * t0;
-  w[1] = 0.5 * r1 * r1 * r1 - r1 * r1 + 2.0 / 3.0;
-  dw[1] = 1.5 * r1 * r1 - 2.0 * r1;
-  w[2] = 0.5 * a2 * a2 * a2 - a2 * a2 + 2.0 / 3.0;
-  dw[2] = -(1.5 * a2 * a2 - 2.0 * a2);
-  w[3] = t3 * t3 * t3 / 6.0;
-  dw[3] = 0.5 * t3 * t3;
-  return base;
+/* 4 doubles at any 8-byte aligned address (GCC vector extension; without
+ * AVX it becomes two 2-wide halves) */
+typedef double mrn_axis_v4 __attribute__((vector_size(32), aligned(8), may_alias));
+
+/* Cubic B-spline along one axis for the 4 nodes from floor(xi) - 1, as
+ * 4-wide vectors: with f = xi - floor(xi) and g = 1 - f the node distances
+ * are 1 + f, f, g, 1 + g, and (the branches of mrn_shape_cubic_1d, in
+ * factored form; the two agree to round-off)
+ *   w  = (g^3/6, f^3/2 - f^2 + 2/3, g^3/2 - g^2 + 2/3, f^3/6)
+ *      = t^2 (a t + b) + c,      t = (g, f, g, f),
+ *   dw/dxi = (-g^2/2, 3f^2/2 - 2f, -(3g^2/2 - 2g), f^2/2) = t (d t + e).
+ * Stores the weights, dw/dx = dw/dxi / cell and the branch components
+ * origin + (base + k) cell - x; returns base. Not inlined: compiled once,
+ * so every kernel gets the same bits (inlined, the compiler fused the
+ * products into multiply-adds differently from one kernel to another). */
+static __attribute__((noinline, unused)) int mrn_bspline_cubic_axis(double xi, double inv_cell, double origin,
+                                                                     double cell, double x, double *w, double *dw,
+                                                                     double *off) {
+  const double fl = floor(xi);
+  const double f = xi - fl, g = 1.0 - f; /* f is exact for xi >= 0 */
+  const mrn_axis_v4 t = {g, f, g, f}, t2 = t * t;
+  const mrn_axis_v4 a = {1.0 / 6.0, 0.5, 0.5, 1.0 / 6.0}, b = {0.0, -1.0, -1.0, 0.0};
+  const mrn_axis_v4 c = {0.0, 2.0 / 3.0, 2.0 / 3.0, 0.0};
+  const mrn_axis_v4 d = {-0.5, 1.5, -1.5, 0.5}, e = {0.0, -2.0, 2.0, 0.0};
+  const mrn_axis_v4 k = {-1.0, 0.0, 1.0, 2.0};
+  *(mrn_axis_v4 *)w = t2 * (a * t + b) + c;
+  *(mrn_axis_v4 *)dw = t * (d * t + e) * inv_cell;
+  *(mrn_axis_v4 *)off = origin + (fl + k) * cell - x; /* fl + k: (double)(base + k) exactly */
+  return (int)fl - 1;
 }
 #endif
 
 /* A plain quadratic (sup = 3) or cubic (sup = 4) B-spline stencil kept as
  * its factors: the node of the first corner and, per axis, the weights,
- * their derivatives d/dx (1/m) and the branch components x_i - x_p. Products
- * are formed in the same order as stencil_build, so both give the same bits. */
+ * their derivatives d/dx (1/m) and the branch components x_i - x_p. The
+ * quadratic's products are formed in the same order as stencil_build, so
+ * both give the same bits; the cubic's weights are formed in factored form
+ * (mrn_bspline_cubic_axis) and agree with stencil_build's to round-off. */
 typedef struct KNAME(axes) {
   size_t node0;
   double w[DIM][4];
@@ -174,15 +187,20 @@ static inline __attribute__((always_inline)) int KNAME(axes_build)(const mrn_gri
   for (int d = 0; d < DIM; d++) {
     const double origin = g->origin[d], xd = x[d];
     const double xi = (xd - origin) * inv_cell;
-    double w[4], dw[4];
-    const int base = sup == 3 ? mrn_shape_quadratic_1d(xi, w, dw) : mrn_bspline_cubic_axis(xi, w, dw);
-    if (mode != MRN_KERNEL_EXTENDED && (base < 0 || base + sup - 1 > g->ncell[d])) return 0;
-    const double b0 = (double)base;
-    for (int k = 0; k < sup; k++) {
-      a->w[d][k] = w[k];
-      a->dw[d][k] = dw[k] * inv_cell;
-      a->off[d][k] = origin + (b0 + k) * cell - xd; /* b0 + k: (double)(base + k) exactly */
+    int base;
+    if (sup == 4) {
+      base = mrn_bspline_cubic_axis(xi, inv_cell, origin, cell, xd, a->w[d], a->dw[d], a->off[d]);
+    } else {
+      double w[3], dw[3];
+      base = mrn_shape_quadratic_1d(xi, w, dw);
+      const double b0 = (double)base;
+      for (int k = 0; k < sup; k++) {
+        a->w[d][k] = w[k];
+        a->dw[d][k] = dw[k] * inv_cell;
+        a->off[d][k] = origin + (b0 + k) * cell - xd; /* b0 + k: (double)(base + k) exactly */
+      }
     }
+    if (mode != MRN_KERNEL_EXTENDED && (base < 0 || base + sup - 1 > g->ncell[d])) return 0;
     node0 += (size_t)(base + pad) * (size_t)g->stride[d];
   }
   a->node0 = node0;
