@@ -10,7 +10,9 @@
  * form the same products in the same order.
  *
  * P2G runs over the particles binned by blocks of cells (transfer/blocks.h):
- * colour by colour, the blocks of one colour in parallel. The other kernels
+ * colour by colour, the blocks of one colour in parallel; in 2D the
+ * particles of one cell that follow one another are summed before they are
+ * added to the nodes (group_sum), so a node adds up per-cell sums. The other kernels
  * run over the particles in index order, in parallel, each particle on its
  * own. Neither depends on the number of threads for its result. */
 #include <string.h>
@@ -244,16 +246,163 @@ MRN_INLINE void KNAME(p2g_fast)(const KNAME(p2g_args) *ar, const KNAME(axes) *ax
 
 #endif
 
+/* ---- batches and groups of particles ----------------------------------------------
+ *
+ * P2G and USF's fused pass go through a block's particles in batches: up to
+ * MRN_BATCH particles of consecutive indices (in block order) whose
+ * stencils are all fast, built together (batch_build). Within a batch, in
+ * 2D, a group of particles that follow one another with stencils starting
+ * at the same node (the particles of one cell, as seeded or sorted) is
+ * summed in registers, row by row of the stencil, and the sums are added to
+ * the nodes once (group_sum); a particle alone is added to the nodes
+ * directly (p2g_fast), as is every particle in 3D. Both passes form the same
+ * batches from the same block order, so the force they scatter is the same
+ * bit for bit, whatever the thread count. */
+
+/* particles per batch (their stencils are kept; the fused pass hands their
+ * velocity gradients to the material update together) */
+enum { MRN_BATCH = 64 };
+
+/* The stencils of the batch that starts at order position q with particle
+ * p0, into ax; returns its length (0: p0 needs the general stencil). With
+ * gvel, each particle's velocity gradient is gathered from it into
+ * L + 9 j as its stencil is built. */
+MRN_INLINE size_t KNAME(batch_build)(const KNAME(p2g_args) *ar, const uint32_t *order, size_t q, size_t to,
+                                     size_t p0, KNAME(axes) *ax, const double *gvel, double *L, const int sup);
+
+#if DIM == 2
+#ifndef MRN_ACC4
+#define MRN_ACC4
+/* four nodes of a row of the stencil as the lanes of one vector */
+typedef double mrn_acc4 __attribute__((vector_size(32)));
+#endif
+
+/* ROW(j) for the rows j = 0 .. sup - 1, with literal indices: the compiler
+ * keeps the accumulators in registers only when every index into them is a
+ * constant before its loops are unrolled */
+#define MRN_STENCIL_ROWS(ROW) \
+  do {                        \
+    ROW(0);                   \
+    ROW(1);                   \
+    ROW(2);                   \
+    if (sup == 4) ROW(3);     \
+  } while (0)
+
+/* The particles p0 .. p0 + n - 1 (n >= 2), whose stencils ax[0 .. n) all
+ * start at ax[0].node0, summed and added to the nodes. With N = w_x w_y, the
+ * branch x_i - x_p = (o_x, o_y) and A_x, A_y the columns of A, row j of the
+ * nodes (lanes i, along x) receives from each particle
+ *   m N                      = w_y (m w_x)
+ *   m N (v + A (x_i - x_p))  = w_y Q + w_y o_y Y,  Q = w_x m (v + A_x o_x), Y = w_x m A_y
+ *   -V sigma grad N          = -(w_y R + dw_y S),  R = dw_x V sigma_x,     S = w_x V sigma_y
+ * with the x factors Q, Y, R, S formed once per particle. */
+MRN_INLINE void KNAME(group_sum)(const KNAME(p2g_args) *ar, const KNAME(axes) *ax, size_t p0, size_t n,
+                                 const int sup, const int momentum, const int force, const int affine) {
+  const mrn_particles *ps = ar->ps;
+  mrn_acc4 am[4], apx[4], apy[4], afx[4], afy[4]; /* mass, momentum, internal force by row */
+#define MRN_ZERO_ROW(J) am[J] = apx[J] = apy[J] = afx[J] = afy[J] = (mrn_acc4){0, 0, 0, 0}
+  MRN_STENCIL_ROWS(MRN_ZERO_ROW);
+#undef MRN_ZERO_ROW
+  for (size_t k = 0; k < n; k++) {
+    const KNAME(axes) *a = ax + k;
+    const size_t p = p0 + k;
+    const double m = ps->mass[p];
+    double mv[3], MA[3][3], VS[3][3];
+    KNAME(p2g_particle_terms)(ps, p, affine, mv, MA, VS);
+    /* lanes beyond the support hold zeros (axes_build) */
+    const mrn_acc4 wx = {a->w[0][0], a->w[0][1], a->w[0][2], a->w[0][3]};
+    const mrn_acc4 dwx = {a->dw[0][0], a->dw[0][1], a->dw[0][2], a->dw[0][3]};
+    const mrn_acc4 ox = {a->off[0][0], a->off[0][1], a->off[0][2], a->off[0][3]};
+    const mrn_acc4 mw = m * wx;
+    const mrn_acc4 qx = affine ? wx * (mv[0] + MA[0][0] * ox) : wx * mv[0];
+    const mrn_acc4 qy = affine ? wx * (mv[1] + MA[1][0] * ox) : wx * mv[1];
+    const mrn_acc4 yx = wx * MA[0][1], yy = wx * MA[1][1];
+    const mrn_acc4 rx = dwx * VS[0][0], ry = dwx * VS[1][0], sx = wx * VS[0][1], sy = wx * VS[1][1];
+#define MRN_ADD_ROW(J)                            \
+  do {                                            \
+    const double wr = a->w[1][J];                 \
+    if (momentum) {                               \
+      am[J] += wr * mw;                           \
+      apx[J] += wr * qx;                          \
+      apy[J] += wr * qy;                          \
+      if (affine) {                               \
+        const double wo = wr * a->off[1][J];      \
+        apx[J] += wo * yx;                        \
+        apy[J] += wo * yy;                        \
+      }                                           \
+    }                                             \
+    if (force) {                                  \
+      const double dwr = a->dw[1][J];             \
+      afx[J] -= wr * rx;                          \
+      afx[J] -= dwr * sx;                         \
+      afy[J] -= wr * ry;                          \
+      afy[J] -= dwr * sy;                         \
+    }                                             \
+  } while (0)
+    MRN_STENCIL_ROWS(MRN_ADD_ROW);
+#undef MRN_ADD_ROW
+  }
+  /* the sums into the nodes: `sup` per row, never a node beyond the stencil
+   * (it may belong to another thread's block) */
+  mrn_grid *g = ar->g;
+  double *restrict mass = g->mass, *restrict mom = g->mom, *restrict frc = g->force;
+  const long s1 = g->stride[1];
+#define MRN_FLUSH_ROW(J)                                                \
+  do {                                                                  \
+    const size_t row = ax->node0 + (size_t)((J) * s1);                  \
+    for (int i = 0; i < sup; i++) {                                     \
+      const size_t nd = row + (size_t)i;                                \
+      if (momentum) {                                                   \
+        mass[nd] += am[J][i];                                           \
+        const mrn_v2 add = {apx[J][i], apy[J][i]};                      \
+        mrn_v2_store(mom + 3 * nd, mrn_v2_load(mom + 3 * nd) + add);    \
+      }                                                                 \
+      if (force) {                                                      \
+        const mrn_v2 add = {afx[J][i], afy[J][i]};                      \
+        mrn_v2_store(frc + 3 * nd, mrn_v2_load(frc + 3 * nd) + add);    \
+      }                                                                 \
+    }                                                                   \
+  } while (0)
+  MRN_STENCIL_ROWS(MRN_FLUSH_ROW);
+#undef MRN_FLUSH_ROW
+}
+#undef MRN_STENCIL_ROWS
+#endif
+
+/* A batch's particles p0 .. p0 + n - 1, stencils ax[0 .. n), to the grid */
+MRN_INLINE void KNAME(batch_scatter)(const KNAME(p2g_args) *ar, const KNAME(axes) *ax, size_t p0, size_t n,
+                                     const int sup, const int momentum, const int force, const int affine) {
+  size_t j = 0;
+  while (j < n) {
+    size_t e = j + 1;
+#if DIM == 2
+    while (e < n && ax[e].node0 == ax[j].node0) e++;
+    if (e - j > 1) {
+      KNAME(group_sum)(ar, ax + j, p0 + j, e - j, sup, momentum, force, affine);
+      j = e;
+      continue;
+    }
+#endif
+    KNAME(p2g_fast)(ar, &ax[j], p0 + j, sup, momentum, force, affine);
+    j = e;
+  }
+}
+
 /* the particles order[from .. to) (or from .. to when order is NULL) */
 MRN_INLINE void KNAME(p2g_range)(const KNAME(p2g_args) *ar, const uint32_t *order, size_t from, size_t to,
                                  const int sup, const int momentum, const int force, const int affine) {
-  for (size_t q = from; q < to; q++) {
-    const size_t p = order ? order[q] : q;
-    KNAME(axes) ax;
-    if (sup && KNAME(axes_build)(ar->g, sup, ar->ko.boundary, ar->ps->x + 3 * p, &ax))
-      KNAME(p2g_fast)(ar, &ax, p, sup, momentum, force, affine);
-    else
-      KNAME(p2g_general)(ar, p, momentum, force, affine);
+  KNAME(axes) ax[MRN_BATCH];
+  size_t q = from;
+  while (q < to) {
+    const size_t p0 = order ? order[q] : q;
+    const size_t n = sup ? KNAME(batch_build)(ar, order, q, to, p0, ax, NULL, NULL, sup) : 0;
+    if (!n) {
+      KNAME(p2g_general)(ar, p0, momentum, force, affine);
+      q++;
+      continue;
+    }
+    KNAME(batch_scatter)(ar, ax, p0, n, sup, momentum, force, affine);
+    q += n;
   }
 }
 
@@ -578,34 +727,36 @@ long KNAME(mrn_gradient)(mrn_sim *sim, const double *gvel, const mrn_gradient_si
   return bad;
 }
 
+MRN_INLINE size_t KNAME(batch_build)(const KNAME(p2g_args) *ar, const uint32_t *order, size_t q, size_t to,
+                                     size_t p0, KNAME(axes) *ax, const double *gvel, double *L, const int sup) {
+  size_t n = 0;
+  while (q + n < to && n < MRN_BATCH && (order ? order[q + n] : q + n) == p0 + n &&
+         KNAME(axes_build)(ar->g, sup, ar->ko.boundary, ar->ps->x + 3 * (p0 + n), &ax[n])) {
+    if (gvel) KNAME(gradient_fast)(ar->g, &ax[n], gvel, L + 9 * n, sup);
+    n++;
+  }
+  return n;
+}
+
 /* ---- USF: material update and internal force in one pass ---------------------- */
 
-/* particles per hand-over in the fused pass (their stencils are kept) */
-enum { MRN_FUSED_RUN = 64 };
-
 /* The particles order[from .. to) of one block (or from .. to when order is
- * NULL), in runs of consecutive indices: each particle's stencil is built
- * once, its L gathered from gvel, the run's L handed to the sink (the
+ * NULL), batch by batch (batch_build): each particle's stencil is built
+ * once, its L gathered from gvel, the batch's L handed to the sink (the
  * material update), and then the internal force of the updated stress
- * scattered with the same stencils. A particle that needs the general
- * stencil is a run of its own. `sup` (3 or 4) is a constant. */
+ * scattered with the same stencils, as P2G would. A particle that needs the
+ * general stencil is handled on its own. `sup` (3 or 4) is a constant. */
 MRN_INLINE void KNAME(update_force_range)(const KNAME(p2g_args) *ar, const double *gvel, const uint32_t *order,
                                           size_t from, size_t to, const mrn_gradient_sink *sink, long *first_bad,
                                           double *spent, const int sup) {
   const mrn_grid *g = ar->g;
   const mrn_particles *ps = ar->ps;
-  KNAME(axes) ax[MRN_FUSED_RUN];
-  double L[9 * MRN_FUSED_RUN];
+  KNAME(axes) ax[MRN_BATCH];
+  double L[9 * MRN_BATCH];
   size_t q = from;
   while (q < to) {
     const size_t p0 = order ? order[q] : q;
-    size_t n = 0;
-    while (q < to && n < MRN_FUSED_RUN && (order ? order[q] : q) == p0 + n &&
-           KNAME(axes_build)(g, sup, ar->ko.boundary, ps->x + 3 * (p0 + n), &ax[n])) {
-      KNAME(gradient_fast)(g, &ax[n], gvel, L + 9 * n, sup);
-      n++;
-      q++;
-    }
+    const size_t n = KNAME(batch_build)(ar, order, q, to, p0, ax, gvel, L, sup);
     if (!n) { /* the general stencil, for this particle alone */
       KNAME(gradient_particle)(g, ps, &ar->ko, gvel, p0, L, 0);
       KNAME(hand_over)(sink, (long)p0, (long)p0 + 1, L, first_bad, spent);
@@ -614,7 +765,8 @@ MRN_INLINE void KNAME(update_force_range)(const KNAME(p2g_args) *ar, const doubl
       continue;
     }
     KNAME(hand_over)(sink, (long)p0, (long)(p0 + n), L, first_bad, spent);
-    for (size_t j = 0; j < n; j++) KNAME(p2g_fast)(ar, &ax[j], p0 + j, sup, 0, 1, 0);
+    KNAME(batch_scatter)(ar, ax, p0, n, sup, 0, 1, 0);
+    q += n;
   }
 }
 

@@ -199,6 +199,9 @@ static inline __attribute__((always_inline)) int KNAME(axes_build)(const mrn_gri
         a->dw[d][k] = dw[k] * inv_cell;
         a->off[d][k] = origin + (b0 + k) * cell - xd; /* b0 + k: (double)(base + k) exactly */
       }
+      /* in 2D the x factors are read as 4-wide vectors (group_sum in
+       * kernels_impl.h): the lane beyond the support holds zeros */
+      if (DIM == 2) a->w[d][3] = a->dw[d][3] = a->off[d][3] = 0.0;
     }
     if (mode != MRN_KERNEL_EXTENDED && (base < 0 || base + sup - 1 > g->ncell[d])) return 0;
     node0 += (size_t)(base + pad) * (size_t)g->stride[d];

@@ -6,7 +6,8 @@
  * in the same state (by id) as one that does not, to round-off; a P2G that
  * reuses the previous binning gives the same nodal values as one that bins;
  * USF's fused material update and force scatter (mrn_update_force) gives
- * bitwise the particle state and nodal forces of the two passes it fuses. */
+ * bitwise the particle state and nodal forces of the two passes it fuses
+ * (both sum the same groups of particles in 2D, kernels_impl.h). */
 #include <stdlib.h>
 #include <string.h>
 #ifdef _OPENMP
