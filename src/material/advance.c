@@ -106,6 +106,34 @@ MRN_ALWAYS_INLINE int advance_F(const int dim, const double L[9], double dt, mrn
   return 0;
 }
 
+/* The strain increment sym(L) dt (002, Eq. 29). In plane strain (dim 2) L
+ * has no z row or column, so the z components are zero without reading L. */
+MRN_ALWAYS_INLINE void strain_increment(const int dim, const double L[9], double dt, double de[6]) {
+  if (dim == 3) {
+    mat_sym_part(L, dt, de);
+    return;
+  }
+  de[SXX] = dt * L[0];
+  de[SYY] = dt * L[4];
+  de[SXY] = 0.5 * dt * (L[1] + L[3]);
+  de[SZZ] = de[SYZ] = de[SXZ] = 0.0;
+}
+
+/* Hooke's law of mrn_hooke_update for a plane-strain increment (de_zz =
+ * de_yz = de_xz = 0): only sxx, syy, szz and sxy change, and only the
+ * in-plane components of de enter the energy; the same values without the
+ * products by zero (up to the sign of a zero). */
+MRN_ALWAYS_INLINE double hooke_plane_strain(double lambda, double shear, const double de[6], double s[6]) {
+  const double old_xx = s[SXX], old_yy = s[SYY], old_xy = s[SXY];
+  const double tr = de[SXX] + de[SYY];
+  s[SXX] += lambda * tr + 2.0 * shear * de[SXX];
+  s[SYY] += lambda * tr + 2.0 * shear * de[SYY];
+  s[SZZ] += lambda * tr;
+  s[SXY] += 2.0 * shear * de[SXY];
+  return 0.5 * (old_xx + s[SXX]) * de[SXX] + 0.5 * (old_yy + s[SYY]) * de[SYY] +
+         2.0 * (0.5 * (old_xy + s[SXY]) * de[SXY]);
+}
+
 /* The kinematics of one point: F advanced, and the model's input (rotated
  * start-of-step stress, strain increment, J) set in pt. Returns 1 (F
  * unchanged) when the increment would invert F. */
@@ -115,7 +143,7 @@ MRN_ALWAYS_INLINE int kinematics(const int dim, const mrn_material *mat, const d
   double J_old, J;
   if (advance_F(dim, L, dt, f_update, F, &J_old, &J)) return 1;
   memcpy(pt->stress, stress, sizeof pt->stress);
-  mat_sym_part(L, dt, pt->dstrain); /* (002, Eq. 29) */
+  strain_increment(dim, L, dt, pt->dstrain);
   if (mat->type->rate_form) jaumann_rotate(dim, L, dt, pt->stress);
   pt->F = F;
   pt->J = J;
@@ -150,13 +178,20 @@ MRN_ALWAYS_INLINE long advance_hooke(const int dim, const mrn_material *mat, mrn
     }
     double s[6], de[6];
     memcpy(s, stress + 6 * i, sizeof s);
-    mat_sym_part(Li, dt, de); /* (002, Eq. 29) */
+    strain_increment(dim, Li, dt, de);
     jaumann_rotate(dim, Li, dt, s);
-    const double de_elastic = mrn_hooke_update(lambda, shear, de, s);
+    const double de_elastic =
+        dim == 2 ? hooke_plane_strain(lambda, shear, de, s) : mrn_hooke_update(lambda, shear, de, s);
     memcpy(stress + 6 * i, s, sizeof s);
     if (strain) {
       double *restrict e = strain + 6 * i;
-      for (int c = 0; c < 6; c++) e[c] += de[c];
+      if (dim == 2) {
+        e[SXX] += de[SXX];
+        e[SYY] += de[SYY];
+        e[SXY] += de[SXY];
+      } else {
+        for (int c = 0; c < 6; c++) e[c] += de[c];
+      }
     }
     /* no plastic work: w_plastic is left as it is */
     if (energy) energy->e_elastic[i] += mid_volume(energy->vol0[i], J_old, J) * de_elastic;
