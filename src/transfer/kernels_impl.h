@@ -268,7 +268,8 @@ enum { MRN_BATCH = 64 };
  * gvel, each particle's velocity gradient is gathered from it into
  * L + 9 j as its stencil is built. */
 MRN_INLINE size_t KNAME(batch_build)(const KNAME(p2g_args) *ar, const uint32_t *order, size_t q, size_t to,
-                                     size_t p0, KNAME(axes) *ax, const double *gvel, double *L, const int sup);
+                                     size_t p0, KNAME(axes) *ax, const double *gvel, double *L, const int sup,
+                                     const int momentum, const int force, const int affine);
 
 #if DIM == 2
 #ifndef MRN_ACC4
@@ -395,7 +396,7 @@ MRN_INLINE void KNAME(p2g_range)(const KNAME(p2g_args) *ar, const uint32_t *orde
   size_t q = from;
   while (q < to) {
     const size_t p0 = order ? order[q] : q;
-    const size_t n = sup ? KNAME(batch_build)(ar, order, q, to, p0, ax, NULL, NULL, sup) : 0;
+    const size_t n = sup ? KNAME(batch_build)(ar, order, q, to, p0, ax, NULL, NULL, sup, momentum, force, affine) : 0;
     if (!n) {
       KNAME(p2g_general)(ar, p0, momentum, force, affine);
       q++;
@@ -728,11 +729,21 @@ long KNAME(mrn_gradient)(mrn_sim *sim, const double *gvel, const mrn_gradient_si
 }
 
 MRN_INLINE size_t KNAME(batch_build)(const KNAME(p2g_args) *ar, const uint32_t *order, size_t q, size_t to,
-                                     size_t p0, KNAME(axes) *ax, const double *gvel, double *L, const int sup) {
+                                     size_t p0, KNAME(axes) *ax, const double *gvel, double *L, const int sup,
+                                     const int momentum, const int force, const int affine) {
   size_t n = 0;
   while (q + n < to && n < MRN_BATCH && (order ? order[q + n] : q + n) == p0 + n &&
          KNAME(axes_build)(ar->g, sup, ar->ko.boundary, ar->ps->x + 3 * (p0 + n), &ax[n])) {
     if (gvel) KNAME(gradient_fast)(ar->g, &ax[n], gvel, L + 9 * n, sup);
+    /* what the scatter reads of the particle, asked for while the batch's
+     * stencils are built */
+    const size_t p = p0 + n;
+    if (momentum) __builtin_prefetch(ar->ps->v + 3 * p);
+    if (affine) __builtin_prefetch(ar->ps->affine + 9 * p);
+    if (force) {
+      __builtin_prefetch(ar->ps->stress + 6 * p);
+      __builtin_prefetch(ar->ps->F + 9 * p);
+    }
     n++;
   }
   return n;
@@ -756,7 +767,7 @@ MRN_INLINE void KNAME(update_force_range)(const KNAME(p2g_args) *ar, const doubl
   size_t q = from;
   while (q < to) {
     const size_t p0 = order ? order[q] : q;
-    const size_t n = KNAME(batch_build)(ar, order, q, to, p0, ax, gvel, L, sup);
+    const size_t n = KNAME(batch_build)(ar, order, q, to, p0, ax, gvel, L, sup, 0, 0, 0);
     if (!n) { /* the general stencil, for this particle alone */
       KNAME(gradient_particle)(g, ps, &ar->ko, gvel, p0, L, 0);
       KNAME(hand_over)(sink, (long)p0, (long)p0 + 1, L, first_bad, spent);
