@@ -734,10 +734,17 @@ MRN_INLINE size_t KNAME(batch_build)(const KNAME(p2g_args) *ar, const uint32_t *
   size_t n = 0;
   while (q + n < to && n < MRN_BATCH && (order ? order[q + n] : q + n) == p0 + n &&
          KNAME(axes_build)(ar->g, sup, ar->ko.boundary, ar->ps->x + 3 * (p0 + n), &ax[n])) {
-    if (gvel) KNAME(gradient_fast)(ar->g, &ax[n], gvel, L + 9 * n, sup);
+    const size_t p = p0 + n;
+    if (gvel) {
+      KNAME(gradient_fast)(ar->g, &ax[n], gvel, L + 9 * n, sup);
+      /* what the material update reads once the batch's gradients are formed */
+      __builtin_prefetch(ar->ps->F + 9 * p, 1);
+      __builtin_prefetch(ar->ps->stress + 6 * p, 1);
+      __builtin_prefetch(ar->ps->strain + 6 * p, 1);
+      if (ar->ps->state_stride) __builtin_prefetch(ar->ps->state + (size_t)ar->ps->state_stride * p, 1);
+    }
     /* what the scatter reads of the particle, asked for while the batch's
      * stencils are built */
-    const size_t p = p0 + n;
     if (momentum) __builtin_prefetch(ar->ps->v + 3 * p);
     if (affine) __builtin_prefetch(ar->ps->affine + 9 * p);
     if (force) {
@@ -896,6 +903,15 @@ MRN_INLINE void KNAME(g2p_particle)(const KNAME(g2p_args) *ar, size_t p, double 
   double *v = ps->v + 3 * p;
   double v_pic[3] = {0, 0, 0}, v_old[3] = {0, 0, 0}, v_star[3] = {0, 0, 0};
   double B[DIM][DIM] = {{0}}, D[DIM][DIM] = {{0}}, L[DIM][DIM] = {{0}};
+  if (fused) {
+    /* the material update reads these once the chunk's gradients are
+     * formed: ask for them now, into the second-level cache */
+    __builtin_prefetch(ps->F + 9 * p, 1, 2);
+    __builtin_prefetch(ps->stress + 6 * p, 1, 2);
+    __builtin_prefetch(ps->strain + 6 * p, 1, 2);
+    if (ps->state_stride) __builtin_prefetch(ps->state + (size_t)ps->state_stride * p, 1, 2);
+  }
+  if (gvk == MRN_VGRID_AFFINE) __builtin_prefetch(ps->affine + 9 * p, 1);
   KNAME(axes) ax;
   if (sup && KNAME(axes_build)(g, sup, ar->ko->boundary, x, &ax)) {
     KNAME(gather_fast)(&ax, g->vel_new, g->vel, g->stride[1], g->stride[2], sup, 1, want_dv, want_bd, want_l, v_pic,
