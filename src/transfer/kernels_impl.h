@@ -11,10 +11,11 @@
  *
  * P2G runs over the particles binned by blocks of cells (transfer/blocks.h):
  * colour by colour, the blocks of one colour in parallel; in 2D the
- * particles of one cell that follow one another are summed before they are
- * added to the nodes (group_sum), so a node adds up per-cell sums. The other kernels
- * run over the particles in index order, in parallel, each particle on its
- * own. Neither depends on the number of threads for its result. */
+ * particles that follow one another with stencils starting at the same node
+ * are summed before they are added to the nodes (group_sum), so a node adds
+ * up per-group sums. The other kernels run over the particles in index
+ * order, in parallel, each particle on its own. Neither depends on the
+ * number of threads for its result. */
 #include <string.h>
 
 #include "core/parallel.h"
@@ -252,9 +253,10 @@ MRN_INLINE void KNAME(p2g_fast)(const KNAME(p2g_args) *ar, const KNAME(axes) *ax
  * MRN_BATCH particles of consecutive indices (in block order) whose
  * stencils are all fast, built together (batch_build). Within a batch, in
  * 2D, a group of particles that follow one another with stencils starting
- * at the same node (the particles of one cell, as seeded or sorted) is
- * summed in registers, row by row of the stencil, and the sums are added to
- * the nodes once (group_sum); a particle alone is added to the nodes
+ * at the same node (as seeded or sorted: for a cubic B-spline the
+ * particles of one cell, for a quadratic one those between the same cell
+ * centres) is summed in registers, row by row of the stencil, and the sums
+ * are added to the nodes once (group_sum); a particle alone is added to the nodes
  * directly (p2g_fast), as is every particle in 3D. Both passes form the same
  * batches from the same block order, so the force they scatter is the same
  * bit for bit, whatever the thread count. */
