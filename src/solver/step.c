@@ -10,6 +10,7 @@
  *   USAVG: half the strain increment as in USF, half as in USL.
  * 000 §3.4 describes MUSL as USL with V~ in Eq. (45); moraine follows the
  * original definitions, in which USL already uses V~ and MUSL re-maps. */
+#include <float.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -168,19 +169,46 @@ static inline void wrap_and_clamp(const end_ctx *e, long p) {
 
 /* Whether every particle of [lo, hi) is strictly inside the grid along each
  * axis (lo <= x < hi) with a finite position, velocity and stress: then the
- * wrap and the clamp leave it alone and it passes the state check. One loop
- * without branches over the chunk; `dim` is a constant at each call. */
+ * wrap and the clamp leave it alone and it passes the state check. A chunk's
+ * records of each field are one contiguous run of doubles, read here four
+ * particles at a time as 4-wide vectors without regard to where a particle's
+ * record starts: 12 doubles of x hold the x, y, z of 4 particles, so the
+ * bounds repeat in the lanes with period 3. Along an axis beyond `dim` the
+ * bounds are -DBL_MAX and DBL_MAX (the 0 of plane strain's z is inside, a NaN
+ * or an infinity is not); the comparisons fail on a NaN, so the bounds test
+ * also tells a finite position. Velocity and stress are finite when the sum
+ * of the values times 0 is 0 (a * 0 is NaN for an infinite or NaN a). The
+ * particles after the last group of 4 are tested one by one. `dim` is a
+ * constant at each call. Saying "not all inside" is always safe: end_chunk
+ * then checks particle by particle. */
+typedef double chunk_v4 __attribute__((vector_size(32), aligned(8), may_alias));
+
 static inline __attribute__((always_inline)) int all_inside(const end_ctx *e, long lo, long hi, const int dim) {
-  const double *restrict x = e->ps->x;
+  const mrn_particles *ps = e->ps;
   double a[3], b[3];
-  for (int d = 0; d < dim; d++) {
-    a[d] = e->lo[d];
-    b[d] = e->hi[d];
+  for (int d = 0; d < 3; d++) {
+    a[d] = d < dim ? e->lo[d] : -DBL_MAX;
+    b[d] = d < dim ? e->hi[d] : DBL_MAX;
   }
-  int out = 0;
-  for (long p = lo; p < hi; p++) {
+  const chunk_v4 a0 = {a[0], a[1], a[2], a[0]}, a1 = {a[1], a[2], a[0], a[1]}, a2 = {a[2], a[0], a[1], a[2]};
+  const chunk_v4 b0 = {b[0], b[1], b[2], b[0]}, b1 = {b[1], b[2], b[0], b[1]}, b2 = {b[2], b[0], b[1], b[2]};
+  __typeof__(a0 < b0) in = a0 <= a0; /* all lanes true */
+  chunk_v4 zero = {0, 0, 0, 0};
+  const long groups = (hi - lo) / 4;
+  const double *x = ps->x + 3 * lo, *v = ps->v + 3 * lo, *s = ps->stress + 6 * lo;
+  for (long k = 0; k < groups; k++, x += 12, v += 12, s += 24) {
+    const chunk_v4 x0 = *(const chunk_v4 *)x, x1 = *(const chunk_v4 *)(x + 4), x2 = *(const chunk_v4 *)(x + 8);
+    in &= (x0 >= a0) & (x0 < b0) & (x1 >= a1) & (x1 < b1) & (x2 >= a2) & (x2 < b2);
+    zero += (*(const chunk_v4 *)v * 0.0 + *(const chunk_v4 *)(v + 4) * 0.0) + *(const chunk_v4 *)(v + 8) * 0.0;
+    zero += (*(const chunk_v4 *)s * 0.0 + *(const chunk_v4 *)(s + 4) * 0.0) +
+            (*(const chunk_v4 *)(s + 8) * 0.0 + *(const chunk_v4 *)(s + 12) * 0.0);
+    zero += *(const chunk_v4 *)(s + 16) * 0.0 + *(const chunk_v4 *)(s + 20) * 0.0;
+  }
+  int out = !(in[0] & in[1] & in[2] & in[3]) | !((zero[0] + zero[1]) + (zero[2] + zero[3]) == 0.0);
+  const double *restrict xs = e->ps->x;
+  for (long p = lo + 4 * groups; p < hi; p++) {
     int inside = mrn_sim_particle_finite(e->sim, (size_t)p);
-    for (int d = 0; d < dim; d++) inside &= (x[3 * p + d] >= a[d]) & (x[3 * p + d] < b[d]);
+    for (int d = 0; d < dim; d++) inside &= (xs[3 * p + d] >= a[d]) & (xs[3 * p + d] < b[d]);
     out |= !inside;
   }
   return !out;
