@@ -76,9 +76,12 @@ mrn_blocks *mrn_blocks_new(const mrn_grid *g) {
   b->range_lo = malloc(b->nrows * sizeof *b->range_lo);
   b->range_hi = malloc(b->nrows * sizeof *b->range_hi);
   b->range_sum = malloc(b->nrows * sizeof *b->range_sum);
+  b->movers = malloc(MRN_BLOCK_MOVERS_MAX * sizeof *b->movers);
+  b->moved_out = malloc(2 * b->nblocks * sizeof *b->moved_out);
+  b->moved_in = b->moved_out ? b->moved_out + b->nblocks : NULL;
   b->sorted_step = -1;
   if (!b->start || !b->list || !b->lo || !b->hi || !b->new_lo || !b->new_hi || !b->range_lo || !b->range_hi ||
-      !b->range_sum) {
+      !b->range_sum || !b->movers || !b->moved_out) {
     mrn_blocks_free(b);
     mrn_error("grid: out of memory");
     return NULL;
@@ -94,6 +97,9 @@ void mrn_blocks_free(mrn_blocks *b) {
   free(b->order);
   free(b->start);
   free(b->hist);
+  free(b->movers);
+  free(b->found);
+  free(b->moved_out);
   free(b->list);
   free(b->lo);
   free(b->hi);
@@ -110,7 +116,9 @@ size_t mrn_blocks_bytes(const mrn_grid *g) {
   if (!b) return 0;
   return sizeof *b + b->cap * sizeof(uint32_t) + (b->nblocks + 1) * sizeof(size_t) +
          (size_t)b->hist_threads * b->nblocks * sizeof(uint32_t) + b->nblocks * sizeof(uint32_t) +
-         b->nrows * (4 * sizeof(int) + 2 * sizeof(long) + sizeof(double));
+         b->nrows * (4 * sizeof(int) + 2 * sizeof(long) + sizeof(double)) +
+         MRN_BLOCK_MOVERS_MAX * sizeof(struct mrn_block_mover) + (size_t)b->hist_threads * sizeof(size_t) +
+         2 * b->nblocks * sizeof(uint32_t);
 }
 
 void mrn_blocks_set_sort_every(mrn_grid *g, long every) {
@@ -139,6 +147,9 @@ static int grow_particles(mrn_blocks *b, size_t n, int threads) {
     uint32_t *h = realloc(b->hist, (size_t)threads * b->nblocks * sizeof *h);
     if (!h) return 0;
     b->hist = h;
+    size_t *f = realloc(b->found, (size_t)threads * sizeof *f);
+    if (!f) return 0;
+    b->found = f;
     b->hist_threads = threads;
   }
   return 1;
@@ -307,7 +318,184 @@ static void bin_3d(mrn_blocks *b, const block_map map, const mrn_particles *ps, 
   bin_thread(b, ps, map, 3);
 }
 
+/* ---- incremental rebinning ------------------------------------------------
+ *
+ * From one step to the next few particles change block (a particle crosses a
+ * block's side about once in size / (v dt) steps). The binning is a stable
+ * sort of the particle indices by block, so it is the previous one with the
+ * particles that changed block (the movers) taken out of their old block's
+ * run and put into their new block's at their index; with no mover, it is
+ * the previous one. rebin finds the movers in one parallel pass over `order`
+ * (the block of each particle worked out once, against the block of its
+ * slot) and then patches `order` in place. The result is the same `order`
+ * and `start` as binning from scratch, so P2G is bitwise the same. It needs
+ * the previous binning to be of as many particles (every index 0 .. n-1 in
+ * it once, in increasing index within each block): any change of the
+ * particles since then (moved, added, removed, reordered) only makes more
+ * movers. With more than MRN_BLOCK_MOVERS_MAX, the caller bins from scratch,
+ * and rebin is not tried again for REBIN_WAIT binnings. */
+enum { REBIN_WAIT = 16 };
+
+/* the block whose slots [start[k], start[k + 1]) hold `slot` (the last k with
+ * start[k] <= slot: empty blocks before it are skipped) */
+static size_t block_of_slot(const mrn_blocks *b, size_t slot) {
+  size_t lo = 0, hi = b->nblocks; /* start[lo] <= slot < start[hi] */
+  while (hi - lo > 1) {
+    const size_t mid = lo + (hi - lo) / 2;
+    if (b->start[mid] <= slot) lo = mid;
+    else hi = mid;
+  }
+  return lo;
+}
+
+/* The movers among the slots of one thread of the team, into its share of
+ * b->movers (in slot order); b->found[t] their count, or SIZE_MAX when they
+ * did not fit. The blocks of a chunk of slots are formed in a loop of their
+ * own (block_of on the gathered positions), then compared. */
+static inline __attribute__((always_inline)) void find_movers(mrn_blocks *b, const mrn_particles *ps,
+                                                              const block_map map, const int dim, int threads) {
+  int t = 0, nt = 1;
+#ifdef _OPENMP
+  t = omp_get_thread_num();
+  nt = omp_get_num_threads();
+#endif
+  const size_t n = ps->n, room = MRN_BLOCK_MOVERS_MAX / (size_t)threads;
+  const size_t lo = n * (size_t)t / (size_t)nt, hi = n * (size_t)(t + 1) / (size_t)nt;
+  const double *x = ps->x;
+  const uint32_t *order = b->order;
+  mrn_block_mover *mine = b->movers + room * (size_t)t;
+  size_t found = 0;
+  uint32_t key[BIN_CHUNK];
+  size_t k = lo < hi ? block_of_slot(b, lo) : 0, next = b->start[k + 1];
+  for (size_t c = lo; c < hi && found != SIZE_MAX; c += BIN_CHUNK) {
+    const size_t len = hi - c < BIN_CHUNK ? hi - c : BIN_CHUNK;
+    for (size_t i = 0; i < len; i++) key[i] = block_of(&map, dim, x + 3 * (size_t)order[c + i]);
+    for (size_t i = 0; i < len; i++) {
+      const size_t slot = c + i;
+      while (slot >= next) next = b->start[++k + 1];
+      if (key[i] == k) continue;
+      if (found == room) {
+        found = SIZE_MAX;
+        break;
+      }
+      mine[found++] = (mrn_block_mover){(uint32_t)slot, order[slot], (uint32_t)k, key[i]};
+    }
+  }
+  b->found[t] = found;
+}
+
+static void find_movers_2d(mrn_blocks *b, const block_map map, const mrn_particles *ps, int threads) {
+#pragma omp parallel num_threads(threads) if (threads > 1)
+  find_movers(b, ps, map, 2, threads);
+}
+
+static void find_movers_3d(mrn_blocks *b, const block_map map, const mrn_particles *ps, int threads) {
+#pragma omp parallel num_threads(threads) if (threads > 1)
+  find_movers(b, ps, map, 3, threads);
+}
+
+/* movers by new block, then index: the order they take in their new blocks */
+static int mover_cmp(const void *pa, const void *pb) {
+  const mrn_block_mover *a = pa, *b = pb;
+  if (a->to != b->to) return a->to < b->to ? -1 : 1;
+  return (a->p > b->p) - (a->p < b->p);
+}
+
+/* runs of consecutive particle indices within the blocks of `order` */
+static size_t count_runs(const mrn_blocks *b, size_t n) {
+  const uint32_t *o = b->order;
+  size_t breaks = 0;
+  for (size_t s = 1; s < n; s++) breaks += o[s] != o[s - 1] + 1;
+  size_t runs = n > 0 ? 1 + breaks : 0;
+  /* a block's first slot starts a run even when its index follows the last of the block before */
+  for (size_t k = 1; k < b->nblocks; k++) {
+    const size_t s = b->start[k];
+    if (s > 0 && s < b->start[k + 1] && o[s] == o[s - 1] + 1) runs++;
+  }
+  return runs;
+}
+
+/* Patch order and start for the movers m[0 .. total), in slot order. */
+static void apply_movers(mrn_blocks *b, mrn_block_mover *m, size_t total, size_t n) {
+  uint32_t *order = b->order, *out = b->moved_out, *in = b->moved_in;
+  const size_t nb = b->nblocks;
+  memset(out, 0, 2 * nb * sizeof *out);
+  for (size_t j = 0; j < total; j++) {
+    out[m[j].from]++;
+    in[m[j].to]++;
+  }
+  /* the movers out: the rest slides down over their slots, in order */
+  size_t w = m[0].slot;
+  for (size_t j = 0; j < total; j++) {
+    const size_t from = (size_t)m[j].slot + 1, to = j + 1 < total ? m[j + 1].slot : n;
+    memmove(order + w, order + from, (to - from) * sizeof *order);
+    w += to - from;
+  }
+  /* the movers in, block by block from the last: block k's remaining
+   * particles sit at [cs, ce) (its old slots less the movers out of the
+   * blocks before it and of itself) and go to [start_new(k), start_new(k+1)),
+   * merged by index with its movers in. The write position never falls
+   * behind the read position (the difference is the movers in still to
+   * place), so nothing is overwritten before it is read; once every mover is
+   * placed the blocks below are where they were. */
+  qsort(m, total, sizeof *m, mover_cmp);
+  size_t out_below = total, new_end = n; /* movers out of the blocks before k; start_new(k + 1) */
+  long j = (long)total - 1;
+  size_t k = nb;
+  while (k > 0 && j >= 0) {
+    k--;
+    out_below -= out[k];
+    const size_t stay = b->start[k + 1] - b->start[k] - out[k];
+    const size_t cs = b->start[k] - out_below;
+    size_t r = cs + stay, wp = new_end;
+    while (j >= 0 && m[j].to == k) {
+      const uint32_t p = m[j].p;
+      while (r > cs && order[r - 1] > p) order[--wp] = order[--r];
+      order[--wp] = p;
+      j--;
+    }
+    while (r > cs && wp != r) order[--wp] = order[--r];
+    b->start[k + 1] = new_end;
+    new_end -= stay + in[k];
+  }
+  /* below block k no mover came in: those blocks start lower by the movers
+   * out of the blocks before them, and their particles are already there */
+  size_t below = 0;
+  for (size_t i = 0; i < k; i++) {
+    below += out[i];
+    b->start[i + 1] -= below;
+  }
+}
+
+/* 1 when the binning was brought up to date by patching, 0 when the caller
+ * must bin from scratch */
+static int rebin(mrn_blocks *b, const mrn_grid *g, const mrn_particles *ps, int threads) {
+  if (b->np != ps->n || !ps->n || b->rebin_wait > 0) {
+    if (b->rebin_wait > 0) b->rebin_wait--;
+    return 0;
+  }
+  const block_map map = block_map_of(b, g);
+  if (g->dim == 2) find_movers_2d(b, map, ps, threads);
+  else find_movers_3d(b, map, ps, threads);
+  const size_t room = MRN_BLOCK_MOVERS_MAX / (size_t)threads;
+  size_t total = 0;
+  for (int t = 0; t < threads; t++) {
+    if (b->found[t] == SIZE_MAX) {
+      b->rebin_wait = REBIN_WAIT;
+      return 0;
+    }
+    /* the threads' shares one after the other, in slot order */
+    memmove(b->movers + total, b->movers + room * (size_t)t, b->found[t] * sizeof *b->movers);
+    total += b->found[t];
+  }
+  if (!total) return 1;
+  apply_movers(b, b->movers, total, ps->n);
+  b->runs = count_runs(b, ps->n);
+  return 1;
+}
+
 static void bin(mrn_blocks *b, const mrn_grid *g, const mrn_particles *ps, int threads) {
+  if (rebin(b, g, ps, threads)) return;
   const block_map map = block_map_of(b, g);
   b->runs = 0;
   if (g->dim == 2) bin_2d(b, map, ps, threads);

@@ -36,6 +36,16 @@ struct mrn_sim;
 /* nodal arrays P2G may accumulate into */
 enum { MRN_CLEAR_MASS_MOM = 1u, MRN_CLEAR_FORCE = 2u };
 
+/* A particle found out of the block it was binned in: at slot `slot` of
+ * `order`, particle `p`, from block `from` to block `to`. */
+typedef struct mrn_block_mover {
+  uint32_t slot, p, from, to;
+} mrn_block_mover;
+/* At most this many movers per step are moved by patching the order;
+ * beyond, the particles are binned from scratch (a few thousand particles
+ * leave their block per step even in a fast flow of a million). */
+enum { MRN_BLOCK_MOVERS_MAX = 4096 };
+
 typedef struct mrn_blocks {
   int size[3];     /* cells per block along each axis, 1 << shift (>= 3 for the colouring) */
   int shift[3];
@@ -52,6 +62,12 @@ typedef struct mrn_blocks {
   uint32_t *hist;  /* per-thread block counts, hist_threads * nblocks */
   int hist_threads;
   size_t runs;     /* runs of consecutive particle indices in `order` (within a block) */
+  /* incremental rebinning (blocks.c, rebin): the particles found out of
+   * their block, each thread's share of them, and per-block counts */
+  struct mrn_block_mover *movers; /* MRN_BLOCK_MOVERS_MAX */
+  size_t *found;                  /* hist_threads: movers found by each thread, or SIZE_MAX */
+  uint32_t *moved_out, *moved_in; /* nblocks each */
+  int rebin_wait;                 /* full binnings left before the next rebin is tried */
   uint32_t *list;  /* non-empty blocks, by colour */
   size_t colour_first[9];
 

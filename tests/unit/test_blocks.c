@@ -5,6 +5,8 @@
  * with its particle, and a run that sorts the particles every few steps ends
  * in the same state (by id) as one that does not, to round-off; a P2G that
  * reuses the previous binning gives the same nodal values as one that bins;
+ * a binning patched for the particles that changed block is the binning
+ * from scratch;
  * USF's fused material update and force scatter (mrn_update_force) gives
  * bitwise the particle state and nodal forces of the two passes it fuses
  * (both sum the same groups of particles in 2D, kernels_impl.h). */
@@ -135,6 +137,44 @@ static void reused_binning(int dim) {
   CHECK(a->grid.blocks->reuse == 0); /* used up */
   CHECK(same_grid(&a->grid, &b->grid));
   CHECK(ranges_hold(&a->grid));
+  mrn_sim_free(a);
+  mrn_sim_free(b);
+}
+
+/* After the particles moved a little and a few far (across blocks), the
+ * binning patched from the previous one (blocks.c, rebin) is the binning
+ * from scratch: the same order, block starts and runs, and P2G gives
+ * bitwise the same nodes */
+static void incremental_rebin(int dim, int threads) {
+  mrn_sim *a = make(dim, MRN_SHAPE_QUADRATIC_BSPLINE, 20000, 23u);
+  mrn_sim *b = make(dim, MRN_SHAPE_QUADRATIC_BSPLINE, 20000, 23u);
+  CHECK(a && b);
+  set_threads(threads);
+  mrn_p2g(a, dim, 1, 1);
+  mrn_p2g(b, dim, 1, 1);
+  unsigned seed = 5u;
+  for (int round = 0; round < 3; round++) {
+    for (size_t p = 0; p < a->particles.n; p++) {
+      const int far = rnd(&seed) < 0.02; /* some 400 particles, most into another block */
+      for (int d = 0; d < dim; d++) {
+        const double dx = far ? 0.6 * (rnd(&seed) - 0.5) : 1e-3 * (rnd(&seed) - 0.5);
+        double x = a->particles.x[3 * p + d] + dx;
+        x = x < 0.1 ? 0.1 : x > 0.9 ? 0.9 : x; /* well inside the grid */
+        a->particles.x[3 * p + d] = b->particles.x[3 * p + d] = x;
+      }
+    }
+    mrn_p2g(a, dim, 1, 1);
+    b->grid.blocks->np = 0; /* no previous binning: b bins from scratch */
+    mrn_p2g(b, dim, 1, 1);
+    const mrn_blocks *ba = a->grid.blocks, *bb = b->grid.blocks;
+    size_t movers = 0;
+    for (int t = 0; t < threads; t++) movers += ba->found[t];
+    CHECK(movers > 100 && movers < MRN_BLOCK_MOVERS_MAX); /* a was patched */
+    CHECK(!memcmp(ba->order, bb->order, a->particles.n * sizeof *ba->order));
+    CHECK(!memcmp(ba->start, bb->start, (ba->nblocks + 1) * sizeof *ba->start));
+    if (threads == 1) CHECK(ba->runs == bb->runs);
+    CHECK(same_grid(&a->grid, &b->grid));
+  }
   mrn_sim_free(a);
   mrn_sim_free(b);
 }
@@ -271,6 +311,8 @@ int main(void) {
     threads_and_spans(dim, MRN_SHAPE_LINEAR);
     sorted_run(dim);
     reused_binning(dim);
+    incremental_rebin(dim, 1);
+    incremental_rebin(dim, 2);
     for (int sorted = 0; sorted <= 1; sorted++)
       for (int threads = 1; threads <= 2; threads++) {
         fused_update_force(dim, MRN_SHAPE_QUADRATIC_BSPLINE, sorted, threads);
