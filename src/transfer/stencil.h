@@ -176,9 +176,55 @@ typedef struct KNAME(axes) {
 
 /* Returns 0 when the particle needs the general stencil: its support crosses
  * a face and the kernel is adjusted there. `sup` is a constant at every call. */
+#if DIM == 2
+#ifndef MRN_AXIS_V2
+#define MRN_AXIS_V2
+typedef double mrn_axis_v2 __attribute__((vector_size(16)));
+#endif
+/* The quadratic B-spline's axes of a 2D particle, both axes at once as the
+ * lanes of 2-wide vectors: the same operations as the loop of axes_build
+ * (mrn_shape_quadratic_1d per axis), so the same bits. */
+static inline __attribute__((always_inline)) int KNAME(axes_quadratic_2d)(const mrn_grid *g,
+                                                                          const mrn_kernel_boundary mode,
+                                                                          const double *x, KNAME(axes) *a) {
+  const double inv_cell = g->inv_cell, cell = g->cell;
+  const mrn_axis_v2 xd = {x[0], x[1]}, origin = {g->origin[0], g->origin[1]};
+  const mrn_axis_v2 xi = (xd - origin) * inv_cell, h = xi - 0.5;
+  const mrn_axis_v2 b0 = {floor(h[0]), floor(h[1])}; /* (double)base, exactly */
+  const int base[2] = {(int)b0[0], (int)b0[1]};
+  const mrn_axis_v2 d0 = xi - b0, d1 = d0 - 1.0, d2 = d0 - 2.0;
+  const mrn_axis_v2 w0 = 0.5 * (1.5 - d0) * (1.5 - d0), w1 = 0.75 - d1 * d1, w2 = 0.5 * (1.5 + d2) * (1.5 + d2);
+  const mrn_axis_v2 dw0 = -(1.5 - d0) * inv_cell, dw1 = -2.0 * d1 * inv_cell, dw2 = (1.5 + d2) * inv_cell;
+  const mrn_axis_v2 o0 = origin + b0 * cell - xd, o1 = origin + (b0 + 1.0) * cell - xd,
+                    o2 = origin + (b0 + 2.0) * cell - xd;
+  for (int d = 0; d < 2; d++) {
+    a->w[d][0] = w0[d];
+    a->w[d][1] = w1[d];
+    a->w[d][2] = w2[d];
+    a->w[d][3] = 0.0;
+    a->dw[d][0] = dw0[d];
+    a->dw[d][1] = dw1[d];
+    a->dw[d][2] = dw2[d];
+    a->dw[d][3] = 0.0;
+    a->off[d][0] = o0[d];
+    a->off[d][1] = o1[d];
+    a->off[d][2] = o2[d];
+    a->off[d][3] = 0.0;
+  }
+  if (mode != MRN_KERNEL_EXTENDED &&
+      ((base[0] < 0) | (base[1] < 0) | (base[0] + 2 > g->ncell[0]) | (base[1] + 2 > g->ncell[1])))
+    return 0;
+  a->node0 = (size_t)(base[0] + g->pad) * (size_t)g->stride[0] + (size_t)(base[1] + g->pad) * (size_t)g->stride[1];
+  return 1;
+}
+#endif
+
 static inline __attribute__((always_inline)) int KNAME(axes_build)(const mrn_grid *g, const int sup,
                                                                    const mrn_kernel_boundary mode, const double *x,
                                                                    KNAME(axes) *a) {
+#if DIM == 2
+  if (sup == 3) return KNAME(axes_quadratic_2d)(g, mode, x, a);
+#endif
   /* the grid's values in locals: the stores into `a` could alias them, and
    * the compiler would load them again for every node */
   const double inv_cell = g->inv_cell, cell = g->cell;
