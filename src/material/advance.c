@@ -49,19 +49,6 @@ MRN_ALWAYS_INLINE int increment(const int dim, const double L[9], double dt, mrn
   return 0;
 }
 
-/* Fn = A F; in plane strain the z row of F is kept (A's is e_z) */
-MRN_ALWAYS_INLINE void apply_increment(const int dim, const double A[9], const double F[9], double Fn[9]) {
-  if (dim == 3) {
-    mat_mul(A, F, Fn);
-    return;
-  }
-  for (int b = 0; b < 3; b++) {
-    Fn[b] = A[0] * F[b] + A[1] * F[3 + b];
-    Fn[3 + b] = A[3] * F[b] + A[4] * F[3 + b];
-    Fn[6 + b] = F[6 + b];
-  }
-}
-
 /* Jaumann co-rotation s <- s + dW s - s dW over the step (002, Eq. 28), dW
  * the spin increment skew(L) dt (002, Eq. 30). dW s - s dW = T + T^T with
  * T = dW s, as dW is skew and s symmetric; dW = [[0, w01, w02], [-w01, 0,
@@ -98,11 +85,30 @@ MRN_ALWAYS_INLINE int advance_F(const int dim, const double L[9], double dt, mrn
                                 double *J_old, double *J) {
   double A[9], Fn[9];
   if (increment(dim, L, dt, f_update, A)) return 1;
-  apply_increment(dim, A, F, Fn);
-  if (J_old) *J_old = mat_det_dim(F, dim);
-  *J = mat_det_dim(Fn, dim);
+  if (dim == 2) {
+    /* Fn = A F with A's z row e_z, so F's z row is kept; formed in locals
+     * and stored once F is known to stay invertible (built in an array and
+     * copied, the six values went through the stack, and the wide loads of
+     * the copy waited on the narrow stores before them) */
+    const double f0 = F[0], f1 = F[1], f2 = F[2], f3 = F[3], f4 = F[4], f5 = F[5];
+    const double n0 = A[0] * f0 + A[1] * f3, n1 = A[0] * f1 + A[1] * f4, n2 = A[0] * f2 + A[1] * f5;
+    const double n3 = A[3] * f0 + A[4] * f3, n4 = A[3] * f1 + A[4] * f4, n5 = A[3] * f2 + A[4] * f5;
+    if (J_old) *J_old = f0 * f4 - f1 * f3; /* mat_det_dim(F, 2) */
+    *J = n0 * n4 - n1 * n3;
+    if (!(*J > 0.0)) return 1;
+    F[0] = n0;
+    F[1] = n1;
+    F[2] = n2;
+    F[3] = n3;
+    F[4] = n4;
+    F[5] = n5;
+    return 0;
+  }
+  mat_mul(A, F, Fn);
+  if (J_old) *J_old = mat_det(F);
+  *J = mat_det(Fn);
   if (!(*J > 0.0)) return 1;
-  memcpy(F, Fn, (dim == 3 ? 9 : 6) * sizeof(double)); /* plane strain: the z row is unchanged */
+  memcpy(F, Fn, 9 * sizeof(double));
   return 0;
 }
 
