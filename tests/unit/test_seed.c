@@ -163,7 +163,8 @@ static void test_seed_box(void) {
     CHECK(count == 48 && t.calls == 48);
     CHECK_CLOSE(t.volume, 12.0, 1e-12);
   }
-  /* z outermost, then y, then x, with sub-points nested the same way */
+  /* z outermost, then y, then x, with sub-points nested the same way within
+   * each half-cell */
   int rc;
   long count;
   tally t = seed(&g, b, 2, MRN_SEED_REGULAR, &rc, &count);
@@ -172,6 +173,20 @@ static void test_seed_box(void) {
     CHECK_CLOSE(t.first[k][0], want[k][0], 1e-15);
     CHECK_CLOSE(t.first[k][1], want[k][1], 1e-15);
     CHECK(t.first[k][2] == 0.0);
+  }
+  /* within a cell by half-cells: the lower-left quadrant's 2 x 2 first
+   * (per_axis 4); with 3 per axis the centre counts as the upper half */
+  const double want4[4][2] = {{0.125, 0.125}, {0.375, 0.125}, {0.125, 0.375}, {0.375, 0.375}};
+  t = seed(&g, b, 4, MRN_SEED_REGULAR, &rc, &count);
+  for (int k = 0; k < 4; k++) {
+    CHECK_CLOSE(t.first[k][0], want4[k][0], 1e-15);
+    CHECK_CLOSE(t.first[k][1], want4[k][1], 1e-15);
+  }
+  t = seed(&g, b, 3, MRN_SEED_REGULAR, &rc, &count);
+  const double want3[4][2] = {{1.0 / 6, 1.0 / 6}, {0.5, 1.0 / 6}, {5.0 / 6, 1.0 / 6}, {1.0 / 6, 0.5}};
+  for (int k = 0; k < 4; k++) {
+    CHECK_CLOSE(t.first[k][0], want3[k][0], 1e-15);
+    CHECK_CLOSE(t.first[k][1], want3[k][1], 1e-15);
   }
   /* a callback that stops seeding: its value comes back, and the point it
    * refused is not counted */
