@@ -292,7 +292,11 @@ typedef double mrn_acc4 __attribute__((vector_size(32)));
   } while (0)
 
 /* The particles p0 .. p0 + n - 1 (n >= 2), whose stencils ax[0 .. n) all
- * start at ax[0].node0, summed and added to the nodes. With N = w_x w_y, the
+ * start at ax[0].node0 or, when `wide` (quadratic B-spline only: 3 nodes
+ * along x), some at the node after it along x, summed and added to the
+ * nodes: the lanes of a row are then its 4 nodes from ax[0].node0, and a
+ * stencil starting at the next node has its x factors moved up one lane (its
+ * fourth lane is a zero, axes_build). With N = w_x w_y, the
  * branch x_i - x_p = (o_x, o_y) and A_x, A_y the columns of A, row j of the
  * nodes (lanes i, along x) receives from each particle
  *   m N                      = w_y (m w_x)
@@ -300,7 +304,8 @@ typedef double mrn_acc4 __attribute__((vector_size(32)));
  *   -V sigma grad N          = -(w_y R + dw_y S),  R = dw_x V sigma_x,     S = w_x V sigma_y
  * with the x factors Q, Y, R, S formed once per particle. */
 MRN_INLINE void KNAME(group_sum)(const KNAME(p2g_args) *ar, const KNAME(axes) *ax, size_t p0, size_t n,
-                                 const int sup, const int momentum, const int force, const int affine) {
+                                 const int sup, const int wide, const int momentum, const int force,
+                                 const int affine) {
   const mrn_particles *ps = ar->ps;
   mrn_acc4 am[4], apx[4], apy[4], afx[4], afy[4]; /* mass, momentum, internal force by row */
 #define MRN_ZERO_ROW(J) am[J] = apx[J] = apy[J] = afx[J] = afy[J] = (mrn_acc4){0, 0, 0, 0}
@@ -312,10 +317,16 @@ MRN_INLINE void KNAME(group_sum)(const KNAME(p2g_args) *ar, const KNAME(axes) *a
     const double m = ps->mass[p];
     double mv[3], MA[3][3], VS[3][3];
     KNAME(p2g_particle_terms)(ps, p, affine, mv, MA, VS);
-    /* lanes beyond the support hold zeros (axes_build) */
-    const mrn_acc4 wx = {a->w[0][0], a->w[0][1], a->w[0][2], a->w[0][3]};
-    const mrn_acc4 dwx = {a->dw[0][0], a->dw[0][1], a->dw[0][2], a->dw[0][3]};
-    const mrn_acc4 ox = {a->off[0][0], a->off[0][1], a->off[0][2], a->off[0][3]};
+    /* lanes beyond the support hold zeros (axes_build); a quadratic
+     * stencil starting one node further along x takes lanes 1 .. 3 */
+    mrn_acc4 wx = {a->w[0][0], a->w[0][1], a->w[0][2], a->w[0][3]};
+    mrn_acc4 dwx = {a->dw[0][0], a->dw[0][1], a->dw[0][2], a->dw[0][3]};
+    mrn_acc4 ox = {a->off[0][0], a->off[0][1], a->off[0][2], a->off[0][3]};
+    if (wide && a->node0 != ax->node0) {
+      wx = __builtin_shufflevector(wx, wx, 3, 0, 1, 2);
+      dwx = __builtin_shufflevector(dwx, dwx, 3, 0, 1, 2);
+      ox = __builtin_shufflevector(ox, ox, 3, 0, 1, 2);
+    }
     const mrn_acc4 mw = m * wx;
     const mrn_acc4 qx = affine ? wx * (mv[0] + MA[0][0] * ox) : wx * mv[0];
     const mrn_acc4 qy = affine ? wx * (mv[1] + MA[1][0] * ox) : wx * mv[1];
@@ -353,7 +364,7 @@ MRN_INLINE void KNAME(group_sum)(const KNAME(p2g_args) *ar, const KNAME(axes) *a
 #define MRN_FLUSH_ROW(J)                                                \
   do {                                                                  \
     const size_t row = ax->node0 + (size_t)((J) * s1);                  \
-    for (int i = 0; i < sup; i++) {                                     \
+    for (int i = 0; i < width; i++) {                                   \
       const size_t nd = row + (size_t)i;                                \
       if (momentum) {                                                   \
         mass[nd] += am[J][i];                                           \
@@ -366,7 +377,13 @@ MRN_INLINE void KNAME(group_sum)(const KNAME(p2g_args) *ar, const KNAME(axes) *a
       }                                                                 \
     }                                                                   \
   } while (0)
-  MRN_STENCIL_ROWS(MRN_FLUSH_ROW);
+  if (wide) {
+    const int width = 4;
+    MRN_STENCIL_ROWS(MRN_FLUSH_ROW);
+  } else {
+    const int width = sup;
+    MRN_STENCIL_ROWS(MRN_FLUSH_ROW);
+  }
 #undef MRN_FLUSH_ROW
 }
 #undef MRN_STENCIL_ROWS
@@ -379,9 +396,18 @@ MRN_INLINE void KNAME(batch_scatter)(const KNAME(p2g_args) *ar, const KNAME(axes
   while (j < n) {
     size_t e = j + 1;
 #if DIM == 2
-    while (e < n && ax[e].node0 == ax[j].node0) e++;
+    int wide = 0;
+    for (; e < n; e++) {
+      if (ax[e].node0 == ax[j].node0) continue;
+      if (sup == 3 && ax[e].node0 == ax[j].node0 + 1) {
+        wide = 1;
+        continue;
+      }
+      break;
+    }
     if (e - j > 1) {
-      KNAME(group_sum)(ar, ax + j, p0 + j, e - j, sup, momentum, force, affine);
+      if (wide) KNAME(group_sum)(ar, ax + j, p0 + j, e - j, sup, 1, momentum, force, affine);
+      else KNAME(group_sum)(ar, ax + j, p0 + j, e - j, sup, 0, momentum, force, affine);
       j = e;
       continue;
     }
