@@ -148,9 +148,9 @@ static int cell_outside_grid(const seeder *s, const int64_t c[3]) {
  * axis, x's halves fastest, z's slowest; within each, z outermost and x
  * fastest. The particles whose quadratic B-spline stencils start at the
  * same node (those between the same two cell centres along each axis) then
- * follow one another in index order, which P2G sums as one group
- * (kernels_impl.h, group_sum): a160k's groups are 4 particles long instead
- * of 2. A point at the centre counts as above it, as the stencil does. */
+ * follow one another in index order, and P2G sums them as one group
+ * (kernels_impl.h, group_sum). A point at the centre counts as above it,
+ * as the stencil does. */
 static int seed_cell(seeder *s, const int64_t c[3]) {
   const mrn_grid *g = s->g;
   int dim = g->dim;
@@ -167,24 +167,25 @@ static int seed_cell(seeder *s, const int64_t c[3]) {
           for (int ky = 0; ky < s->n; ky++)
             for (int kx = 0; kx < s->n; kx++) {
               if ((dim == 3 && upper[kz] != hz) || upper[ky] != hy || upper[kx] != hx) continue;
-        double x[3] = {lo[0] + s->frac[kx] * g->cell, lo[1] + s->frac[ky] * g->cell,
-                       dim == 3 ? lo[2] + s->frac[kz] * g->cell : 0.0};
-        int in = mrn_region_contains(s->r, x);
-        if (in < 0) {
-          /* a predicate that failed without saying why */
-          if (!mrn_error_message()[0]) mrn_error("region: predicate failed at (%g, %g, %g)", x[0], x[1], x[2]);
-          return MRN_ERR;
-        }
-        if (!in) continue;
-        /* cells inside the grid hold their candidates strictly inside the domain */
-        if (outside) return outside_error(g, x);
-        double volume = s->cell_volume * s->wfrac[kx] * s->wfrac[ky] * (dim == 3 ? s->wfrac[kz] : 1.0);
-        if (s->cb) {
-          int rc = s->cb(s->user, x, volume);
-          if (rc) return rc;
-        }
-        s->count++;
-      }
+              double x[3] = {lo[0] + s->frac[kx] * g->cell, lo[1] + s->frac[ky] * g->cell,
+                             dim == 3 ? lo[2] + s->frac[kz] * g->cell : 0.0};
+              int in = mrn_region_contains(s->r, x);
+              if (in < 0) {
+                /* a predicate that failed without saying why */
+                if (!mrn_error_message()[0])
+                  mrn_error("region: predicate failed at (%g, %g, %g)", x[0], x[1], x[2]);
+                return MRN_ERR;
+              }
+              if (!in) continue;
+              /* cells inside the grid hold their candidates strictly inside the domain */
+              if (outside) return outside_error(g, x);
+              double volume = s->cell_volume * s->wfrac[kx] * s->wfrac[ky] * (dim == 3 ? s->wfrac[kz] : 1.0);
+              if (s->cb) {
+                int rc = s->cb(s->user, x, volume);
+                if (rc) return rc;
+              }
+              s->count++;
+            }
   return MRN_OK;
 }
 

@@ -382,6 +382,7 @@ static inline __attribute__((always_inline)) void find_movers(mrn_blocks *b, con
     }
   }
   b->found[t] = found;
+  if (t == 0) b->found_threads = nt; /* the team may be smaller than asked */
 }
 
 static void find_movers_2d(mrn_blocks *b, const block_map map, const mrn_particles *ps, int threads) {
@@ -479,7 +480,7 @@ static int rebin(mrn_blocks *b, const mrn_grid *g, const mrn_particles *ps, int 
   else find_movers_3d(b, map, ps, threads);
   const size_t room = MRN_BLOCK_MOVERS_MAX / (size_t)threads;
   size_t total = 0;
-  for (int t = 0; t < threads; t++) {
+  for (int t = 0; t < b->found_threads; t++) {
     if (b->found[t] == SIZE_MAX) {
       b->rebin_wait = REBIN_WAIT;
       return 0;

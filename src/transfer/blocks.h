@@ -66,6 +66,7 @@ typedef struct mrn_blocks {
    * their block, each thread's share of them, and per-block counts */
   struct mrn_block_mover *movers; /* MRN_BLOCK_MOVERS_MAX */
   size_t *found;                  /* hist_threads: movers found by each thread, or SIZE_MAX */
+  int found_threads;              /* threads of the last search */
   uint32_t *moved_out, *moved_in; /* nblocks each */
   int rebin_wait;                 /* full binnings left before the next rebin is tried */
   uint32_t *list;  /* non-empty blocks, by colour */
