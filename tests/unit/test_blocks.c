@@ -168,7 +168,7 @@ static void incremental_rebin(int dim, int threads) {
     mrn_p2g(b, dim, 1, 1);
     const mrn_blocks *ba = a->grid.blocks, *bb = b->grid.blocks;
     size_t movers = 0;
-    for (int t = 0; t < threads; t++) movers += ba->found[t];
+    for (int t = 0; t < ba->found_threads; t++) movers += ba->found[t];
     CHECK(movers > 100 && movers < MRN_BLOCK_MOVERS_MAX); /* a was patched */
     CHECK(!memcmp(ba->order, bb->order, a->particles.n * sizeof *ba->order));
     CHECK(!memcmp(ba->start, bb->start, (ba->nblocks + 1) * sizeof *ba->start));
