@@ -82,18 +82,28 @@ static inline int mrn_shape_linear_1d(double xi, double *w, double *dw) {
   return base;
 }
 
-/* quadratic B-spline (002 §4, the kernel of Eq. 52), support 3 */
+/* quadratic B-spline (002 §4, the kernel of Eq. 52), support 3: the weights
+ * W0..W2 and their derivatives DW0..DW2 (per cell) at the three nodes from
+ * base, given D0 = xi - base in [0.5, 1.5), the distance to the first node.
+ * A macro so that the same operations serve a double and a GCC vector of
+ * doubles (the 2D fast stencil forms both axes at once, transfer/stencil.h),
+ * with the same bits. */
+#define MRN_QUADRATIC_BSPLINE(D0, W0, W1, W2, DW0, DW1, DW2)     \
+  do {                                                           \
+    const __typeof__(D0) d1_ = (D0) - 1.0; /* in [-0.5, 0.5) */  \
+    const __typeof__(D0) d2_ = (D0) - 2.0; /* in [-1.5, -0.5) */ \
+    (W0) = 0.5 * (1.5 - (D0)) * (1.5 - (D0));                    \
+    (W1) = 0.75 - d1_ * d1_;                                     \
+    (W2) = 0.5 * (1.5 + d2_) * (1.5 + d2_);                      \
+    (DW0) = -(1.5 - (D0));                                       \
+    (DW1) = -2.0 * d1_;                                          \
+    (DW2) = (1.5 + d2_);                                         \
+  } while (0)
+
 static inline int mrn_shape_quadratic_1d(double xi, double *w, double *dw) {
   int base = (int)floor(xi - 0.5);
   double d0 = xi - base; /* in [0.5, 1.5) : distance to the first node */
-  double d1 = d0 - 1.0;  /* in [-0.5, 0.5) */
-  double d2 = d0 - 2.0;  /* in [-1.5, -0.5) */
-  w[0] = 0.5 * (1.5 - d0) * (1.5 - d0);
-  w[1] = 0.75 - d1 * d1;
-  w[2] = 0.5 * (1.5 + d2) * (1.5 + d2);
-  dw[0] = -(1.5 - d0);
-  dw[1] = -2.0 * d1;
-  dw[2] = (1.5 + d2);
+  MRN_QUADRATIC_BSPLINE(d0, w[0], w[1], w[2], dw[0], dw[1], dw[2]);
   return base;
 }
 

@@ -356,8 +356,8 @@ MRN_INLINE void KNAME(group_sum)(const KNAME(p2g_args) *ar, const KNAME(axes) *a
     MRN_STENCIL_ROWS(MRN_ADD_ROW);
 #undef MRN_ADD_ROW
   }
-  /* the sums into the nodes: `sup` per row, never a node beyond the stencil
-   * (it may belong to another thread's block) */
+  /* the sums into the nodes: `sup` per row (4 for a wide group), never a
+   * node beyond the stencils (it may belong to another thread's block) */
   mrn_grid *g = ar->g;
   double *restrict mass = g->mass, *restrict mom = g->mom, *restrict frc = g->force;
   const long s1 = g->stride[1];

@@ -183,7 +183,9 @@ typedef double mrn_axis_v2 __attribute__((vector_size(16)));
 #endif
 /* The quadratic B-spline's axes of a 2D particle, both axes at once as the
  * lanes of 2-wide vectors: the same operations as the loop of axes_build
- * (mrn_shape_quadratic_1d per axis), so the same bits. */
+ * (MRN_QUADRATIC_BSPLINE, as mrn_shape_quadratic_1d per axis), so the same
+ * bits. The fourth lane of each axis holds zeros: group_sum (kernels_impl.h)
+ * reads the x factors as 4-wide vectors. */
 static inline __attribute__((always_inline)) int KNAME(axes_quadratic_2d)(const mrn_grid *g,
                                                                           const mrn_kernel_boundary mode,
                                                                           const double *x, KNAME(axes) *a) {
@@ -192,9 +194,12 @@ static inline __attribute__((always_inline)) int KNAME(axes_quadratic_2d)(const 
   const mrn_axis_v2 xi = (xd - origin) * inv_cell, h = xi - 0.5;
   const mrn_axis_v2 b0 = {floor(h[0]), floor(h[1])}; /* (double)base, exactly */
   const int base[2] = {(int)b0[0], (int)b0[1]};
-  const mrn_axis_v2 d0 = xi - b0, d1 = d0 - 1.0, d2 = d0 - 2.0;
-  const mrn_axis_v2 w0 = 0.5 * (1.5 - d0) * (1.5 - d0), w1 = 0.75 - d1 * d1, w2 = 0.5 * (1.5 + d2) * (1.5 + d2);
-  const mrn_axis_v2 dw0 = -(1.5 - d0) * inv_cell, dw1 = -2.0 * d1 * inv_cell, dw2 = (1.5 + d2) * inv_cell;
+  const mrn_axis_v2 d0 = xi - b0;
+  mrn_axis_v2 w0, w1, w2, dw0, dw1, dw2;
+  MRN_QUADRATIC_BSPLINE(d0, w0, w1, w2, dw0, dw1, dw2);
+  dw0 *= inv_cell;
+  dw1 *= inv_cell;
+  dw2 *= inv_cell;
   const mrn_axis_v2 o0 = origin + b0 * cell - xd, o1 = origin + (b0 + 1.0) * cell - xd,
                     o2 = origin + (b0 + 2.0) * cell - xd;
   for (int d = 0; d < 2; d++) {
@@ -245,9 +250,6 @@ static inline __attribute__((always_inline)) int KNAME(axes_build)(const mrn_gri
         a->dw[d][k] = dw[k] * inv_cell;
         a->off[d][k] = origin + (b0 + k) * cell - xd; /* b0 + k: (double)(base + k) exactly */
       }
-      /* in 2D the x factors are read as 4-wide vectors (group_sum in
-       * kernels_impl.h): the lane beyond the support holds zeros */
-      if (DIM == 2) a->w[d][3] = a->dw[d][3] = a->off[d][3] = 0.0;
     }
     if (mode != MRN_KERNEL_EXTENDED && (base < 0 || base + sup - 1 > g->ncell[d])) return 0;
     node0 += (size_t)(base + pad) * (size_t)g->stride[d];
