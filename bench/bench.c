@@ -264,8 +264,12 @@ static uint64_t state_hash(const mrn_sim *sim) {
     h = fnv(h, ps->x + 3 * i, 3 * sizeof(double));
     h = fnv(h, ps->v + 3 * i, 3 * sizeof(double));
     h = fnv(h, ps->stress + 6 * i, 6 * sizeof(double));
-    h = fnv(h, ps->F + 9 * i, 9 * sizeof(double));
-    h = fnv(h, ps->affine + 9 * i, 9 * sizeof(double));
+    /* the full tensors as 3 x 3 whatever the storage (the hash does not depend on it) */
+    double full[9];
+    mrn_particle_field_export(ps, mrn_particle_field_find("F"), i, 1, full);
+    h = fnv(h, full, 9 * sizeof(double));
+    mrn_particle_field_export(ps, mrn_particle_field_find("affine"), i, 1, full);
+    h = fnv(h, full, 9 * sizeof(double));
   }
   free(at);
   return h;
@@ -344,7 +348,8 @@ static void run_child(const problem *p, int threads, result *res) {
   {
     const mrn_particles *ps = &sim->particles;
     double per = 0;
-    for (int f = 0; f < mrn_particle_field_count(); f++) per += 8.0 * mrn_particle_field_at(f)->ncomp;
+    for (int f = 0; f < mrn_particle_field_count(); f++)
+      per += 8.0 * mrn_particle_field_stride(ps, mrn_particle_field_at(f));
     per += sizeof(int32_t) + sizeof(int64_t) + 8.0 * ps->state_stride;
     double total = per * (double)ps->cap + 8.0 * 19.0 * (double)sim->grid.n + (double)mrn_blocks_bytes(&sim->grid);
     res->engine_bytes_per_particle = total / (double)res->particles;

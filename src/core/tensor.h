@@ -78,10 +78,31 @@ static inline double mat_det(const double A[9]) {
          A[2] * (A[3] * A[7] - A[4] * A[6]);
 }
 
-/* det A of a deformation gradient in `dim` dimensions: in plane strain (dim
- * 2) F's z row and column are e_z, so the in-plane block's determinant */
-static inline double mat_det_dim(const double A[9], const int dim) {
-  return dim == 2 ? A[0] * A[4] - A[1] * A[3] : mat_det(A);
+/* values stored per particle for a full tensor (F, affine): the whole 3 x 3
+ * in 3D, the in-plane block xx, xy, yx, yy in 2D */
+static inline int mrn_tensor_stride(const int dim) { return dim == 2 ? 4 : 9; }
+
+/* a stored tensor (mrn_tensor_stride(dim) values) as a full row-major 3 x 3,
+ * with `zz` on the diagonal's z entry in 2D (1 for F, 0 for the affine
+ * matrix) */
+static inline void mrn_tensor_expand(const int dim, const double *stored, double zz, double full[9]) {
+  if (dim == 3) {
+    for (int k = 0; k < 9; k++) full[k] = stored[k];
+    return;
+  }
+  full[0] = stored[0], full[1] = stored[1], full[2] = 0.0;
+  full[3] = stored[2], full[4] = stored[3], full[5] = 0.0;
+  full[6] = 0.0, full[7] = 0.0, full[8] = zz;
+}
+
+/* a full row-major 3 x 3 into its stored form; in 2D only the in-plane
+ * block is kept (the rest is the plane-strain value by construction) */
+static inline void mrn_tensor_pack(const int dim, const double full[9], double *stored) {
+  if (dim == 3) {
+    for (int k = 0; k < 9; k++) stored[k] = full[k];
+    return;
+  }
+  stored[0] = full[0], stored[1] = full[1], stored[2] = full[3], stored[3] = full[4];
 }
 
 /* B = A^-1 for 3x3; returns 1 (B untouched) when A is singular */

@@ -334,7 +334,7 @@ static int step_attempt(mrn_implicit *im, double dt, mrn_implicit_history *h, in
     st->xi = re->xi;
     im->diss[q] += ps->vol0[q] * re->dissipation;
     /* mirror the state into the particle fields the output reads */
-    memcpy(ps->F + 9 * q, F, sizeof F);
+    mrn_tensor_pack(sim->dim, F, ps->F + (size_t)mrn_tensor_stride(sim->dim) * q);
     double J = mat_det(F);
     for (int a = 0; a < 3; a++)
       for (int c = a; c < 3; c++) ps->stress[6 * q + sym_index(a, c)] = re->tau[3 * a + c] / J;

@@ -48,7 +48,9 @@ int mrn_implicit_state_load(mrn_implicit *im) {
   if (rc) return rc;
   for (size_t p = 0; p < im->np; p++) {
     mrn_emc_state *s = &im->st[p];
-    const double *F = ps->F + 9 * p, *rec = ps->user + p * (size_t)ps->user_stride;
+    const double *rec = ps->user + p * (size_t)ps->user_stride;
+    double F[9];
+    mrn_tensor_expand(ps->dim, ps->F + (size_t)mrn_tensor_stride(ps->dim) * p, 1.0, F);
     const double *be = rec + f[0]->offset;
     int fresh = 1;
     for (int k = 0; k < 9; k++) fresh &= be[k] == 0.0;

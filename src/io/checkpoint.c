@@ -192,8 +192,25 @@ static void save_particles(mrn_h5w *w, const mrn_sim *sim) {
     const mrn_particle_field_info *f = mrn_particle_field_at(i);
     char doc[512];
     snprintf(doc, sizeof doc, "%s%s", f->doc, component_note(f->ncomp));
-    mrn_h5w_dataset(w, g, f->name, H5T_NATIVE_DOUBLE, mrn_particle_field_data(ps, f), ps->n,
-                    f->ncomp == 1 ? MRN_H5_RANK1 : f->ncomp, field_units_of(f->name, sim->dim), doc);
+    /* the file keeps every component: a 2D run's full tensors are expanded */
+    const double *data = mrn_particle_field_data(ps, f);
+    double *full = NULL;
+    if (ps->n && mrn_particle_field_stride(ps, f) != f->ncomp) {
+      full = malloc(ps->n * (size_t)f->ncomp * sizeof *full);
+      if (!full) {
+        if (!w->failed) {
+          w->failed = 1;
+          w->err = ENOMEM;
+          snprintf(w->what, sizeof w->what, "/particles/%s (no memory to expand it)", f->name);
+        }
+        break;
+      }
+      mrn_particle_field_export(ps, f, 0, ps->n, full);
+      data = full;
+    }
+    mrn_h5w_dataset(w, g, f->name, H5T_NATIVE_DOUBLE, data, ps->n, f->ncomp == 1 ? MRN_H5_RANK1 : f->ncomp,
+                    field_units_of(f->name, sim->dim), doc);
+    free(full);
   }
   mrn_h5w_dataset(w, g, "material", H5T_NATIVE_INT32, ps->material, ps->n, MRN_H5_RANK1, "1",
                   "material index: the group /materials/<index>");
@@ -423,7 +440,7 @@ static int take_particles(mrn_sim *sim, const ck_data *d) {
     return MRN_ERR;
   for (int i = 0; i < mrn_particle_field_count(); i++) {
     const mrn_particle_field_info *f = mrn_particle_field_at(i);
-    if (d->n) memcpy(mrn_particle_field_data(ps, f), d->field[i], (size_t)d->n * f->ncomp * sizeof(double));
+    mrn_particle_field_import(ps, f, 0, (size_t)d->n, d->field[i]);
   }
   if (d->n) {
     memcpy(ps->material, d->material, (size_t)d->n * sizeof *ps->material);
@@ -583,7 +600,7 @@ static void import_one(mrn_sim *sim, const ck_data *d, const import_plan *plan, 
   mrn_particles *ps = &sim->particles;
   for (int k = 0; k < mrn_particle_field_count(); k++) {
     const mrn_particle_field_info *f = mrn_particle_field_at(k);
-    memcpy(mrn_particle_field_data(ps, f) + i * f->ncomp, d->field[k] + q * f->ncomp, sizeof(double) * f->ncomp);
+    mrn_particle_field_import(ps, f, i, 1, d->field[k] + q * f->ncomp);
   }
   for (int k = 0; k < d->dim && offset; k++) {
     ps->x[3 * i + k] += offset[k];

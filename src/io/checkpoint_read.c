@@ -433,6 +433,26 @@ static void check_det_F(mrn_h5r *r, const ck_data *d) {
   }
 }
 
+/* A 2D simulation stores only the in-plane block of F and of the affine
+ * matrix (mrn_tensor_stride): their z rows and columns in a 2D file must be
+ * the plane-strain ones, (0, 0, 1) for F and zero for the affine matrix,
+ * which every 2D run writes. */
+static void check_plane_tensors(mrn_h5r *r, const ck_data *d) {
+  if (d->dim != 2) return;
+  static const char *const names[] = {"F", "affine"};
+  for (int t = 0; t < 2 && !r->failed; t++) {
+    const mrn_particle_field_info *f = mrn_particle_field_find(names[t]);
+    const double *v = ck_field(d, names[t]);
+    for (int64_t p = 0; p < d->n && !r->failed; p++) {
+      const double *a = v + 9 * p;
+      require(r, a[2] == 0.0 && a[5] == 0.0 && a[6] == 0.0 && a[7] == 0.0 && a[8] == f->zz,
+              "/particles/%s: particle %lld (id %lld) has z components (%g, %g, %g, %g, zz %g) in a 2D file, "
+              "expected 0, 0, 0, 0 and zz %g (plane strain)",
+              names[t], (long long)p, (long long)d->id[p], a[2], a[5], a[6], a[7], a[8], f->zz);
+    }
+  }
+}
+
 static void check_inside_grid(mrn_h5r *r, const ck_data *d) {
   mrn_grid g = {.dim = d->dim};
   memcpy(g.origin, d->origin, sizeof g.origin);
@@ -454,6 +474,7 @@ static void check_particles(mrn_h5r *r, const ck_data *d) {
   check_positive(r, d, "mass");
   check_positive(r, d, "vol0");
   check_det_F(r, d);
+  check_plane_tensors(r, d);
   check_inside_grid(r, d);
 }
 

@@ -18,7 +18,9 @@ static void f_velocity(const mrn_sim *sim, void *out) { copy_field(sim->particle
 static void f_mass(const mrn_sim *sim, void *out) { copy_field(sim->particles.mass, 1, sim, out); }
 static void f_stress(const mrn_sim *sim, void *out) { copy_field(sim->particles.stress, 6, sim, out); }
 static void f_strain(const mrn_sim *sim, void *out) { copy_field(sim->particles.strain, 6, sim, out); }
-static void f_F(const mrn_sim *sim, void *out) { copy_field(sim->particles.F, 9, sim, out); }
+static void f_F(const mrn_sim *sim, void *out) {
+  mrn_particle_field_export(&sim->particles, mrn_particle_field_find("F"), 0, sim->particles.n, out);
+}
 
 static void f_displacement(const mrn_sim *sim, void *out) {
   double *o = out;

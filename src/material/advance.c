@@ -78,30 +78,31 @@ MRN_ALWAYS_INLINE void jaumann_rotate(const int dim, const double L[9], double d
 }
 
 /* F advanced over the step, J its determinant after, and before in *J_old
- * unless J_old is NULL (the determinants of the dimension, mat_det_dim, as
- * the particle volume is formed). Returns 1 (F unchanged) when the increment would
- * invert F. */
+ * unless J_old is NULL (the determinants of the dimension, as the particle
+ * volume is formed). F is stored as the particles keep it
+ * (mrn_tensor_stride): in plane strain (dim 2) its in-plane block xx, xy,
+ * yx, yy only, the z row and column being those of I. Returns 1 (F
+ * unchanged) when the increment would invert F. */
 MRN_ALWAYS_INLINE int advance_F(const int dim, const double L[9], double dt, mrn_f_update f_update, double F[9],
                                 double *J_old, double *J) {
   double A[9], Fn[9];
   if (increment(dim, L, dt, f_update, A)) return 1;
   if (dim == 2) {
-    /* Fn = A F with A's z row e_z, so F's z row is kept; formed in locals
-     * and stored once F is known to stay invertible (built in an array and
-     * copied, the six values went through the stack, and the wide loads of
-     * the copy waited on the narrow stores before them) */
-    const double f0 = F[0], f1 = F[1], f2 = F[2], f3 = F[3], f4 = F[4], f5 = F[5];
-    const double n0 = A[0] * f0 + A[1] * f3, n1 = A[0] * f1 + A[1] * f4, n2 = A[0] * f2 + A[1] * f5;
-    const double n3 = A[3] * f0 + A[4] * f3, n4 = A[3] * f1 + A[4] * f4, n5 = A[3] * f2 + A[4] * f5;
-    if (J_old) *J_old = f0 * f4 - f1 * f3; /* mat_det_dim(F, 2) */
-    *J = n0 * n4 - n1 * n3;
+    /* Fn = A F on the in-plane blocks (A's and F's z rows and columns are
+     * those of I); formed in locals and stored once F is known to stay
+     * invertible (built in an array and copied, the values went through the
+     * stack, and the wide loads of the copy waited on the narrow stores
+     * before them) */
+    const double fxx = F[0], fxy = F[1], fyx = F[2], fyy = F[3];
+    const double nxx = A[0] * fxx + A[1] * fyx, nxy = A[0] * fxy + A[1] * fyy;
+    const double nyx = A[3] * fxx + A[4] * fyx, nyy = A[3] * fxy + A[4] * fyy;
+    if (J_old) *J_old = fxx * fyy - fxy * fyx;
+    *J = nxx * nyy - nxy * nyx;
     if (!(*J > 0.0)) return 1;
-    F[0] = n0;
-    F[1] = n1;
-    F[2] = n2;
-    F[3] = n3;
-    F[4] = n4;
-    F[5] = n5;
+    F[0] = nxx;
+    F[1] = nxy;
+    F[2] = nyx;
+    F[3] = nyy;
     return 0;
   }
   mat_mul(A, F, Fn);
@@ -140,14 +141,19 @@ MRN_ALWAYS_INLINE double hooke_plane_strain(double lambda, double shear, const d
          2.0 * (0.5 * (old_xy + s[SXY]) * de[SXY]);
 }
 
-/* The kinematics of one point: F advanced, and the model's input (rotated
- * start-of-step stress, strain increment, J) set in pt. Returns 1 (F
- * unchanged) when the increment would invert F. */
+/* The kinematics of one point: F (stored, see advance_F) advanced, and the
+ * model's input (rotated start-of-step stress, strain increment, J, F as a
+ * full 3 x 3, expanded into F_full in plane strain) set in pt. Returns 1
+ * (F unchanged) when the increment would invert F. */
 MRN_ALWAYS_INLINE int kinematics(const int dim, const mrn_material *mat, const double L[9], double dt,
-                                 mrn_f_update f_update, double F[9], const double stress[6], double *state,
-                                 mrn_material_point *pt) {
+                                 mrn_f_update f_update, double *F, double F_full[9], const double stress[6],
+                                 double *state, mrn_material_point *pt) {
   double J_old, J;
   if (advance_F(dim, L, dt, f_update, F, &J_old, &J)) return 1;
+  if (dim == 2) {
+    mrn_tensor_expand(2, F, 1.0, F_full);
+    F = F_full;
+  }
   memcpy(pt->stress, stress, sizeof pt->stress);
   strain_increment(dim, L, dt, pt->dstrain);
   if (mat->type->rate_form) jaumann_rotate(dim, L, dt, pt->stress);
@@ -175,7 +181,7 @@ MRN_ALWAYS_INLINE long advance_hooke(const int dim, const mrn_material *mat, mrn
   long first_bad = -1;
   for (size_t i = 0; i < n; i++) {
     const double *Li = L + 9 * i;
-    double *Fi = F + 9 * i;
+    double *Fi = F + (size_t)mrn_tensor_stride(dim) * i;
     double J_old, J;
     if (advance_F(dim, Li, dt, f_update, Fi, &J_old, &J)) {
       if (out) out[i].inverted = 1;
@@ -218,11 +224,13 @@ MRN_ALWAYS_INLINE long advance_points(const int dim, const mrn_material *mat, mr
   for (size_t lo = 0; lo < n; lo += BATCH) {
     const size_t hi = n - lo < BATCH ? n : lo + BATCH;
     mrn_material_point pts[BATCH];
+    double F_full[BATCH][9]; /* plane strain: each point's F as a full 3 x 3 */
     size_t idx[BATCH];
     int k = 0;
     for (size_t i = lo; i < hi; i++) {
       double *st = state ? state + (size_t)state_stride * i : NULL;
-      if (kinematics(dim, mat, L + 9 * i, dt, f_update, F + 9 * i, stress + 6 * i, st, &pts[k])) {
+      if (kinematics(dim, mat, L + 9 * i, dt, f_update, F + (size_t)mrn_tensor_stride(dim) * i,
+                     F_full[k], stress + 6 * i, st, &pts[k])) {
         if (out) out[i].inverted = 1;
         if (first_bad < 0) first_bad = (long)i;
         continue;

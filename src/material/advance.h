@@ -40,10 +40,11 @@ typedef struct mrn_energy_sums {
 } mrn_energy_sums;
 
 /* Advances n points of one material whose data lie in the particle arrays'
- * layout: L and F 9 values per point, stress and strain 6 (strain may be
- * NULL), state `state_stride` (may be NULL). dim 2 is plane strain: L must
- * have no z row or column (as the 2D gradient kernels store it); dim 3 is
- * general. The energies are added as `energy` says (may be NULL); out[i]
+ * layout: L 9 values per point (a full row-major 3 x 3), F
+ * mrn_tensor_stride(dim) (9 in 3D, the in-plane block xx, xy, yx, yy in
+ * 2D), stress and strain 6 (strain may be NULL), state `state_stride` (may
+ * be NULL). dim 2 is plane strain: L must have no z row or column (as the
+ * 2D gradient kernels store it); dim 3 is general. The energies are added as `energy` says (may be NULL); out[i]
  * receives point i's result (out may be NULL). Returns the index of the
  * first point whose increment would invert F, or -1; such points are left
  * unchanged (energies included), the others are advanced. */

@@ -7,7 +7,7 @@
 #include "core/error.h"
 
 static const mrn_particle_field_info field_table[] = {
-#define MRN_FIELD_INFO(name, ncomp, desc) {#name, ncomp, desc, offsetof(mrn_particles, name)},
+#define MRN_FIELD_INFO(name, ncomp, planar, zz, desc) {#name, ncomp, planar, zz, desc, offsetof(mrn_particles, name)},
     MRN_PARTICLE_FIELDS(MRN_FIELD_INFO)
 #undef MRN_FIELD_INFO
 };
@@ -22,6 +22,37 @@ const mrn_particle_field_info *mrn_particle_field_find(const char *name) {
 }
 
 static double **field_ptr(mrn_particles *p, int i) { return (double **)((char *)p + field_table[i].offset); }
+
+/* values stored per particle for field i */
+static size_t stride_of(const mrn_particles *p, int i) {
+  return (size_t)mrn_particle_field_stride(p, &field_table[i]);
+}
+
+void mrn_particle_field_export(const mrn_particles *p, const mrn_particle_field_info *f, size_t first, size_t count,
+                               double *out) {
+  const double *data = mrn_particle_field_data(p, f);
+  const int stored = mrn_particle_field_stride(p, f);
+  if (!count) return; /* data may be NULL */
+  if (stored == f->ncomp) {
+    memcpy(out, data + first * (size_t)stored, count * (size_t)stored * sizeof(double));
+    return;
+  }
+  for (size_t i = 0; i < count; i++)
+    mrn_tensor_expand(p->dim, data + (first + i) * (size_t)stored, f->zz, out + i * (size_t)f->ncomp);
+}
+
+void mrn_particle_field_import(mrn_particles *p, const mrn_particle_field_info *f, size_t first, size_t count,
+                               const double *in) {
+  double *data = mrn_particle_field_data(p, f);
+  const int stored = mrn_particle_field_stride(p, f);
+  if (!count) return;
+  if (stored == f->ncomp) {
+    memcpy(data + first * (size_t)stored, in, count * (size_t)stored * sizeof(double));
+    return;
+  }
+  for (size_t i = 0; i < count; i++)
+    mrn_tensor_pack(p->dim, in + i * (size_t)f->ncomp, data + (first + i) * (size_t)stored);
+}
 
 void mrn_particles_init(mrn_particles *p, int dim) {
   memset(p, 0, sizeof *p);
@@ -55,7 +86,7 @@ static int grow(void **ptr, size_t count, size_t elem) {
 int mrn_particles_reserve(mrn_particles *p, size_t cap) {
   if (cap <= p->cap) return MRN_OK;
   for (int i = 0; i < FIELD_COUNT; i++)
-    if (!grow((void **)field_ptr(p, i), cap, sizeof(double) * field_table[i].ncomp))
+    if (!grow((void **)field_ptr(p, i), cap, sizeof(double) * stride_of(p, i)))
       return mrn_error("particles: out of memory for %zu particles", cap);
   if (!grow((void **)&p->material, cap, sizeof(int32_t)) || !grow((void **)&p->id, cap, sizeof(int64_t)) ||
       (p->state_stride > 0 && !grow((void **)&p->state, cap, sizeof(double) * p->state_stride)) ||
@@ -82,12 +113,13 @@ long mrn_particles_add(mrn_particles *p, const double x[3], double mass, double 
   size_t i = p->n++;
   for (int f = 0; f < FIELD_COUNT; f++) {
     double *data = *field_ptr(p, f);
-    memset(data + i * field_table[f].ncomp, 0, sizeof(double) * field_table[f].ncomp);
+    memset(data + i * stride_of(p, f), 0, sizeof(double) * stride_of(p, f));
   }
   for (int d = 0; d < 3; d++) p->x[3 * i + d] = p->x0[3 * i + d] = x[d];
   p->mass[i] = mass;
   p->vol0[i] = vol;
-  p->F[9 * i + 0] = p->F[9 * i + 4] = p->F[9 * i + 8] = 1.0;
+  static const double identity[9] = {1, 0, 0, 0, 1, 0, 0, 0, 1};
+  mrn_tensor_pack(p->dim, identity, p->F + (size_t)mrn_tensor_stride(p->dim) * i);
   p->material[i] = material;
   p->id[i] = p->next_id++;
   for (int k = 0; k < p->state_stride; k++) p->state[i * p->state_stride + k] = 0.0;
@@ -103,7 +135,7 @@ void mrn_particles_compact(mrn_particles *p, const unsigned char *keep) {
     if (!keep[i]) continue;
     if (out != i) {
       for (int f = 0; f < FIELD_COUNT; f++) {
-        int nc = field_table[f].ncomp;
+        const size_t nc = stride_of(p, f);
         double *data = *field_ptr(p, f);
         memcpy(data + out * nc, data + i * nc, sizeof(double) * nc);
       }

@@ -25,8 +25,9 @@ int mrn_particles_permute(mrn_particles *p, const uint32_t *order) {
   for (int f = 0; f < mrn_particle_field_count(); f++) {
     const mrn_particle_field_info *info = mrn_particle_field_at(f);
     char *data = (char *)mrn_particle_field_data(p, info);
-    const size_t record = sizeof(double) * (size_t)info->ncomp;
-    for (int k = 0; k < info->ncomp; k++)
+    const int stored = mrn_particle_field_stride(p, info);
+    const size_t record = sizeof(double) * (size_t)stored;
+    for (int k = 0; k < stored; k++)
       permute_component(data, record, sizeof(double) * (size_t)k, sizeof(double), order, n, scratch);
   }
   permute_component((char *)p->material, sizeof *p->material, 0, sizeof *p->material, order, n, scratch);

@@ -26,8 +26,9 @@ static long update_chunk(void *ctx, size_t lo, size_t hi, const double *L) {
     for (b = a + 1; b < hi && ps->material[b] == ps->material[a];) b++;
     const mrn_energy_sums energy = {ps->vol0 + a, ps->e_elastic + a, ps->w_plastic + a};
     long bad = mrn_material_advance_points(sim->materials[ps->material[a]], sim->dim, MRN_F_UPDATE_MIDPOINT, c->dt,
-                                           b - a, L + 9 * (a - lo), ps->F + 9 * a, ps->stress + 6 * a,
-                                           ps->strain + 6 * a, stride ? ps->state + (size_t)stride * a : NULL,
+                                           b - a, L + 9 * (a - lo), ps->F + (size_t)mrn_tensor_stride(sim->dim) * a,
+                                           ps->stress + 6 * a, ps->strain + 6 * a,
+                                           stride ? ps->state + (size_t)stride * a : NULL,
                                            stride, &energy, NULL);
     if (bad >= 0 && first_bad < 0) first_bad = (long)a + bad;
   }

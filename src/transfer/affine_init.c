@@ -12,21 +12,27 @@
 #define MAX_ITERATIONS 100
 
 typedef struct taylor_ctx {
-  double *affine;
+  double *affine; /* stored as the particles keep it (mrn_tensor_stride) */
+  int dim;
   double change, scale; /* max |grad v - affine|, max |grad v| */
 } taylor_ctx;
 
-/* gradient sink: the new grad v of a chunk replaces its affine matrices,
- * noting how much they changed (maxima: the same for any order of chunks) */
+/* gradient sink: the new grad v of a chunk (9 values per particle)
+ * replaces its affine matrices, noting how much they changed (maxima: the
+ * same for any order of chunks; in 2D L has no z row or column) */
 static long take_gradient(void *ctx, size_t lo, size_t hi, const double *L) {
   taylor_ctx *t = ctx;
   double change = 0.0, scale = 0.0;
-  double *A = t->affine + 9 * lo;
-  for (size_t k = 0; k < 9 * (hi - lo); k++) {
-    change = fmax(change, fabs(L[k] - A[k]));
-    scale = fmax(scale, fabs(L[k]));
+  const size_t stride = (size_t)mrn_tensor_stride(t->dim);
+  for (size_t i = lo; i < hi; i++) {
+    double *A = t->affine + stride * i, packed[9];
+    mrn_tensor_pack(t->dim, L + 9 * (i - lo), packed);
+    for (size_t k = 0; k < stride; k++) {
+      change = fmax(change, fabs(packed[k] - A[k]));
+      scale = fmax(scale, fabs(packed[k]));
+    }
+    memcpy(A, packed, stride * sizeof(double));
   }
-  memcpy(A, L, 9 * (hi - lo) * sizeof(double));
 #pragma omp critical(mrn_taylor_change)
   {
     t->change = fmax(t->change, change);
@@ -40,14 +46,14 @@ int mrn_sim_init_affine(mrn_sim *sim) {
   mrn_grid *g = &sim->grid;
   const mrn_grid_velocity_kind saved = sim->scheme.grid_velocity;
   sim->scheme.grid_velocity = MRN_VGRID_TAYLOR;
-  memset(ps->affine, 0, 9 * ps->n * sizeof(double));
+  memset(ps->affine, 0, (size_t)mrn_tensor_stride(sim->dim) * ps->n * sizeof(double));
   int it;
   for (it = 1; it <= MAX_ITERATIONS; it++) {
     mrn_p2g(sim, sim->dim, 1, 0); /* (000, Eq. 19) with the current grad v */
     for (size_t i = 0; i < g->n; i++)
       for (int d = 0; d < 3; d++)
         g->vel[3 * i + d] = g->mass[i] > sim->mass_floor ? g->mom[3 * i + d] / g->mass[i] : 0.0;
-    taylor_ctx t = {ps->affine, 0.0, 0.0};
+    taylor_ctx t = {ps->affine, sim->dim, 0.0, 0.0};
     const mrn_gradient_sink sink = {take_gradient, &t, MRN_PHASE_G2P};
     mrn_gradient(sim, sim->dim, g->vel, &sink); /* (000, Eq. 22) */
     if (t.change <= 1e-15 * t.scale || t.scale == 0.0) break;

@@ -28,6 +28,9 @@
 
 #define MRN_INLINE static inline __attribute__((always_inline))
 
+/* values stored per particle for F and the affine matrix (particles.h) */
+#define TSTRIDE ((size_t)(DIM * DIM))
+
 static inline mrn_kernel_options KNAME(kernel_options)(const mrn_sim *sim) { return mrn_sim_kernel_options(sim); }
 
 /* support of the fast path for these options, or 0 for the general stencil */
@@ -52,7 +55,7 @@ static void KNAME(p2g_general)(const KNAME(p2g_args) *ar, size_t p, int momentum
   KNAME(stencil_build)(g, &ar->ko, ps->x + 3 * p, ps->vol0[p], &s);
   const double m = ps->mass[p];
   const double *v = ps->v + 3 * p;
-  const double *A = ps->affine + 9 * p;
+  const double *A = ps->affine + TSTRIDE * p;
   const double *sig = ps->stress + 6 * p;
   const double vol = mrn_particle_volume_dim(ps, p, DIM);
   for (int c = 0; c < s.count; c++) {
@@ -64,7 +67,7 @@ static void KNAME(p2g_general)(const KNAME(p2g_args) *ar, size_t p, int momentum
         double va = v[a];
         /* (000, Eqs. 19-20 and 23-24): v_p + A_p (x_i - x_p), A = grad v or C */
         if (affine)
-          for (int b = 0; b < DIM; b++) va += A[3 * a + b] * s.offset[c][b];
+          for (int b = 0; b < DIM; b++) va += A[DIM * a + b] * s.offset[c][b];
         g->mom[3 * n + a] += wm * va;
       }
     }
@@ -84,11 +87,11 @@ static void KNAME(p2g_general)(const KNAME(p2g_args) *ar, size_t p, int momentum
 MRN_INLINE void KNAME(p2g_particle_terms)(const mrn_particles *ps, size_t p, int affine, double mv[3],
                                           double MA[3][3], double VS[3][3]) {
   const double m = ps->mass[p], vol = mrn_particle_volume_dim(ps, p, DIM);
-  const double *v = ps->v + 3 * p, *A = ps->affine + 9 * p, *sig = ps->stress + 6 * p;
+  const double *v = ps->v + 3 * p, *A = ps->affine + TSTRIDE * p, *sig = ps->stress + 6 * p;
   for (int a = 0; a < 3; a++) {
     mv[a] = a < DIM ? m * v[a] : 0.0;
     for (int b = 0; b < 3; b++) {
-      MA[a][b] = (affine && a < DIM && b < DIM) ? m * A[3 * a + b] : 0.0;
+      MA[a][b] = (affine && a < DIM && b < DIM) ? m * A[DIM * a + b] : 0.0;
       VS[a][b] = (a < DIM && b < DIM) ? vol * sig[sym_index(a, b)] : 0.0;
     }
   }
@@ -656,10 +659,17 @@ static inline void KNAME(gather_general)(const KNAME(stencil) *s, const double *
   }
 }
 
+/* a velocity gradient as a full row-major 3 x 3 (what the material update takes) */
 static inline void KNAME(store_matrix)(const double M[DIM][DIM], double *out) {
   memset(out, 0, 9 * sizeof(double));
   for (int a = 0; a < DIM; a++)
     for (int b = 0; b < DIM; b++) out[3 * a + b] = M[a][b];
+}
+
+/* a particle tensor as stored (TSTRIDE values: particles.h) */
+static inline void KNAME(store_tensor)(const double M[DIM][DIM], double *out) {
+  for (int a = 0; a < DIM; a++)
+    for (int b = 0; b < DIM; b++) out[DIM * a + b] = M[a][b];
 }
 
 /* The body of a kernel instance that may hand gradients on: the particles
@@ -766,7 +776,7 @@ MRN_INLINE size_t KNAME(batch_build)(const KNAME(p2g_args) *ar, const uint32_t *
     if (gvel) {
       KNAME(gradient_fast)(ar->g, &ax[n], gvel, L + 9 * n, sup);
       /* what the material update reads once the batch's gradients are formed */
-      __builtin_prefetch(ar->ps->F + 9 * p, 1);
+      __builtin_prefetch(ar->ps->F + TSTRIDE * p, 1);
       __builtin_prefetch(ar->ps->stress + 6 * p, 1);
       __builtin_prefetch(ar->ps->strain + 6 * p, 1);
       if (ar->ps->state_stride) __builtin_prefetch(ar->ps->state + (size_t)ar->ps->state_stride * p, 1);
@@ -774,10 +784,10 @@ MRN_INLINE size_t KNAME(batch_build)(const KNAME(p2g_args) *ar, const uint32_t *
     /* what the scatter reads of the particle, asked for while the batch's
      * stencils are built */
     if (momentum) __builtin_prefetch(ar->ps->v + 3 * p);
-    if (affine) __builtin_prefetch(ar->ps->affine + 9 * p);
+    if (affine) __builtin_prefetch(ar->ps->affine + TSTRIDE * p);
     if (force) {
       __builtin_prefetch(ar->ps->stress + 6 * p);
-      __builtin_prefetch(ar->ps->F + 9 * p);
+      __builtin_prefetch(ar->ps->F + TSTRIDE * p);
     }
     n++;
   }
@@ -871,8 +881,8 @@ long KNAME(mrn_update_force)(mrn_sim *sim, const double *gvel, const mrn_gradien
 
 /* ---- G2P ------------------------------------------------------------------------ */
 
-/* C = B D^-1 (000, Eqs. 25-27) */
-static inline void KNAME(apic_matrix)(const double B[DIM][DIM], const double D[DIM][DIM], double C[9]) {
+/* C = B D^-1 (000, Eqs. 25-27), stored (TSTRIDE values) */
+static inline void KNAME(apic_matrix)(const double B[DIM][DIM], const double D[DIM][DIM], double *C) {
   double Di[DIM][DIM];
 #if DIM == 2
   double det = D[0][0] * D[1][1] - D[0][1] * D[1][0];
@@ -893,12 +903,11 @@ static inline void KNAME(apic_matrix)(const double B[DIM][DIM], const double D[D
   Di[2][1] = (D[0][1] * D[2][0] - D[0][0] * D[2][1]) / det;
   Di[2][2] = (D[0][0] * D[1][1] - D[0][1] * D[1][0]) / det;
 #endif
-  memset(C, 0, 9 * sizeof(double));
   for (int a = 0; a < DIM; a++)
     for (int b = 0; b < DIM; b++) {
       double v = 0.0;
       for (int k = 0; k < DIM; k++) v += B[a][k] * Di[k][b];
-      C[3 * a + b] = v;
+      C[DIM * a + b] = v;
     }
 }
 
@@ -934,12 +943,12 @@ MRN_INLINE void KNAME(g2p_particle)(const KNAME(g2p_args) *ar, size_t p, double 
   if (fused) {
     /* the material update reads these once the chunk's gradients are
      * formed: ask for them now, into the second-level cache */
-    __builtin_prefetch(ps->F + 9 * p, 1, 2);
+    __builtin_prefetch(ps->F + TSTRIDE * p, 1, 2);
     __builtin_prefetch(ps->stress + 6 * p, 1, 2);
     __builtin_prefetch(ps->strain + 6 * p, 1, 2);
     if (ps->state_stride) __builtin_prefetch(ps->state + (size_t)ps->state_stride * p, 1, 2);
   }
-  if (gvk == MRN_VGRID_AFFINE) __builtin_prefetch(ps->affine + 9 * p, 1);
+  if (gvk == MRN_VGRID_AFFINE) __builtin_prefetch(ps->affine + TSTRIDE * p, 1);
   KNAME(axes) ax;
   if (sup && KNAME(axes_build)(g, sup, ar->ko->boundary, x, &ax)) {
     KNAME(gather_fast)(&ax, g->vel_new, g->vel, g->stride[1], g->stride[2], sup, 1, want_dv, want_bd, want_l, v_pic,
@@ -948,20 +957,19 @@ MRN_INLINE void KNAME(g2p_particle)(const KNAME(g2p_args) *ar, size_t p, double 
       /* the full B-spline's D = sum N (x_i - x_p) (x)(x_i - x_p) is h^2/4 I
        * (quadratic) or h^2/3 I (cubic) wherever the particle is */
       const double dinv = (sup == 3 ? 4.0 : 3.0) * g->inv_cell * g->inv_cell;
-      double *C = ps->affine + 9 * p;
-      memset(C, 0, 9 * sizeof(double));
+      double *C = ps->affine + TSTRIDE * p;
       for (int a = 0; a < DIM; a++)
-        for (int b = 0; b < DIM; b++) C[3 * a + b] = B[a][b] * dinv;
+        for (int b = 0; b < DIM; b++) C[DIM * a + b] = B[a][b] * dinv;
     }
   } else {
     KNAME(stencil) s;
     KNAME(stencil_build)(g, ar->ko, x, ps->vol0[p], &s);
     KNAME(gather_general)(&s, g->vel_new, want_dv ? g->vel : NULL, ar->gstar, 1, want_bd, want_l, v_pic, v_old, v_star,
                           B, D, L);
-    if (gvk == MRN_VGRID_AFFINE) KNAME(apic_matrix)(B, D, ps->affine + 9 * p);
+    if (gvk == MRN_VGRID_AFFINE) KNAME(apic_matrix)(B, D, ps->affine + TSTRIDE * p);
   }
   if (fused) KNAME(store_matrix)(L, Lout);
-  if (gvk == MRN_VGRID_TAYLOR) KNAME(store_matrix)(L, ps->affine + 9 * p); /* (000, Eq. 22), updated V */
+  if (gvk == MRN_VGRID_TAYLOR) KNAME(store_tensor)(L, ps->affine + TSTRIDE * p); /* (000, Eq. 22), updated V */
   double step[3] = {0, 0, 0};
   for (int d = 0; d < DIM; d++) {
     if (!want_dv) {
@@ -1098,3 +1106,4 @@ void KNAME(mrn_particles_to_grid)(mrn_sim *sim, const double *pvel, double *gvel
 
 #undef MRN_CHUNKED_LOOP
 #undef MRN_INLINE
+#undef TSTRIDE

@@ -57,7 +57,7 @@ static mrn_sim *make(int dim, mrn_shape_kind shape, int count, unsigned seed) {
     long p = mrn_particles_add(&sim->particles, x, 0.5 + rnd(&seed), 1e-4, mi);
     for (int d = 0; d < dim; d++) {
       sim->particles.v[3 * p + d] = rnd(&seed) - 0.5;
-      for (int e = 0; e < dim; e++) sim->particles.affine[9 * p + 3 * d + e] = rnd(&seed) - 0.5;
+      for (int e = 0; e < dim; e++) sim->particles.affine[(size_t)mrn_tensor_stride(dim) * p + dim * d + e] = rnd(&seed) - 0.5;
     }
     for (int k = 0; k < 6; k++) sim->particles.stress[6 * p + k] = 1e3 * (rnd(&seed) - 0.5);
   }
@@ -109,9 +109,10 @@ static void threads_and_spans(int dim, mrn_shape_kind shape) {
   mrn_sim *fresh = make(dim, shape, 20000, 7u + (unsigned)dim);
   memcpy(fresh->particles.x, two->particles.x, 3 * two->particles.n * sizeof(double));
   memcpy(fresh->particles.v, two->particles.v, 3 * two->particles.n * sizeof(double));
-  memcpy(fresh->particles.affine, two->particles.affine, 9 * two->particles.n * sizeof(double));
+  const size_t ts = (size_t)mrn_tensor_stride(dim);
+  memcpy(fresh->particles.affine, two->particles.affine, ts * two->particles.n * sizeof(double));
   memcpy(fresh->particles.stress, two->particles.stress, 6 * two->particles.n * sizeof(double));
-  memcpy(fresh->particles.F, two->particles.F, 9 * two->particles.n * sizeof(double)); /* the volumes */
+  memcpy(fresh->particles.F, two->particles.F, ts * two->particles.n * sizeof(double)); /* the volumes */
   mrn_p2g(two, dim, 1, 1);
   set_threads(1);
   mrn_p2g(fresh, dim, 1, 1);
@@ -186,7 +187,7 @@ static void permute_keeps_fields(void) {
   const size_t n = ps->n;
   mrn_particles_set_state_stride(ps, 2);
   for (size_t i = 0; i < n; i++) {
-    ps->F[9 * i + 1] = (double)i;
+    ps->F[4 * i + 1] = (double)i; /* 2D: F stored as its in-plane block */
     ps->state[2 * i + 1] = -(double)i;
     ps->material[i] = (int32_t)(i % 7);
   }
@@ -198,7 +199,7 @@ static void permute_keeps_fields(void) {
   int ok = 1;
   for (size_t i = 0; i < n; i++) {
     size_t was = order[i];
-    ok &= ps->id[i] == (int64_t)was + 1 && ps->F[9 * i + 1] == (double)was && ps->state[2 * i + 1] == -(double)was &&
+    ok &= ps->id[i] == (int64_t)was + 1 && ps->F[4 * i + 1] == (double)was && ps->state[2 * i + 1] == -(double)was &&
           ps->material[i] == (int32_t)(was % 7) && !memcmp(ps->x + 3 * i, x + 3 * was, 3 * sizeof(double));
   }
   CHECK(ok);
@@ -249,14 +250,14 @@ static long advance_sink(void *ctx, size_t lo, size_t hi, const double *L) {
   mrn_particles *ps = &sim->particles;
   mrn_point_result r[MRN_GRADIENT_CHUNK];
   long bad = mrn_material_advance_points(sim->materials[0], sim->dim, MRN_F_UPDATE_MIDPOINT, 1e-3, hi - lo, L,
-                                         ps->F + 9 * lo, ps->stress + 6 * lo, ps->strain + 6 * lo, NULL, 0, NULL, r);
+                                         ps->F + (size_t)mrn_tensor_stride(sim->dim) * lo, ps->stress + 6 * lo, ps->strain + 6 * lo, NULL, 0, NULL, r);
   return bad >= 0 ? (long)lo + bad : -1;
 }
 
 static int same_state(const mrn_sim *a, const mrn_sim *b) {
   const mrn_particles *pa = &a->particles, *pb = &b->particles;
   const size_t n = pa->n;
-  return !memcmp(pa->stress, pb->stress, 6 * n * sizeof(double)) && !memcmp(pa->F, pb->F, 9 * n * sizeof(double)) &&
+  return !memcmp(pa->stress, pb->stress, 6 * n * sizeof(double)) && !memcmp(pa->F, pb->F, (size_t)mrn_tensor_stride(a->dim) * n * sizeof(double)) &&
          !memcmp(pa->strain, pb->strain, 6 * n * sizeof(double)) &&
          !memcmp(pa->e_elastic, pb->e_elastic, n * sizeof(double)) &&
          !memcmp(a->grid.force, b->grid.force, 3 * a->grid.n * sizeof(double));

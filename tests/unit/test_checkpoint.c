@@ -131,7 +131,7 @@ static int same_particles(const mrn_particles *a, const mrn_particles *b) {
   if (a->n != b->n || a->next_id != b->next_id || a->state_stride != b->state_stride) return 0;
   for (int i = 0; i < mrn_particle_field_count(); i++) {
     const mrn_particle_field_info *f = mrn_particle_field_at(i);
-    if (!same_bits(mrn_particle_field_data(a, f), mrn_particle_field_data(b, f), a->n * f->ncomp * sizeof(double))) {
+    if (!same_bits(mrn_particle_field_data(a, f), mrn_particle_field_data(b, f), a->n * (size_t)mrn_particle_field_stride(a, f) * sizeof(double))) {
       fprintf(stderr, "  particle field %s differs\n", f->name);
       return 0;
     }
@@ -425,6 +425,10 @@ static void d_x_outside(hid_t f, long n) { poke_double(f, "/particles/x", 3 * 4,
 static void d_mass_zero(hid_t f, long n) { poke_double(f, "/particles/mass", 1, 0.0); }
 /* F_xx = -1 with F near I: det F < 0, the volume vol0 det F would be negative */
 static void d_F_inverted(hid_t f, long n) { poke_double(f, "/particles/F", 9 * 3, -1.0); }
+/* the sample is 2D: F_xz of particle 2 and the affine matrix's zz of
+ * particle 5 are off the plane-strain values a 2D run stores implicitly */
+static void d_F_out_of_plane(hid_t f, long n) { poke_double(f, "/particles/F", 9 * 2 + 2, 0.25); }
+static void d_affine_zz(hid_t f, long n) { poke_double(f, "/particles/affine", 9 * 5 + 8, 3.0); }
 
 static void d_material_index(hid_t f, long n) {
   int32_t seven = 7;
@@ -507,6 +511,9 @@ static void test_damaged_files(void) {
       {"outside the grid", d_x_outside, "particle 4 (id 5) at (1.5, "},
       {"zero mass", d_mass_zero, "particle 1 (id 2) has mass = 0, expected > 0"},
       {"det F < 0", d_F_inverted, "/particles/F: particle 3 (id 4) has det F = -"},
+      {"2D F out of plane", d_F_out_of_plane,
+       "/particles/F: particle 2 (id 3) has z components (0.25, 0, 0, 0, zz 1) in a 2D file, expected 0, 0, 0, 0 and zz 1"},
+      {"2D affine zz", d_affine_zz, "/particles/affine: particle 5 (id 6) has z components (0, 0, 0, 0, zz 3) in a 2D file"},
       {"material index", d_material_index, "particle 3 (id 4) has material 7, but the file defines 1 material"},
       {"duplicate id", d_duplicate_id, "/particles/id: id 1 appears more than once"},
       {"external link", d_external_link, "/particles/v is a soft or external link"},
@@ -560,8 +567,9 @@ static mrn_sim *wide_sim(void) {
 static int fields_equal(const mrn_particles *a, size_t ia, const mrn_particles *b, size_t ib, size_t n,
                         const char *name) {
   const mrn_particle_field_info *f = mrn_particle_field_find(name);
-  return same_bits(mrn_particle_field_data(a, f) + ia * f->ncomp, mrn_particle_field_data(b, f) + ib * f->ncomp,
-                   n * f->ncomp * sizeof(double));
+  const size_t stride = (size_t)mrn_particle_field_stride(a, f);
+  return same_bits(mrn_particle_field_data(a, f) + ia * stride, mrn_particle_field_data(b, f) + ib * stride,
+                   n * stride * sizeof(double));
 }
 
 static void test_import(void) {

@@ -69,7 +69,7 @@ static void single_particle(const char *preset, int keeps_gradient) {
   sim->particles.v[3 * p] = v0[0];
   sim->particles.v[3 * p + 1] = v0[1];
   for (int a = 0; a < 2; a++)
-    for (int b = 0; b < 2; b++) sim->particles.affine[9 * p + 3 * a + b] = L0[2 * a + b];
+    for (int b = 0; b < 2; b++) sim->particles.affine[4 * p + 2 * a + b] = L0[2 * a + b]; /* 2D: in-plane block */
   transfer_once(sim);
   CHECK_CLOSE(sim->particles.v[3 * p], v0[0], 1e-13);
   CHECK_CLOSE(sim->particles.v[3 * p + 1], v0[1], 1e-13);
@@ -118,7 +118,7 @@ static double affine_field(int dim, const char *preset, mrn_shape_kind shape) {
       double v = v0[a];
       for (int b = 0; b < dim; b++) v += L[a][b] * x[b];
       err = fmax(err, fabs(sim->particles.v[3 * p + a] - v));
-      for (int b = 0; b < dim; b++) err = fmax(err, fabs(sim->particles.affine[9 * p + 3 * a + b] - L[a][b]));
+      for (int b = 0; b < dim; b++) err = fmax(err, fabs(sim->particles.affine[(size_t)mrn_tensor_stride(dim) * p + dim * a + b] - L[a][b]));
     }
   }
   mrn_material_unref(m);
