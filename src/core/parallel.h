@@ -16,7 +16,54 @@
 #ifndef MRN_CORE_PARALLEL_H
 #define MRN_CORE_PARALLEL_H
 
+#include <stddef.h>
+#ifdef _OPENMP
+#include <omp.h>
+#endif
+
 #define MRN_OMP_MIN_ITEMS 4096
 #define MRN_OMP_MIN_NODES 65536
+
+/* Particle ownership. The particle loops of the step share the particles
+ * out among the threads of a team in one way: in chunks of
+ * MRN_PARTICLE_CHUNK consecutive indices, thread t of T takes chunks
+ * [N t / T, N (t + 1) / T) of the N chunks (mrn_team_chunks). P2G, which
+ * goes block by block, gives each block to the thread that owns the block's
+ * first particle (mrn_chunk_owner). So from P2G to G2P and the material
+ * update a particle's cache lines stay on one core: when P2G handed blocks
+ * out first come, first served, half the particles were read in P2G by the
+ * core that did not then write them in G2P, and every such write first had
+ * to take the line back from the other core's cache (two threads ran the
+ * 2D column at 1.3x - 1.6x one thread; see doc/performance.md). Which
+ * thread does what never changes a result. */
+enum { MRN_PARTICLE_CHUNK = 256 };
+
+/* chunks of MRN_PARTICLE_CHUNK needed for n particles */
+static inline size_t mrn_particle_chunks(size_t n) { return (n + MRN_PARTICLE_CHUNK - 1) / MRN_PARTICLE_CHUNK; }
+
+/* this thread's number and its team's size (0 and 1 outside a parallel region) */
+static inline void mrn_team(int *t, int *threads) {
+#ifdef _OPENMP
+  *t = omp_get_thread_num();
+  *threads = omp_get_num_threads();
+#else
+  *t = 0;
+  *threads = 1;
+#endif
+}
+
+/* the chunks [*c0, *c1) of nchunks that the calling thread owns */
+static inline void mrn_team_chunks(size_t nchunks, size_t *c0, size_t *c1) {
+  int t, threads;
+  mrn_team(&t, &threads);
+  *c0 = nchunks * (size_t)t / (size_t)threads;
+  *c1 = nchunks * (size_t)(t + 1) / (size_t)threads;
+}
+
+/* the thread of a team of `threads` that owns chunk c of nchunks: the t
+ * with N t / T <= c < N (t + 1) / T, i.e. ceil((c + 1) T / N) - 1 */
+static inline int mrn_chunk_owner(size_t c, size_t nchunks, int threads) {
+  return (int)(((c + 1) * (size_t)threads - 1) / nchunks);
+}
 
 #endif

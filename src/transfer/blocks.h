@@ -30,6 +30,8 @@
 #include <stddef.h>
 #include <stdint.h>
 
+#include "core/parallel.h"
+
 struct mrn_grid;
 struct mrn_sim;
 
@@ -108,6 +110,14 @@ void mrn_blocks_reuse(struct mrn_grid *g);
  * `clear` was cleared everywhere, every row is marked active, and the caller
  * must scatter the particles in index order on one thread. */
 mrn_blocks *mrn_blocks_prepare(struct mrn_sim *sim, unsigned clear);
+
+/* The thread of a team of `threads` that scatters block blk (non-empty):
+ * the owner of the block's first particle among nchunks =
+ * mrn_particle_chunks(b->np) chunks (core/parallel.h), so that the thread
+ * which then moves and updates a particle (G2P) is the one that read it. */
+static inline int mrn_block_owner(const mrn_blocks *b, uint32_t blk, size_t nchunks, int threads) {
+  return mrn_chunk_owner(b->order[b->start[blk]] / MRN_PARTICLE_CHUNK, nchunks, threads);
+}
 
 /* Node index ranges [lo[k], hi[k]) outside which every nodal array is zero;
  * `sum` has room for one double per range. */

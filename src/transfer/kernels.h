@@ -7,12 +7,14 @@
 
 #include <stddef.h>
 
+#include "core/parallel.h"
 #include "transfer/profile.h"
 
 struct mrn_sim;
 
-/* particles per chunk of velocity gradients handed on together */
-enum { MRN_GRADIENT_CHUNK = 256 };
+/* particles per chunk of velocity gradients handed on together: the chunks
+ * by which the particles are shared out among threads (core/parallel.h) */
+enum { MRN_GRADIENT_CHUNK = MRN_PARTICLE_CHUNK };
 
 /* the mean run of consecutive particle indices within a block (of the last
  * binning) from which mrn_update_force is used */

@@ -485,12 +485,16 @@ void KNAME(mrn_p2g)(mrn_sim *sim, int momentum, int force) {
   } else {
     const int threads __attribute__((unused)) = !b->dense && sim->particles.n > MRN_OMP_MIN_ITEMS; /* unused without OpenMP */
 #pragma omp parallel if (threads)
-    for (int c = 0; c < b->colours; c++) {
-      const long first = (long)b->colour_first[c], count = (long)b->colour_first[c + 1] - first;
-#pragma omp for schedule(dynamic, 1)
-      for (long k = 0; k < count; k++) {
-        const uint32_t blk = b->list[first + k];
-        run(&ar, b->order, b->start[blk], b->start[blk + 1]);
+    {
+      int t, team;
+      mrn_team(&t, &team);
+      const size_t nchunks = mrn_particle_chunks(b->np);
+      for (int c = 0; c < b->colours; c++) {
+        for (size_t k = b->colour_first[c]; k < b->colour_first[c + 1]; k++) {
+          const uint32_t blk = b->list[k];
+          if (mrn_block_owner(b, blk, nchunks, team) == t) run(&ar, b->order, b->start[blk], b->start[blk + 1]);
+        }
+#pragma omp barrier
       }
     }
   }
@@ -673,7 +677,8 @@ static inline void KNAME(store_tensor)(const double M[DIM][DIM], double *out) {
 }
 
 /* The body of a kernel instance that may hand gradients on: the particles
- * in chunks of MRN_GRADIENT_CHUNK, the chunks in parallel; EACH handles
+ * in chunks of MRN_GRADIENT_CHUNK, each thread its own chunks
+ * (mrn_team_chunks: the particles it scattered in P2G); EACH handles
  * particle p of the chunk [lo, hi), writing its gradient to L + 9 (p - lo)
  * when HAND_OVER, and the chunk's gradients then go to `sink`; then, when
  * `after` is not NULL, the chunk goes to it (mrn_particle_pass). Returns the
@@ -683,15 +688,18 @@ static inline void KNAME(store_tensor)(const double M[DIM][DIM], double *out) {
   const long n_ = (N), nchunks_ = (n_ + MRN_GRADIENT_CHUNK - 1) / MRN_GRADIENT_CHUNK;                        \
   long first_bad = n_, first_after = n_;                                                                     \
   double spent = 0.0;                                                                                        \
-  _Pragma("omp parallel for schedule(static) if (n_ > MRN_OMP_MIN_ITEMS) reduction(min : first_bad, first_after) reduction(+ : spent)") \
-  for (long c = 0; c < nchunks_; c++) {                                                                      \
-    const long lo = c * MRN_GRADIENT_CHUNK, hi = lo + MRN_GRADIENT_CHUNK < n_ ? lo + MRN_GRADIENT_CHUNK : n_; \
-    double L[(HAND_OVER) ? 9 * MRN_GRADIENT_CHUNK : 1];                                                       \
-    for (long p = lo; p < hi; p++) EACH;                                                                     \
-    if (HAND_OVER) KNAME(hand_over)(sink, lo, hi, L, &first_bad, &spent);                                    \
-    if (after) {                                                                                             \
-      const long bad_ = after->chunk(after->ctx, (size_t)lo, (size_t)hi);                                    \
-      if (bad_ >= 0 && bad_ < first_after) first_after = bad_;                                               \
+  _Pragma("omp parallel if (n_ > MRN_OMP_MIN_ITEMS) reduction(min : first_bad, first_after) reduction(+ : spent)") { \
+    size_t c0_, c1_;                                                                                         \
+    mrn_team_chunks((size_t)nchunks_, &c0_, &c1_);                                                           \
+    for (long c = (long)c0_; c < (long)c1_; c++) {                                                           \
+      const long lo = c * MRN_GRADIENT_CHUNK, hi = lo + MRN_GRADIENT_CHUNK < n_ ? lo + MRN_GRADIENT_CHUNK : n_; \
+      double L[(HAND_OVER) ? 9 * MRN_GRADIENT_CHUNK : 1];                                                     \
+      for (long p = lo; p < hi; p++) EACH;                                                                   \
+      if (HAND_OVER) KNAME(hand_over)(sink, lo, hi, L, &first_bad, &spent);                                  \
+      if (after) {                                                                                           \
+        const long bad_ = after->chunk(after->ctx, (size_t)lo, (size_t)hi);                                  \
+        if (bad_ >= 0 && bad_ < first_after) first_after = bad_;                                             \
+      }                                                                                                      \
     }                                                                                                        \
   }                                                                                                          \
   *sink_seconds = spent;                                                                                     \
@@ -837,14 +845,18 @@ MRN_INLINE void KNAME(update_force_range)(const KNAME(p2g_args) *ar, const doubl
       KNAME(update_force_range)(ar, gvel, NULL, 0, (size_t)n_, sink, &first_bad, &spent, SUP);                   \
     } else {                                                                                                     \
       const int threads __attribute__((unused)) = !b->dense && n_ > MRN_OMP_MIN_ITEMS;                          \
-      _Pragma("omp parallel if (threads) reduction(min : first_bad) reduction(+ : spent)")                       \
-      for (int c = 0; c < b->colours; c++) {                                                                     \
-        const long first = (long)b->colour_first[c], count = (long)b->colour_first[c + 1] - first;               \
-        _Pragma("omp for schedule(dynamic, 1)")                                                                   \
-        for (long k = 0; k < count; k++) {                                                                       \
-          const uint32_t blk = b->list[first + k];                                                               \
-          KNAME(update_force_range)(ar, gvel, b->order, b->start[blk], b->start[blk + 1], sink, &first_bad,      \
-                                    &spent, SUP);                                                                \
+      _Pragma("omp parallel if (threads) reduction(min : first_bad) reduction(+ : spent)") {                     \
+        int t, team;                                                                                             \
+        mrn_team(&t, &team);                                                                                     \
+        const size_t nchunks = mrn_particle_chunks(b->np);                                                       \
+        for (int c = 0; c < b->colours; c++) {                                                                   \
+          for (size_t k = b->colour_first[c]; k < b->colour_first[c + 1]; k++) {                                 \
+            const uint32_t blk = b->list[k];                                                                     \
+            if (mrn_block_owner(b, blk, nchunks, team) == t)                                                     \
+              KNAME(update_force_range)(ar, gvel, b->order, b->start[blk], b->start[blk + 1], sink, &first_bad,  \
+                                        &spent, SUP);                                                            \
+          }                                                                                                      \
+          _Pragma("omp barrier")                                                                                 \
         }                                                                                                        \
       }                                                                                                          \
     }                                                                                                            \
