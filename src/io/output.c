@@ -110,6 +110,18 @@ int mrn_output_record(mrn_output *o, const char *name, double value) {
   return mrn_series_set(o->series, name, value);
 }
 
+/* a particle field the .vtp writer asks for a chunk of points at a time
+ * (mrn_vtk_array.fill), so a snapshot holds no field whole in memory */
+typedef struct field_source {
+  const mrn_sim *sim;
+  mrn_field_ref field;
+} field_source;
+
+static void fill_from_field(const void *ctx, size_t first, size_t count, void *out) {
+  const field_source *src = ctx;
+  mrn_field_fill_range(src->sim, &src->field, first, count, out);
+}
+
 int mrn_output_write_vtk(mrn_output *o, const mrn_sim *sim) {
   if (!o->vtk_name) return MRN_OK;
   if (mrn_mkdir_p(o->dir) != MRN_OK) return MRN_ERR_IO;
@@ -142,7 +154,7 @@ int mrn_output_write_vtk(mrn_output *o, const mrn_sim *sim) {
   const size_t n = sim->particles.n;
   int nf = 0;
   mrn_vtk_array arrays[MRN_OUTPUT_MAX_FIELDS];
-  void *buffers[MRN_OUTPUT_MAX_FIELDS];
+  field_source sources[MRN_OUTPUT_MAX_FIELDS]; /* made a chunk at a time as the file is written */
   /* every field by default: the built-in ones, then those the deck registered */
   const int builtins = mrn_output_field_count();
   int count = o->nfields ? o->nfields : builtins + sim->particles.nuser;
@@ -164,18 +176,11 @@ int mrn_output_write_vtk(mrn_output *o, const mrn_sim *sim) {
                      hint ? "'?)" : "");
       break;
     }
-    size_t elem = f.type == MRN_VTK_INT32 ? sizeof(int32_t) : 8;
-    buffers[nf] = malloc(elem * f.ncomp * (n ? n : 1));
-    if (!buffers[nf]) {
-      rc = mrn_error_code(MRN_ERR_IO, "out of memory preparing '%s'", path);
-      break;
-    }
-    mrn_field_fill(sim, &f, buffers[nf]);
-    arrays[nf] = (mrn_vtk_array){f.name, f.ncomp, f.type, buffers[nf]};
+    sources[nf] = (field_source){sim, f};
+    arrays[nf] = (mrn_vtk_array){f.name, f.ncomp, f.type, NULL, fill_from_field, &sources[nf]};
     nf++;
   }
   if (rc == MRN_OK) rc = mrn_vtp_write(path, n, sim->particles.x, arrays, nf, o->encoding);
-  for (int i = 0; i < nf; i++) free(buffers[i]);
   if (rc == MRN_OK) rc = mrn_pvd_add(&o->pvd, sim->time, file_part);
   if (rc == MRN_OK && o->grid_vtk) {
     /* the nodal mass, velocity and force of the last step */

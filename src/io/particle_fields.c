@@ -7,67 +7,68 @@
 #include "core/tensor.h"
 #include "solver/simulation.h"
 
-#define FOR_PARTICLES(sim) for (size_t p = 0; p < (sim)->particles.n; p++)
+/* the particles [first, first + count) of a fill, q counting from 0 in out */
+#define FOR_PARTICLES(first, count) for (size_t q = 0, p = (first); q < (count); q++, p++)
 
-static void copy_field(const double *src, int ncomp, const mrn_sim *sim, void *out) {
+static void copy_field(const double *src, int ncomp, size_t first, size_t count, void *out) {
   /* no particles: src may be NULL, which memcpy may not be given even for 0 bytes */
-  if (sim->particles.n) memcpy(out, src, sizeof(double) * ncomp * sim->particles.n);
+  if (count) memcpy(out, src + first * (size_t)ncomp, sizeof(double) * (size_t)ncomp * count);
 }
 
-static void f_velocity(const mrn_sim *sim, void *out) { copy_field(sim->particles.v, 3, sim, out); }
-static void f_mass(const mrn_sim *sim, void *out) { copy_field(sim->particles.mass, 1, sim, out); }
-static void f_stress(const mrn_sim *sim, void *out) { copy_field(sim->particles.stress, 6, sim, out); }
-static void f_strain(const mrn_sim *sim, void *out) { copy_field(sim->particles.strain, 6, sim, out); }
-static void f_F(const mrn_sim *sim, void *out) {
-  mrn_particle_field_export(&sim->particles, mrn_particle_field_find("F"), 0, sim->particles.n, out);
-}
+#define FIELD_FN(name) static void name(const mrn_sim *sim, size_t first, size_t count, void *out)
 
-static void f_displacement(const mrn_sim *sim, void *out) {
+FIELD_FN(f_velocity) { copy_field(sim->particles.v, 3, first, count, out); }
+FIELD_FN(f_mass) { copy_field(sim->particles.mass, 1, first, count, out); }
+FIELD_FN(f_stress) { copy_field(sim->particles.stress, 6, first, count, out); }
+FIELD_FN(f_strain) { copy_field(sim->particles.strain, 6, first, count, out); }
+FIELD_FN(f_elastic_energy) { copy_field(sim->particles.e_elastic, 1, first, count, out); }
+FIELD_FN(f_F) { mrn_particle_field_export(&sim->particles, mrn_particle_field_find("F"), first, count, out); }
+
+FIELD_FN(f_displacement) {
   double *o = out;
-  FOR_PARTICLES(sim) for (int d = 0; d < 3; d++) o[3 * p + d] = sim->particles.x[3 * p + d] - sim->particles.x0[3 * p + d];
+  const double *x = sim->particles.x, *x0 = sim->particles.x0;
+  FOR_PARTICLES(first, count) for (int d = 0; d < 3; d++) o[3 * q + d] = x[3 * p + d] - x0[3 * p + d];
 }
 
-static void f_volume(const mrn_sim *sim, void *out) {
+FIELD_FN(f_volume) {
   double *o = out;
-  FOR_PARTICLES(sim) o[p] = mrn_particle_volume(&sim->particles, p);
+  FOR_PARTICLES(first, count) o[q] = mrn_particle_volume(&sim->particles, p);
 }
 
-static void f_density(const mrn_sim *sim, void *out) {
+FIELD_FN(f_density) {
   double *o = out;
-  FOR_PARTICLES(sim) o[p] = sim->particles.mass[p] / mrn_particle_volume(&sim->particles, p);
+  FOR_PARTICLES(first, count) o[q] = sim->particles.mass[p] / mrn_particle_volume(&sim->particles, p);
 }
 
 /* p = -tr(sigma) / 3, compression positive */
-static void f_pressure(const mrn_sim *sim, void *out) {
+FIELD_FN(f_pressure) {
   double *o = out;
-  FOR_PARTICLES(sim) o[p] = -sym_trace(sim->particles.stress + 6 * p) / 3.0;
+  FOR_PARTICLES(first, count) o[q] = -sym_trace(sim->particles.stress + 6 * p) / 3.0;
 }
 
-static void f_von_mises(const mrn_sim *sim, void *out) {
+FIELD_FN(f_von_mises) {
   double *o = out;
-  FOR_PARTICLES(sim) o[p] = sym_von_mises(sim->particles.stress + 6 * p);
+  FOR_PARTICLES(first, count) o[q] = sym_von_mises(sim->particles.stress + 6 * p);
 }
 
 /* deviatoric strain norm (000, Eqs. 74-75) */
-static void f_eps_D(const mrn_sim *sim, void *out) {
+FIELD_FN(f_eps_D) {
   double *o = out, dev[6];
-  FOR_PARTICLES(sim) {
+  FOR_PARTICLES(first, count) {
     sym_dev(sim->particles.strain + 6 * p, dev);
-    o[p] = sym_norm(dev);
+    o[q] = sym_norm(dev);
   }
 }
 
-static void f_material(const mrn_sim *sim, void *out) {
+FIELD_FN(f_material) {
   int32_t *o = out;
-  FOR_PARTICLES(sim) o[p] = sim->particles.material[p];
+  FOR_PARTICLES(first, count) o[q] = sim->particles.material[p];
 }
 
-static void f_id(const mrn_sim *sim, void *out) {
+FIELD_FN(f_id) {
   int64_t *o = out;
-  FOR_PARTICLES(sim) o[p] = sim->particles.id[p];
+  FOR_PARTICLES(first, count) o[q] = sim->particles.id[p];
 }
-
-static void f_elastic_energy(const mrn_sim *sim, void *out) { copy_field(sim->particles.e_elastic, 1, sim, out); }
 
 static const mrn_output_field fields[] = {
     {"velocity", 3, MRN_VTK_FLOAT64, "m/s", "particle velocity", f_velocity},
@@ -112,12 +113,19 @@ int mrn_field_lookup(const mrn_sim *sim, const char *name, mrn_field_ref *out) {
   return 1;
 }
 
-void mrn_field_fill(const mrn_sim *sim, const mrn_field_ref *f, void *out) {
+void mrn_field_fill_range(const mrn_sim *sim, const mrn_field_ref *f, size_t first, size_t count, void *out) {
   if (f->builtin) {
-    f->builtin->compute(sim, out);
+    f->builtin->compute(sim, first, count, out);
     return;
   }
   const mrn_particles *ps = &sim->particles;
   double *o = out;
-  FOR_PARTICLES(sim) memcpy(o + p * f->ncomp, ps->user + p * ps->user_stride + f->user->offset, sizeof(double) * f->ncomp);
+  FOR_PARTICLES(first, count) {
+    memcpy(o + q * (size_t)f->ncomp, ps->user + p * (size_t)ps->user_stride + f->user->offset,
+           sizeof(double) * f->ncomp);
+  }
+}
+
+void mrn_field_fill(const mrn_sim *sim, const mrn_field_ref *f, void *out) {
+  mrn_field_fill_range(sim, f, 0, sim->particles.n, out);
 }

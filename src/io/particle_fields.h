@@ -1,10 +1,14 @@
 /* moraine: per-particle output quantities, by name.
  *
  * One table serves the VTK writer (which arrays a deck asks for) and the Lua
- * accessors: each entry computes its values for every particle into a buffer
- * of n * ncomp doubles (or int32/int64 for ids). */
+ * accessors: each entry computes its values for a range of particles into a
+ * buffer of ncomp doubles (or int32/int64 for ids) per particle; the VTK
+ * writer asks for them a chunk at a time, so a snapshot never holds a whole
+ * field in memory. */
 #ifndef MRN_IO_PARTICLE_FIELDS_H
 #define MRN_IO_PARTICLE_FIELDS_H
+
+#include <stddef.h>
 
 #include "io/vtk.h"
 
@@ -16,8 +20,8 @@ typedef struct mrn_output_field {
   mrn_vtk_type type;
   const char *unit;
   const char *doc;
-  /* fill `out` (n * ncomp values of `type`) */
-  void (*compute)(const struct mrn_sim *sim, void *out);
+  /* fill `out` with the values of particles [first, first + count) (count * ncomp values of `type`) */
+  void (*compute)(const struct mrn_sim *sim, size_t first, size_t count, void *out);
 } mrn_output_field;
 
 int mrn_output_field_count(void);
@@ -40,5 +44,7 @@ typedef struct mrn_field_ref {
 int mrn_field_lookup(const struct mrn_sim *sim, const char *name, mrn_field_ref *out);
 /* n * ncomp values of the field (of its type) into out */
 void mrn_field_fill(const struct mrn_sim *sim, const mrn_field_ref *f, void *out);
+/* the same for particles [first, first + count) only: count * ncomp values */
+void mrn_field_fill_range(const struct mrn_sim *sim, const mrn_field_ref *f, size_t first, size_t count, void *out);
 
 #endif

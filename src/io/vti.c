@@ -183,9 +183,9 @@ int mrn_vti_write(const char *path, const mrn_grid *g, double time, const mrn_vt
 int mrn_vti_write_grid(const char *path, const mrn_grid *g, double time, mrn_vtk_encoding encoding) {
   if (!g) return mrn_error_code(MRN_ERR_IO, "cannot write '%s': no grid", path ? path : "");
   const mrn_vtk_array arrays[] = {
-      {"mass", 1, MRN_VTK_FLOAT64, g->mass},
-      {"velocity", 3, MRN_VTK_FLOAT64, g->vel},
-      {"force", 3, MRN_VTK_FLOAT64, g->force},
+      {.name = "mass", .ncomp = 1, .type = MRN_VTK_FLOAT64, .data = g->mass},
+      {.name = "velocity", .ncomp = 3, .type = MRN_VTK_FLOAT64, .data = g->vel},
+      {.name = "force", .ncomp = 3, .type = MRN_VTK_FLOAT64, .data = g->force},
   };
   return mrn_vti_write(path, g, time, arrays, 3, encoding);
 }

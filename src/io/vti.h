@@ -18,7 +18,8 @@
 #include "grid/grid.h"
 #include "io/vtk.h"
 
-/* Write node arrays of grid `g` to `path`. Each array's `data` covers every
+/* Write node arrays of grid `g` to `path`. Each array's `data` (held: the
+ * .vti writer does not take arrays made on demand) covers every
  * node of the grid in its own layout, ghosts included (g->n * ncomp values of
  * the array's type, like g->mass or g->vel); only the domain nodes reach the
  * file. `time` is stored as the image's TimeValue (what ParaView shows for a

@@ -14,13 +14,23 @@
 
 typedef enum { MRN_VTK_FLOAT64 = 0, MRN_VTK_INT32, MRN_VTK_INT64 } mrn_vtk_type;
 
-/* one point-data array: `ncomp` values per point, interleaved */
+/* One point-data array: `ncomp` values per point, interleaved, either held
+ * in `data` or, when data is NULL, made on demand: `fill` writes the values
+ * of points [first, first + count) into out (count * ncomp values, count at
+ * most MRN_VTK_FILL_POINTS(ncomp)), so that a file can be written without
+ * holding a whole array in memory. */
 typedef struct mrn_vtk_array {
   const char *name;
   int ncomp;
   mrn_vtk_type type;
   const void *data;
+  void (*fill)(const void *ctx, size_t first, size_t count, void *out);
+  const void *ctx;
 } mrn_vtk_array;
+
+/* values asked of a `fill` at a time (a 512 KB buffer of 8-byte values) */
+#define MRN_VTK_FILL_VALUES 65536
+#define MRN_VTK_FILL_POINTS(ncomp) (MRN_VTK_FILL_VALUES / (size_t)(ncomp))
 
 typedef enum { MRN_VTK_BINARY = 0, MRN_VTK_ASCII } mrn_vtk_encoding;
 

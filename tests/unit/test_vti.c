@@ -136,7 +136,7 @@ static void test_ascii_and_no_time(const char *dir, const mrn_grid *g) {
 static void test_generic(const char *dir, const mrn_grid *g) {
   int32_t *index = malloc(g->n * sizeof *index);
   for (size_t n = 0; n < g->n; n++) index[n] = (int32_t)n;
-  mrn_vtk_array a = {"node", 1, MRN_VTK_INT32, index};
+  mrn_vtk_array a = {.name = "node", .ncomp = 1, .type = MRN_VTK_INT32, .data = index};
   char *path = mrn_path_join(dir, "generic.vti");
   CHECK(mrn_vti_write(path, g, 1.0, &a, 1, MRN_VTK_BINARY) == MRN_OK);
   size_t len = 0;
@@ -168,10 +168,10 @@ static void test_errors(const char *dir, const mrn_grid *g) {
   free(path);
 
   path = mrn_path_join(dir, "bad.vti");
-  mrn_vtk_array unnamed = {"", 1, MRN_VTK_FLOAT64, g->mass};
+  mrn_vtk_array unnamed = {.name = "", .ncomp = 1, .type = MRN_VTK_FLOAT64, .data = g->mass};
   CHECK(mrn_vti_write(path, g, 0.0, &unnamed, 1, MRN_VTK_BINARY) == MRN_ERR_IO);
   CHECK(strstr(mrn_error_message(), "has no name") != NULL);
-  mrn_vtk_array nodata = {"mass", 1, MRN_VTK_FLOAT64, NULL};
+  mrn_vtk_array nodata = {.name = "mass", .ncomp = 1, .type = MRN_VTK_FLOAT64, .data = NULL};
   CHECK(mrn_vti_write(path, g, 0.0, &nodata, 1, MRN_VTK_BINARY) == MRN_ERR_IO);
   CHECK(mrn_vti_write_grid(path, NULL, 0.0, MRN_VTK_BINARY) == MRN_ERR_IO);
   struct stat st;
