@@ -83,7 +83,7 @@ MRN_ALWAYS_INLINE void jaumann_rotate(const int dim, const double L[9], double d
  * (mrn_tensor_stride): in plane strain (dim 2) its in-plane block xx, xy,
  * yx, yy only, the z row and column being those of I. Returns 1 (F
  * unchanged) when the increment would invert F. */
-MRN_ALWAYS_INLINE int advance_F(const int dim, const double L[9], double dt, mrn_f_update f_update, double F[9],
+MRN_ALWAYS_INLINE int advance_F(const int dim, const double L[9], double dt, mrn_f_update f_update, double *F,
                                 double *J_old, double *J) {
   double A[9], Fn[9];
   if (increment(dim, L, dt, f_update, A)) return 1;

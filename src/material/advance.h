@@ -44,10 +44,11 @@ typedef struct mrn_energy_sums {
  * mrn_tensor_stride(dim) (9 in 3D, the in-plane block xx, xy, yx, yy in
  * 2D), stress and strain 6 (strain may be NULL), state `state_stride` (may
  * be NULL). dim 2 is plane strain: L must have no z row or column (as the
- * 2D gradient kernels store it); dim 3 is general. The energies are added as `energy` says (may be NULL); out[i]
- * receives point i's result (out may be NULL). Returns the index of the
- * first point whose increment would invert F, or -1; such points are left
- * unchanged (energies included), the others are advanced. */
+ * 2D gradient kernels store it); dim 3 is general. The energies are added
+ * as `energy` says (may be NULL); out[i] receives point i's result (out may
+ * be NULL). Returns the index of the first point whose increment would
+ * invert F, or -1; such points are left unchanged (energies included), the
+ * others are advanced. */
 long mrn_material_advance_points(const mrn_material *mat, int dim, mrn_f_update f_update, double dt, size_t n,
                                  const double *L, double *F, double *stress, double *strain, double *state,
                                  int state_stride, const mrn_energy_sums *energy, mrn_point_result *out);

@@ -41,6 +41,24 @@ static inline int KNAME(fast_support)(const mrn_kernel_options *o) {
 
 /* ---- P2G -------------------------------------------------------------------- */
 
+/* In a parallel region: BODY for each non-empty block blk of b that the
+ * calling thread owns (mrn_block_owner: the thread that moves the block's
+ * particles in G2P), colour by colour, all threads meeting after each
+ * colour (blocks of one colour touch disjoint nodes). */
+#define MRN_FOR_OWN_BLOCKS(b, blk, BODY)                                           \
+  {                                                                                \
+    int t_, team_;                                                                 \
+    mrn_team(&t_, &team_);                                                         \
+    const size_t nchunks_ = mrn_particle_chunks((b)->np);                          \
+    for (int c_ = 0; c_ < (b)->colours; c_++) {                                    \
+      for (size_t k_ = (b)->colour_first[c_]; k_ < (b)->colour_first[c_ + 1]; k_++) { \
+        const uint32_t blk = (b)->list[k_];                                        \
+        if (mrn_block_owner((b), blk, nchunks_, team_) == t_) BODY;                \
+      }                                                                            \
+      _Pragma("omp barrier")                                                       \
+    }                                                                              \
+  }
+
 typedef struct KNAME(p2g_args) {
   mrn_grid *g;
   const mrn_particles *ps;
@@ -485,18 +503,7 @@ void KNAME(mrn_p2g)(mrn_sim *sim, int momentum, int force) {
   } else {
     const int threads __attribute__((unused)) = !b->dense && sim->particles.n > MRN_OMP_MIN_ITEMS; /* unused without OpenMP */
 #pragma omp parallel if (threads)
-    {
-      int t, team;
-      mrn_team(&t, &team);
-      const size_t nchunks = mrn_particle_chunks(b->np);
-      for (int c = 0; c < b->colours; c++) {
-        for (size_t k = b->colour_first[c]; k < b->colour_first[c + 1]; k++) {
-          const uint32_t blk = b->list[k];
-          if (mrn_block_owner(b, blk, nchunks, team) == t) run(&ar, b->order, b->start[blk], b->start[blk + 1]);
-        }
-#pragma omp barrier
-      }
-    }
+    MRN_FOR_OWN_BLOCKS(b, blk, run(&ar, b->order, b->start[blk], b->start[blk + 1]));
   }
   if (mrn_profile_seconds) mrn_phase_end(MRN_PHASE_P2G, t0 + (KNAME(sort_seconds)() - sort0));
 }
@@ -845,20 +852,10 @@ MRN_INLINE void KNAME(update_force_range)(const KNAME(p2g_args) *ar, const doubl
       KNAME(update_force_range)(ar, gvel, NULL, 0, (size_t)n_, sink, &first_bad, &spent, SUP);                   \
     } else {                                                                                                     \
       const int threads __attribute__((unused)) = !b->dense && n_ > MRN_OMP_MIN_ITEMS;                          \
-      _Pragma("omp parallel if (threads) reduction(min : first_bad) reduction(+ : spent)") {                     \
-        int t, team;                                                                                             \
-        mrn_team(&t, &team);                                                                                     \
-        const size_t nchunks = mrn_particle_chunks(b->np);                                                       \
-        for (int c = 0; c < b->colours; c++) {                                                                   \
-          for (size_t k = b->colour_first[c]; k < b->colour_first[c + 1]; k++) {                                 \
-            const uint32_t blk = b->list[k];                                                                     \
-            if (mrn_block_owner(b, blk, nchunks, team) == t)                                                     \
-              KNAME(update_force_range)(ar, gvel, b->order, b->start[blk], b->start[blk + 1], sink, &first_bad,  \
-                                        &spent, SUP);                                                            \
-          }                                                                                                      \
-          _Pragma("omp barrier")                                                                                 \
-        }                                                                                                        \
-      }                                                                                                          \
+      _Pragma("omp parallel if (threads) reduction(min : first_bad) reduction(+ : spent)")                       \
+      MRN_FOR_OWN_BLOCKS(b, blk,                                                                                 \
+                         KNAME(update_force_range)(ar, gvel, b->order, b->start[blk], b->start[blk + 1], sink,   \
+                                                   &first_bad, &spent, SUP));                                    \
     }                                                                                                            \
     *sink_seconds = spent;                                                                                       \
     return first_bad < n_ ? first_bad : -1;                                                                      \
@@ -1117,5 +1114,6 @@ void KNAME(mrn_particles_to_grid)(mrn_sim *sim, const double *pvel, double *gvel
 }
 
 #undef MRN_CHUNKED_LOOP
+#undef MRN_FOR_OWN_BLOCKS
 #undef MRN_INLINE
 #undef TSTRIDE
