@@ -468,57 +468,95 @@ typedef struct row {
   double output_bytes, output_seconds;
   uint64_t hash;
   double diag[16];
+  double round_rate[32]; /* particle-steps/s of each round, in order */
+  int rounds;
 } row;
 
 static const char *phase_names[MRN_PHASE_COUNT + 1] = {"p2g", "grid", "g2p", "stress", "sort", "other"};
 
-static void measure(const problem *p, int threads, row *out) {
-  memset(out, 0, sizeof *out);
-  out->p = p;
-  out->threads = threads;
-  out->anchor_rate = NAN;
-  int reps = p->kind == KIND_DET ? 1 : opt.reps;
+/* the samples of one row, round by round */
+typedef struct samples {
   double rates[32], anchors[32], shares[MRN_PHASE_COUNT + 1][32], prates[MRN_PHASE_COUNT + 1][32], secs[32];
-  int nr = 0, na = 0;
-  for (int r = 0; r < reps && r < 32; r++) {
-    if (opt.anchors && p->anchor) {
-      double a = run_anchor(p->anchor, threads);
-      if (isfinite(a)) anchors[na++] = a;
-    }
-    result res;
-    if (run_forked(p, threads, &res) || !res.ok) {
-      snprintf(out->message, sizeof out->message, "%s", res.message[0] ? res.message : "failed");
-      return;
-    }
-    out->particles = res.particles;
-    out->steps = res.steps;
-    out->threads = res.threads;
-    snprintf(out->material, sizeof out->material, "%s", res.material);
-    out->bytes_pp = res.bytes_per_particle;
-    out->engine_bytes_pp = res.engine_bytes_per_particle;
-    out->output_bytes = res.output_bytes;
-    out->hash = res.hash;
-    memcpy(out->diag, res.diag, sizeof res.diag);
-    double work = (double)res.particles * res.steps;
-    rates[nr] = work / res.seconds;
-    secs[nr] = res.seconds;
-    double known = 0;
-    for (int k = 0; k <= MRN_PHASE_COUNT; k++) {
-      double s = k < MRN_PHASE_COUNT ? res.phase[k] : res.seconds - known;
-      if (k < MRN_PHASE_COUNT) known += s;
-      shares[k][nr] = s / res.seconds;
-      prates[k][nr] = s > 0 ? work / s : INFINITY;
-    }
-    nr++;
+  int nr, na;
+} samples;
+
+/* One round of a row: the anchor's run, when it has one, then moraine's.
+ * A failed run marks the row failed. */
+static void sample(row *out, int threads, samples *s) {
+  const problem *p = out->p;
+  if (opt.anchors && p->anchor) {
+    double a = run_anchor(p->anchor, threads);
+    if (isfinite(a)) s->anchors[s->na++] = a;
   }
-  out->ok = 1;
-  out->rate = median(rates, nr);
-  out->output_seconds = median(secs, nr);
+  result res;
+  if (run_forked(p, threads, &res) || !res.ok) {
+    snprintf(out->message, sizeof out->message, "%s", res.message[0] ? res.message : "failed");
+    out->ok = 0;
+    return;
+  }
+  out->particles = res.particles;
+  out->steps = res.steps;
+  out->threads = res.threads;
+  snprintf(out->material, sizeof out->material, "%s", res.material);
+  out->bytes_pp = res.bytes_per_particle;
+  out->engine_bytes_pp = res.engine_bytes_per_particle;
+  out->output_bytes = res.output_bytes;
+  out->hash = res.hash;
+  memcpy(out->diag, res.diag, sizeof res.diag);
+  const double work = (double)res.particles * res.steps;
+  const int k0 = s->nr;
+  s->rates[k0] = work / res.seconds;
+  out->round_rate[k0] = s->rates[k0];
+  out->rounds = k0 + 1;
+  s->secs[k0] = res.seconds;
+  double known = 0;
   for (int k = 0; k <= MRN_PHASE_COUNT; k++) {
-    out->phase_share[k] = median(shares[k], nr);
-    out->phase_rate[k] = median(prates[k], nr);
+    double sec = k < MRN_PHASE_COUNT ? res.phase[k] : res.seconds - known;
+    if (k < MRN_PHASE_COUNT) known += sec;
+    s->shares[k][k0] = sec / res.seconds;
+    s->prates[k][k0] = sec > 0 ? work / sec : INFINITY;
   }
-  if (na) out->anchor_rate = median(anchors, na);
+  s->nr++;
+}
+
+static void summarize(row *out, samples *s) {
+  out->rate = median(s->rates, s->nr);
+  out->output_seconds = median(s->secs, s->nr);
+  for (int k = 0; k <= MRN_PHASE_COUNT; k++) {
+    out->phase_share[k] = median(s->shares[k], s->nr);
+    out->phase_rate[k] = median(s->prates[k], s->nr);
+  }
+  if (s->na) out->anchor_rate = median(s->anchors, s->na);
+}
+
+/* The rows of problem p for threads[0 .. nt), their repetitions
+ * interleaved: round r runs every thread count in turn, so the rows of one
+ * problem see the machine in the same minutes, and their ratio is also
+ * taken round by round (round_rate; see the scaling lines). */
+static void measure(const problem *p, const int *threads, int nt, row *rows) {
+  samples s[8];
+  const int reps = p->kind == KIND_DET ? 1 : opt.reps;
+  for (int t = 0; t < nt; t++) {
+    memset(&rows[t], 0, sizeof rows[t]);
+    rows[t].p = p;
+    rows[t].threads = threads[t];
+    rows[t].anchor_rate = NAN;
+    rows[t].ok = 1;
+    s[t].nr = s[t].na = 0;
+  }
+  for (int r = 0; r < reps && r < 32; r++)
+    for (int t = 0; t < nt; t++)
+      if (rows[t].ok) sample(&rows[t], threads[t], &s[t]);
+  for (int t = 0; t < nt; t++)
+    if (rows[t].ok) summarize(&rows[t], &s[t]);
+}
+
+/* the median over the rounds of a's rate over b's (rows measured together) */
+static double paired_ratio(const row *a, const row *b) {
+  double q[32];
+  int n = 0;
+  for (int k = 0; k < a->rounds && k < b->rounds; k++) q[n++] = a->round_rate[k] / b->round_rate[k];
+  return median(q, n);
 }
 
 static void json_number(FILE *f, double v) {
@@ -639,9 +677,10 @@ int main(int argc, char **argv) {
     const problem *p = &problems[i];
     if (!selected(p)) continue;
     if (p->kind == KIND_DET) {
-      row r1, r2;
-      measure(p, 1, &r1);
-      measure(p, 2, &r2);
+      row both[2];
+      static const int one_two[2] = {1, 2};
+      measure(p, one_two, 2, both);
+      const row r1 = both[0], r2 = both[1];
       rows[nrows++] = r1;
       rows[nrows++] = r2;
       if (!r1.ok || !r2.ok) {
@@ -662,9 +701,9 @@ int main(int argc, char **argv) {
       fflush(stdout);
       continue;
     }
+    measure(p, opt.threads, opt.nthreads, &rows[nrows]);
     for (int t = 0; t < opt.nthreads; t++) {
       row *r = &rows[nrows++];
-      measure(p, opt.threads[t], r);
       if (!r->ok) {
         printf("%-7s %3d failed: %s\n", p->name, opt.threads[t], r->message);
         continue;
@@ -702,8 +741,12 @@ int main(int argc, char **argv) {
       for (int j = 0; j < nrows; j++) {
         const row *s = &rows[j];
         if (s->p == r->p && s->ok && s->threads > 1) {
-          printf("%-7s %d threads / 1 thread: %.2fx\n", r->p->name, s->threads, s->rate / r->rate);
-          snprintf(derived[nd++], 160, "\"%s_scaling_%d_over_1\": %.4g", r->p->name, s->threads, s->rate / r->rate);
+          const double paired = paired_ratio(s, r);
+          printf("%-7s %d threads / 1 thread: %.2fx (median of %d rounds' ratios; of the medians %.2fx)\n",
+                 r->p->name, s->threads, paired, s->rounds < r->rounds ? s->rounds : r->rounds, s->rate / r->rate);
+          snprintf(derived[nd++], 160, "\"%s_scaling_%d_over_1\": %.4g", r->p->name, s->threads, paired);
+          snprintf(derived[nd++], 160, "\"%s_scaling_medians_%d_over_1\": %.4g", r->p->name, s->threads,
+                   s->rate / r->rate);
         }
       }
     if (r->p->name[0] == 'a')
