@@ -259,6 +259,7 @@ static uint64_t state_hash(const mrn_sim *sim) {
   long *at = malloc(sizeof(long) * (n ? n : 1));
   for (size_t i = 0; i < n; i++) at[ps->id[i] - 1] = (long)i;
   uint64_t h = 1469598103934665603ull;
+  const mrn_particle_field_info *F = mrn_particle_field_find("F"), *affine = mrn_particle_field_find("affine");
   for (size_t k = 0; k < n; k++) {
     size_t i = (size_t)at[k];
     h = fnv(h, ps->x + 3 * i, 3 * sizeof(double));
@@ -266,9 +267,9 @@ static uint64_t state_hash(const mrn_sim *sim) {
     h = fnv(h, ps->stress + 6 * i, 6 * sizeof(double));
     /* the full tensors as 3 x 3 whatever the storage (the hash does not depend on it) */
     double full[9];
-    mrn_particle_field_export(ps, mrn_particle_field_find("F"), i, 1, full);
+    mrn_particle_field_export(ps, F, i, 1, full);
     h = fnv(h, full, 9 * sizeof(double));
-    mrn_particle_field_export(ps, mrn_particle_field_find("affine"), i, 1, full);
+    mrn_particle_field_export(ps, affine, i, 1, full);
     h = fnv(h, full, 9 * sizeof(double));
   }
   free(at);

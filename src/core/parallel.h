@@ -24,18 +24,20 @@
 #define MRN_OMP_MIN_ITEMS 4096
 #define MRN_OMP_MIN_NODES 65536
 
-/* Particle ownership. The particle loops of the step share the particles
- * out among the threads of a team in one way: in chunks of
- * MRN_PARTICLE_CHUNK consecutive indices, thread t of T takes chunks
- * [N t / T, N (t + 1) / T) of the N chunks (mrn_team_chunks). P2G, which
- * goes block by block, gives each block to the thread that owns the block's
- * first particle (mrn_chunk_owner). So from P2G to G2P and the material
- * update a particle's cache lines stay on one core: when P2G handed blocks
- * out first come, first served, half the particles were read in P2G by the
- * core that did not then write them in G2P, and every such write first had
- * to take the line back from the other core's cache (two threads ran the
- * 2D column at 1.3x - 1.6x one thread; see doc/performance.md). Which
- * thread does what never changes a result. */
+/* Particle ownership. The transfer kernels share the particles out among
+ * the threads of a team in one way: in chunks of MRN_PARTICLE_CHUNK
+ * consecutive indices, thread t of T takes chunks [N t / T, N (t + 1) / T)
+ * of the N chunks (mrn_team_chunks; the step's other particle loops, OpenMP
+ * static ones, split the indices into the same shares to within a chunk).
+ * P2G, which goes block by block, gives each block to the thread that owns
+ * the block's first particle (mrn_chunk_owner). So from P2G to G2P and the
+ * material update a particle's cache lines stay on one core: when P2G
+ * handed blocks out first come, first served, half the particles were read
+ * in P2G by the core that did not then write them in G2P, and every such
+ * write first had to take the line back from the other core's cache (two
+ * threads ran the 2D column at 1.2x - 1.7x one thread; see
+ * doc/performance.md, change 43). Which thread does what never changes a
+ * result. */
 enum { MRN_PARTICLE_CHUNK = 256 };
 
 /* chunks of MRN_PARTICLE_CHUNK needed for n particles */

@@ -180,9 +180,7 @@ static void w_block(mrn_xml_writer *w, const block *b, size_t n, int64_t *buf, u
     w_cell_values(w, 0, n, buf, scratch);
   } else if (b->source == SRC_OFFSETS) {
     w_cell_values(w, 1, n, buf, scratch);
-  } else if (b->data) {
-    mrn_xw_le(w, b->data, b->elem, (size_t)(b->nbytes / b->elem), scratch);
-  } else {
+  } else { /* held or made on demand, a chunk of points at a time */
     const size_t most = MRN_VTK_FILL_POINTS(b->ncomp);
     for (size_t first = 0; first < n && !w->err; first += most) {
       const size_t count = n - first < most ? n - first : most;
