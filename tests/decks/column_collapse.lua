@@ -23,14 +23,12 @@
 --     peak E_k at a_tau and a_tau / 4 (1 %) and keeps oscillating; PIC damps
 --     it, more strongly with the smaller step (peak E_k halved at least).
 --
--- NOT asserted: "final L~ within 15 % of 000's MPM value". 000's text gives no
--- number for it (only its Figs. 14, 21 and 22 do). Its §5.4 says that for
--- AR = 1 its MPM "final length" is ~38 % above Crosta et al.'s (2009) while
--- Xiong et al.'s (2021) is ~19 % lower. Read as L_x (000 calls L_x the
--- "spreading length" in §5.4) and with Crosta's L~ near Lube's 1.2, 000's
--- value is L~ ~ 2.0 and moraine's 2.2 is ~10 % above it; read as L~, it is
--- ~1.66 and moraine is ~33 % above it. The deck prints the figure; the test
--- does not pretend to check it.
+-- NOT asserted: the final L~ against 000's MPM. 000 §5.4 gives its own final
+-- spreading length only relative to other results: at AR = 1 "approximately
+-- 38% higher" than Crosta et al.'s (2009) FEM, and the glass-bead experiments
+-- of Lajeunesse et al. (2005) "less wide than the MPM ones, more precisely by
+-- 34% for AR = 3", about 5 % at AR = 0.6. moraine's runout is longer than
+-- that implies (doc/validation.md, column_collapse_lube); the deck prints L~.
 --
 -- --set full=true adds (about a minute of CPU): AR = 0.6, 2.4 and 3 with FLIP
 -- and AFLIP (at rest, FLIP's |W_MPM| < 1 %, AFLIP not wider than FLIP), FLIP at
@@ -61,11 +59,9 @@ T.expect{ id = "column_collapse.W_MPM", what = "FLIP AR = 1: |W_MPM| against |dE
 local lube = collapse.lube(1)
 T.check(flip.runout > lube.runout, "FLIP: L~ = %.2f is not above Lube et al.'s %.2f", flip.runout, lube.runout)
 T.check(not flip.at_wall, "FLIP: the front reached the right wall (max x = %.3f m)", flip.max_x)
-print(string.format("FLIP AR = 1: L~ = %.2f (L_x = %.2f m); 000 (from its text, see header): ~2.0 if its 'final " ..
-                    "length' is L_x (moraine %+.0f %%), ~1.66 if it is L~ (%+.0f %%); Lube et al. 2005: %.2f; " ..
+print(string.format("FLIP AR = 1: L~ = %.2f (L_x = %.2f m); Lube et al. 2005: %.2f; " ..
                     "rest at %.2f s (t~ = %.2f; Lube: ~3), final L_x reached at %.2f s",
-                    flip.runout, flip.L_x, 100 * (flip.runout / 2.0 - 1), 100 * (flip.runout / 1.66 - 1),
-                    lube.runout, flip.t_rest, flip.t_rest_tilde, flip.t_final_Lx))
+                    flip.runout, flip.L_x, lube.runout, flip.t_rest, flip.t_rest_tilde, flip.t_final_Lx))
 
 -- 3. AFLIP from the same settled state
 local aflip = collapse.run{ aspect_ratio = 1, strategy = "AFLIP", a_tau = a_tau, collapse_time = 2.5,
