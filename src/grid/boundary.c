@@ -24,72 +24,222 @@ const char *mrn_face_name(int face) {
   return face >= 0 && face < MRN_FACE_COUNT ? names[face] : "?";
 }
 
-/* Apply one face condition to the node velocity v (3 components).
- * `axis` is the face normal axis, `outward` is -1 for a min face, +1 for max. */
-static double apply_face(const mrn_face_bc *f, double *v, double mass, int axis, double outward,
-                         int with_friction) {
+/* Apply one face condition (not friction: see contact_column) to the node
+ * velocity v (3 components); `axis` is the face normal axis. */
+static void apply_face(const mrn_face_bc *f, double *v, int axis) {
   switch (f->kind) {
-  case MRN_BC_FREE:
-  case MRN_BC_PERIODIC:
-    return 0.0;
   case MRN_BC_VELOCITY:
     v[0] = f->velocity[0];
     v[1] = f->velocity[1];
     v[2] = f->velocity[2];
-    return 0.0;
+    return;
   case MRN_BC_FIXED:
     v[0] = v[1] = v[2] = 0.0;
-    return 0.0;
+    return;
   case MRN_BC_SLIP:
     v[axis] = 0.0;
-    return 0.0;
-  case MRN_BC_FRICTION: {
-    double vn = v[axis] * outward; /* > 0: moving into the face */
-    v[axis] = 0.0;
-    if (!with_friction || vn <= 0.0 || f->mu <= 0.0) return 0.0;
-    double vt2 = v[0] * v[0] + v[1] * v[1] + v[2] * v[2];
-    if (vt2 <= 0.0) return 0.0;
-    double vt = sqrt(vt2);
-    double reduced = vt - f->mu * vn;
-    double scale = reduced > 0.0 ? reduced / vt : 0.0;
-    double work = 0.0;
-    for (int d = 0; d < 3; d++) {
-      double before = v[d];
-      v[d] *= scale;
-      /* (000, Eq. 66): dW = F . V dt with F dt = m (V_after - V_before) */
-      work += mass * (v[d] - before) * v[d];
-    }
-    return work;
-  }
+    return;
   default:
-    return 0.0;
+    return;
   }
 }
 
-double mrn_boundary_apply(const mrn_boundary *bc, const mrn_grid *g, double *vel, int with_friction) {
+/* One column of a friction face: the face node and the ghost nodes beyond
+ * it along the normal, which all stand for the same point of the face and
+ * share one contact. */
+typedef struct contact_column {
+  size_t face_node;  /* holds the column's contact bit */
+  long step;         /* index distance between the column's nodes */
+  int count;         /* nodes in the column */
+  int axis;          /* the face normal */
+  double outward;    /* -1 on a min face, +1 on a max face */
+  unsigned char bit; /* 1 << face */
+} contact_column;
+
+/* The column's normal momentum into the face, N = sum m v.n_out, over the
+ * nodes above the mass floor (lighter ones are empty, or hold a kernel's
+ * negative weight with `wls`). */
+static double column_push(const contact_column *c, const mrn_grid *g, double mass_floor, const double *vel) {
+  double N = 0.0;
+  for (int l = 0; l < c->count; l++) {
+    const size_t n = c->face_node + (size_t)(l * c->step);
+    if (g->mass[n] > mass_floor) N += g->mass[n] * vel[3 * n + c->axis] * c->outward;
+  }
+  return N;
+}
+
+/* Coulomb friction on a column in contact whose normal momentum N was just
+ * removed: the column's tangential momentum P_t is reduced by
+ * min(mu N, |P_t|) along -P_t, the same velocity change for every node (the
+ * column's mean velocity never reverses). Returns the frictional work
+ * sum m dV . V_after (000, Eq. 66). */
+static double column_friction(const contact_column *c, const mrn_grid *g, double mass_floor, double *vel, double mu,
+                              double N) {
+  double M = 0.0, P[3] = {0.0, 0.0, 0.0};
+  for (int l = 0; l < c->count; l++) {
+    const size_t n = c->face_node + (size_t)(l * c->step);
+    if (!(g->mass[n] > mass_floor)) continue;
+    M += g->mass[n];
+    for (int d = 0; d < 3; d++) P[d] += g->mass[n] * vel[3 * n + d];
+  }
+  const double pt = sqrt(P[0] * P[0] + P[1] * P[1] + P[2] * P[2]);
+  if (mu <= 0.0 || pt <= 0.0) return 0.0;
+  const double J = fmin(mu * N, pt);
+  double work = 0.0;
+  for (int l = 0; l < c->count; l++) {
+    const size_t n = c->face_node + (size_t)(l * c->step);
+    if (!(g->mass[n] > mass_floor)) continue;
+    for (int d = 0; d < 3; d++) {
+      const double dv = -J * P[d] / (pt * M);
+      vel[3 * n + d] += dv;
+      work += g->mass[n] * dv * vel[3 * n + d];
+    }
+  }
+  return work;
+}
+
+/* A friction face on one column: a unilateral contact (Signorini) with
+ * Coulomb friction (Bardenhagen et al. 2000, with the face as a rigid second
+ * body; see doc/numerics.md, "Friction faces").
+ *
+ * With friction (the updated velocity V~, once the forces of the step are
+ * known) the column is in contact when its normal momentum points into the
+ * face, N > 0: N is removed and friction bounds the tangential impulse by
+ * mu N. A column moving away is left free, so the face never pulls. The
+ * outcome is kept in the column's contact bit.
+ *
+ * Without friction (the velocity V of P2G, for the stress update) the
+ * column is held, its normal velocity removed, when it moves into the face
+ * or when it ended the last step in contact. V carries the particles'
+ * own velocities (FLIP keeps what the grid does not show), so a column
+ * resting on the face can seem to leave it before the forces have acted;
+ * letting it go then, and catching it again in V~, gave the stress update a
+ * velocity field the step did not follow. Separation is decided with the
+ * forces, in V~. */
+static double contact_apply(const mrn_face_bc *f, const contact_column *c, mrn_grid *g, double mass_floor, double *vel,
+                            int with_friction) {
+  const double N = column_push(c, g, mass_floor, vel);
+  unsigned char *state = g->contact + c->face_node;
+  const int touching = (g->touch[c->face_node] & c->bit) != 0;
+  const int held = touching && (N > 0.0 || (!with_friction && (*state & c->bit)));
+  if (with_friction) *state = (unsigned char)(held ? *state | c->bit : *state & ~c->bit);
+  if (!held) return 0.0;
+  for (int l = 0; l < c->count; l++) {
+    const size_t n = c->face_node + (size_t)(l * c->step);
+    if (g->mass[n] > mass_floor) vel[3 * n + c->axis] = 0.0;
+  }
+  return with_friction ? column_friction(c, g, mass_floor, vel, f->mu, N) : 0.0;
+}
+
+/* the node index range [lo, hi] of the layers on and beyond one face
+ * (domain numbering; zero extent along unused axes) */
+static void face_layers(const mrn_grid *g, int axis, int side, int lo[3], int hi[3]) {
+  for (int d = 0; d < 3; d++) {
+    lo[d] = d < g->dim ? -g->pad : 0;
+    hi[d] = d < g->dim ? g->ncell[d] + g->pad : 0;
+  }
+  lo[axis] = side == 0 ? -g->pad : g->ncell[axis];
+  hi[axis] = side == 0 ? 0 : g->ncell[axis] + g->pad;
+}
+
+/* Mark the face nodes of face `face` whose columns the momentum of a
+ * particle at x reaches: those within `reach` cells of it along the face. */
+static void touch_mark(mrn_grid *g, const double *x, int face, double reach) {
+  const int axis = face / 2;
+  int lo[3] = {0, 0, 0}, hi[3] = {0, 0, 0};
+  for (int d = 0; d < g->dim; d++) {
+    if (d == axis) {
+      lo[d] = hi[d] = face % 2 == 0 ? 0 : g->ncell[d];
+      continue;
+    }
+    const double xi = (x[d] - g->origin[d]) * g->inv_cell;
+    lo[d] = (int)floor(xi - reach) + 1;
+    hi[d] = (int)ceil(xi + reach) - 1;
+    if (lo[d] < -g->pad) lo[d] = -g->pad;
+    if (hi[d] > g->ncell[d] + g->pad) hi[d] = g->ncell[d] + g->pad;
+  }
+  for (int k = lo[2]; k <= hi[2]; k++)
+    for (int j = lo[1]; j <= hi[1]; j++)
+      for (int i = lo[0]; i <= hi[0]; i++) g->touch[mrn_grid_index(g, i, j, k)] |= (unsigned char)(1u << face);
+}
+
+/* clear the touch bits of one face's face nodes */
+static void touch_clear(mrn_grid *g, int face) {
+  int lo[3], hi[3];
+  face_layers(g, face / 2, face % 2, lo, hi);
+  lo[face / 2] = hi[face / 2] = face % 2 == 0 ? 0 : g->ncell[face / 2];
+  for (int k = lo[2]; k <= hi[2]; k++)
+    for (int j = lo[1]; j <= hi[1]; j++)
+      for (int i = lo[0]; i <= hi[0]; i++) g->touch[mrn_grid_index(g, i, j, k)] &= (unsigned char)~(1u << face);
+}
+
+/* How far, in initial half sides, a particle's extent may stand off a face
+ * and still touch it. A body resting on a face sits with its particles' half
+ * sides just on it; with no slack, vibrations of a fraction of a micrometre
+ * made its contact flicker and friction act only part of the time (a block
+ * sliding 3 % too fast); a larger slack lets a layer float that far above the
+ * face before it is caught. */
+#define MRN_TOUCH_SLACK 0.5
+
+void mrn_boundary_touch(const mrn_boundary *bc, mrn_grid *g, double reach, const double *x, const double *vol0,
+                        size_t n) {
+  int faces[MRN_FACE_COUNT], nf = 0;
+  for (int f = 0; f < 2 * g->dim; f++)
+    if (bc->face[f].kind == MRN_BC_FRICTION) faces[nf++] = f;
+  if (!nf) return;
+  for (int k = 0; k < nf; k++) touch_clear(g, faces[k]);
+  for (size_t p = 0; p < n; p++) {
+    /* half the particle's initial side, as uGIMP's (transfer/stencil.h) */
+    const double r = 0.5 * (g->dim == 2 ? sqrt(vol0[p]) : cbrt(vol0[p]));
+    for (int k = 0; k < nf; k++) {
+      const int axis = faces[k] / 2;
+      const double lo = g->origin[axis], hi = lo + g->size[axis];
+      const double gap = (faces[k] % 2 == 0 ? x[3 * p + axis] - lo : hi - x[3 * p + axis]) - r;
+      if (gap <= MRN_TOUCH_SLACK * r) touch_mark(g, x + 3 * p, faces[k], reach);
+    }
+  }
+}
+
+/* one friction face, column by column */
+static double apply_friction_face(const mrn_face_bc *f, mrn_grid *g, double mass_floor, double *vel, int axis, int side,
+                                  int with_friction) {
+  int lo[3], hi[3];
+  face_layers(g, axis, side, lo, hi);
+  /* the columns start at the face node and run outwards */
+  contact_column c = {.step = side == 0 ? -g->stride[axis] : g->stride[axis],
+                      .count = hi[axis] - lo[axis] + 1,
+                      .axis = axis,
+                      .outward = side == 0 ? -1.0 : 1.0,
+                      .bit = (unsigned char)(1u << (2 * axis + side))};
+  lo[axis] = hi[axis] = side == 0 ? 0 : g->ncell[axis];
+  double work = 0.0;
+  for (int k = lo[2]; k <= hi[2]; k++)
+    for (int j = lo[1]; j <= hi[1]; j++)
+      for (int i = lo[0]; i <= hi[0]; i++) {
+        c.face_node = mrn_grid_index(g, i, j, k);
+        work += contact_apply(f, &c, g, mass_floor, vel, with_friction);
+      }
+  return work;
+}
+
+double mrn_boundary_apply(const mrn_boundary *bc, mrn_grid *g, double mass_floor, double *vel, int with_friction) {
   double work = 0.0;
   for (int axis = 0; axis < g->dim; axis++) {
     for (int side = 0; side < 2; side++) {
       const mrn_face_bc *f = &bc->face[2 * axis + side];
       if (f->kind == MRN_BC_FREE || f->kind == MRN_BC_PERIODIC) continue;
-      /* node layers on and beyond the face, in domain numbering */
-      int first = side == 0 ? -g->pad : g->ncell[axis];
-      int last = side == 0 ? 0 : g->ncell[axis] + g->pad;
-      double outward = side == 0 ? -1.0 : 1.0;
-      int lo[3], hi[3];
-      for (int d = 0; d < 3; d++) {
-        if (d >= g->dim) { lo[d] = hi[d] = 0; continue; }
-        lo[d] = -g->pad;
-        hi[d] = g->ncell[d] + g->pad;
+      if (f->kind == MRN_BC_FRICTION) {
+        work += apply_friction_face(f, g, mass_floor, vel, axis, side, with_friction);
+        continue;
       }
-      lo[axis] = first;
-      hi[axis] = last;
+      int lo[3], hi[3];
+      face_layers(g, axis, side, lo, hi);
       for (int k = lo[2]; k <= hi[2]; k++)
         for (int j = lo[1]; j <= hi[1]; j++)
           for (int i = lo[0]; i <= hi[0]; i++) {
             size_t n = mrn_grid_index(g, i, j, k);
             if (g->mass[n] <= 0.0) continue;
-            work += apply_face(f, vel + 3 * n, g->mass[n], axis, outward, with_friction);
+            apply_face(f, vel + 3 * n, axis);
           }
     }
   }

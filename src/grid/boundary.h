@@ -5,10 +5,14 @@
  *   free      nothing imposed
  *   fixed     no-slip: every velocity component is zero
  *   slip      the normal component is zero, tangential motion is free
- *   friction  the normal component is zero; while the material presses on the
- *             face, Coulomb friction with coefficient mu reduces the
- *             tangential speed by mu times the removed normal speed (never
- *             reversing it). The frictional work (000, Eq. 66) is accumulated.
+ *   friction  a unilateral contact with Coulomb friction: the normal velocity
+ *             is removed while the material moves into the face, and
+ *             friction with coefficient mu bounds the tangential impulse by
+ *             mu times the normal one (never reversing the tangential
+ *             motion); material moving away is left free. The face node and
+ *             the ghost nodes beyond it form one contact, whose state is kept
+ *             from step to step (grid.contact). The frictional work
+ *             (000, Eq. 66) is accumulated.
  *   velocity  every velocity component is prescribed (a moving plate)
  *   periodic  the face is glued to the opposite one (both faces of the axis
  *             must be periodic): kernels wrap around and particles leaving
@@ -53,10 +57,21 @@ static inline int mrn_boundary_periodic(const mrn_boundary *bc, int axis) {
 /* 0, or an error when a periodic face is paired with a non-periodic one */
 int mrn_boundary_validate(const mrn_boundary *bc, int dim);
 
-/* Impose the conditions on `vel` (3n). When `with_friction` is set, friction
- * faces apply Coulomb friction and the frictional work (J, or J/m in 2D,
- * negative while dissipating) is returned; otherwise they act as slip faces.
- * `dt` only enters the work through F * V * dt = m dV . V. */
-double mrn_boundary_apply(const mrn_boundary *bc, const mrn_grid *g, double *vel, int with_friction);
+/* Impose the conditions on `vel` (3n). When `with_friction` is set (the
+ * updated velocity V~ of a step), friction faces apply Coulomb friction,
+ * decide their contacts and keep them in g->contact, and the frictional work
+ * (J, or J/m in 2D, negative while dissipating) is returned; otherwise (the
+ * velocity V of P2G, or XPIC's smoothed fields) they hold the columns moving
+ * into the face or in contact at the end of the last step, without friction.
+ * Friction faces take the nodes above `mass_floor` (the simulation's; lighter
+ * nodes are empty). `dt` only enters the work through F * V * dt = m dV . V. */
+double mrn_boundary_apply(const mrn_boundary *bc, mrn_grid *g, double mass_floor, double *vel, int with_friction);
+/* Mark in g->touch the face nodes of friction faces where the material
+ * touches the face: for each particle (positions x, initial volumes vol0, 3
+ * and 1 values per particle) whose initial half side reaches a friction
+ * face, the face nodes within `reach` cells of it along the face (the reach
+ * of its shape functions), whose columns its momentum lands in. */
+void mrn_boundary_touch(const mrn_boundary *bc, mrn_grid *g, double reach, const double *x, const double *vol0,
+                        size_t n);
 
 #endif

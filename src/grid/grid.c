@@ -62,7 +62,10 @@ int mrn_grid_init(mrn_grid *g, int dim, const double origin[3], const double siz
   g->force = calloc(3 * g->n, sizeof(double));
   g->vel_star = calloc(3 * g->n, sizeof(double));
   g->work = calloc(3 * g->n, sizeof(double));
-  if (!g->mass || !g->mom || !g->vel || !g->vel_new || !g->force || !g->vel_star || !g->work) {
+  g->contact = calloc(g->n, 1);
+  g->touch = calloc(g->n, 1);
+  if (!g->mass || !g->mom || !g->vel || !g->vel_new || !g->force || !g->vel_star || !g->work || !g->contact ||
+      !g->touch) {
     mrn_grid_free(g);
     return mrn_error("grid: out of memory for %zu nodes", (size_t)total);
   }
@@ -82,7 +85,10 @@ void mrn_grid_free(mrn_grid *g) {
   free(g->force);
   free(g->vel_star);
   free(g->work);
+  free(g->contact);
+  free(g->touch);
   g->mass = g->mom = g->vel = g->vel_new = g->force = g->vel_star = g->work = NULL;
+  g->contact = g->touch = NULL;
   mrn_blocks_free(g->blocks);
   g->blocks = NULL;
 }

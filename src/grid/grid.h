@@ -31,6 +31,13 @@ typedef struct mrn_grid {
   double *force;    /* 3n total nodal force */
   double *vel_star; /* 3n XPIC(m) smoothed velocity V* (see transfer/xpic.c) */
   double *work;     /* 3n scratch for the XPIC iterations */
+  /* n: at the face node of each column of a friction face, bit 1 << face set
+   * when the column ended the last step in contact (grid/boundary.c); kept
+   * from step to step, saved in checkpoints */
+  unsigned char *contact;
+  /* n: at the face nodes of friction faces, bit 1 << face set when the
+   * material touches the face there (mrn_boundary_touch, each step) */
+  unsigned char *touch;
 
   /* particles binned by block and the node spans that can be nonzero
    * (transfer/blocks.h): outside them every array above except vel_star and

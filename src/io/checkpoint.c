@@ -104,6 +104,28 @@ static void save_simulation(mrn_h5w *w, const mrn_sim *sim) {
   H5Gclose(g);
 }
 
+/* the friction faces' contact states (grid.contact) as rows (node, bits),
+ * for the nodes where any bit is set */
+static void save_contacts(mrn_h5w *w, hid_t g, const mrn_grid *grid) {
+  size_t count = 0;
+  for (size_t n = 0; n < grid->n; n++) count += grid->contact[n] != 0;
+  int64_t *rows = malloc(2 * (count ? count : 1) * sizeof *rows);
+  if (!rows) {
+    w->failed = 1;
+    snprintf(w->what, sizeof w->what, "/grid/contact (out of memory)");
+    return;
+  }
+  for (size_t n = 0, k = 0; n < grid->n; n++)
+    if (grid->contact[n]) {
+      rows[2 * k] = (int64_t)n;
+      rows[2 * k++ + 1] = grid->contact[n];
+    }
+  mrn_h5w_int64(w, g, "contact_count", (int64_t)count);
+  mrn_h5w_dataset(w, g, "contact", H5T_NATIVE_INT64, rows, count, 2, "",
+                  "friction-face contacts held at the end of the last step: node index, bits 1 << face");
+  free(rows);
+}
+
 static void save_grid(mrn_h5w *w, const mrn_grid *grid) {
   hid_t g = mrn_h5w_group(w, w->file, "grid");
   if (g < 0) return;
@@ -112,6 +134,7 @@ static void save_grid(mrn_h5w *w, const mrn_grid *grid) {
   mrn_h5w_doubles(w, g, "size", grid->size, 3);
   mrn_h5w_double(w, g, "cell", grid->cell);
   mrn_h5w_int32s(w, g, "ncell", grid->ncell, 3);
+  save_contacts(w, g, grid);
   H5Gclose(g);
 }
 
@@ -490,6 +513,7 @@ static mrn_sim *build_sim(const ck_data *d, mrn_checkpoint_info *info) {
   sim->energy_outflow = d->energy_outflow;
   sim->affine_pending = d->affine_pending;
   mrn_blocks_set_sort_every(&sim->grid, (long)d->sort_every);
+  for (int64_t k = 0; k < d->ncontact; k++) sim->grid.contact[d->contact[2 * k]] = (unsigned char)d->contact[2 * k + 1];
   for (int i = 0; i < d->nmaterials; i++)
     if (mrn_sim_add_material(sim, d->materials[i]) < 0) goto fail;
   if (take_particles(sim, d)) goto fail;

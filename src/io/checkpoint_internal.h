@@ -36,6 +36,8 @@ typedef struct ck_data {
   /* /grid */
   double origin[3], size[3], cell;
   int ncell[3];
+  int64_t ncontact; /* rows (node, bits) of the friction faces' contacts (grid.contact) */
+  int64_t *contact;
   /* /scheme, /boundary */
   mrn_scheme scheme;
   mrn_boundary boundary;

