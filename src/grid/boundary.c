@@ -24,7 +24,7 @@ const char *mrn_face_name(int face) {
   return face >= 0 && face < MRN_FACE_COUNT ? names[face] : "?";
 }
 
-/* Apply one face condition (not friction: see contact_column) to the node
+/* Apply one face condition (not friction: see contact_apply) to the node
  * velocity v (3 components); `axis` is the face normal axis. */
 static void apply_face(const mrn_face_bc *f, double *v, int axis) {
   switch (f->kind) {
@@ -56,13 +56,16 @@ typedef struct contact_column {
   unsigned char bit; /* 1 << face */
 } contact_column;
 
+/* the index of node l of the column (l = 0: the face node) */
+static inline size_t column_node(const contact_column *c, int l) { return (size_t)((long)c->face_node + l * c->step); }
+
 /* The column's normal momentum into the face, N = sum m v.n_out, over the
  * nodes above the mass floor (lighter ones are empty, or hold a kernel's
  * negative weight with `wls`). */
 static double column_push(const contact_column *c, const mrn_grid *g, double mass_floor, const double *vel) {
   double N = 0.0;
   for (int l = 0; l < c->count; l++) {
-    const size_t n = c->face_node + (size_t)(l * c->step);
+    const size_t n = column_node(c, l);
     if (g->mass[n] > mass_floor) N += g->mass[n] * vel[3 * n + c->axis] * c->outward;
   }
   return N;
@@ -77,7 +80,7 @@ static double column_friction(const contact_column *c, const mrn_grid *g, double
                               double N) {
   double M = 0.0, P[3] = {0.0, 0.0, 0.0};
   for (int l = 0; l < c->count; l++) {
-    const size_t n = c->face_node + (size_t)(l * c->step);
+    const size_t n = column_node(c, l);
     if (!(g->mass[n] > mass_floor)) continue;
     M += g->mass[n];
     for (int d = 0; d < 3; d++) P[d] += g->mass[n] * vel[3 * n + d];
@@ -87,7 +90,7 @@ static double column_friction(const contact_column *c, const mrn_grid *g, double
   const double J = fmin(mu * N, pt);
   double work = 0.0;
   for (int l = 0; l < c->count; l++) {
-    const size_t n = c->face_node + (size_t)(l * c->step);
+    const size_t n = column_node(c, l);
     if (!(g->mass[n] > mass_floor)) continue;
     for (int d = 0; d < 3; d++) {
       const double dv = -J * P[d] / (pt * M);
@@ -110,7 +113,9 @@ static double column_friction(const contact_column *c, const mrn_grid *g, double
  *
  * Without friction (the velocity V of P2G, for the stress update) the
  * column is held, its normal velocity removed, when it moves into the face
- * or when it ended the last step in contact. V carries the particles'
+ * or when it ended the last step in contact.
+ * Either way only a column the material touches (mrn_boundary_touch) can
+ * be held: material away from the face moves freely until it reaches it. V carries the particles'
  * own velocities (FLIP keeps what the grid does not show), so a column
  * resting on the face can seem to leave it before the forces have acted;
  * letting it go then, and catching it again in V~, gave the stress update a
@@ -125,7 +130,7 @@ static double contact_apply(const mrn_face_bc *f, const contact_column *c, mrn_g
   if (with_friction) *state = (unsigned char)(held ? *state | c->bit : *state & ~c->bit);
   if (!held) return 0.0;
   for (int l = 0; l < c->count; l++) {
-    const size_t n = c->face_node + (size_t)(l * c->step);
+    const size_t n = column_node(c, l);
     if (g->mass[n] > mass_floor) vel[3 * n + c->axis] = 0.0;
   }
   return with_friction ? column_friction(c, g, mass_floor, vel, f->mu, N) : 0.0;
