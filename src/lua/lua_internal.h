@@ -52,6 +52,10 @@ struct mrn_sim *mrn_lua_check_sim(lua_State *L, int idx);
 void mrn_lua_add_field_methods(lua_State *L, int methods);
 /* point_force, load_factor, clear_forces (lua_loads.c) into the methods table at idx */
 void mrn_lua_add_load_methods(lua_State *L, int methods);
+/* set_watchdog, watchdog (lua_watchdog.c) into the methods table at idx */
+void mrn_lua_add_watchdog_methods(lua_State *L, int methods);
+/* simulation{ watchdog = {...} | false } and set_watchdog{}: the table or boolean at idx */
+void mrn_lua_read_watchdog(lua_State *L, int idx, const char *where, struct mrn_sim *sim);
 /* The arguments {region, force | traction} at idx: calls set(ctx, p, f) for
  * every point in the region with its share of the force (a total force split
  * equally, or traction times V0^((dim-1)/dim)); returns how many. Raises on

@@ -77,6 +77,8 @@ static const mrn_spec sim_specs[] = {
     {"boundary", MRN_SPEC_TABLE, 0, 0, 0, 0, 0, 0, NULL, "face conditions (default slip on every face)", NULL},
     {"dt", MRN_SPEC_ANY, 0, 0, 0, 0, 0, 0, "s", "time-step policy (default {a_tau = 0.05})", NULL},
     {"damping", MRN_SPEC_TABLE, 0, 0, 0, 0, 0, 0, NULL, "grid-force damping {cundall, viscous} (default none)", NULL},
+    {"watchdog", MRN_SPEC_ANY, 0, 0, 0, 0, 0, 0, NULL,
+     "physical-sanity bounds {energy, dt, speed, every}, or false (default on)", NULL},
     {"thermo", MRN_SPEC_INTEGER, 0, 100, 0, 1e12, 0, 0, "steps", "thermo line every N steps (0: none)", NULL},
     {"diagnostics", MRN_SPEC_ANY, 0, 0, 0, 0, 0, 0, NULL, "CSV file name in the output directory, or false", NULL},
     {"diagnostics_every", MRN_SPEC_INTEGER, 0, 10, 1, 1e12, 0, 0, "steps", "CSV row every N steps", NULL},
@@ -532,6 +534,11 @@ static int l_simulation(lua_State *L) {
   if (mrn_lua_has(L, 1, "damping")) {
     lua_getfield(L, 1, "damping");
     read_damping(L, -1, where, b->sim);
+    lua_pop(L, 1);
+  }
+  if (mrn_lua_has(L, 1, "watchdog")) {
+    lua_getfield(L, 1, "watchdog");
+    mrn_lua_read_watchdog(L, -1, where, b->sim);
     lua_pop(L, 1);
   }
   b->thermo_every = mrn_lua_get_integer(L, 1, where, sim_specs, MRN_COUNT(sim_specs), "thermo");
@@ -1370,6 +1377,7 @@ void mrn_lua_open_simulation(lua_State *L, int module) {
   luaL_setfuncs(L, methods, 0);
   mrn_lua_add_field_methods(L, lua_gettop(L));
   mrn_lua_add_load_methods(L, lua_gettop(L));
+  mrn_lua_add_watchdog_methods(L, lua_gettop(L));
   lua_setfield(L, -2, "__index");
   lua_pop(L, 1);
   lua_pushcfunction(L, l_simulation);

@@ -87,6 +87,7 @@ int mrn_run(mrn_sim *sim, mrn_output *out, mrn_run_options *opt) {
   if (!sim->integrator.step && sim->affine_pending && sim->scheme.grid_velocity != MRN_VGRID_PLAIN)
     mrn_sim_init_affine(sim);
   if (!sim->energy_ref_set) mrn_sim_energy_balance_start(sim);
+  mrn_watchdog_start(&sim->watch, sim);
   if (opt->thermo_every > 0 && !mrn_log_quiet()) mrn_thermo_header(stdout);
   int rc = after_step(sim, out, opt, 1);
   while (rc == MRN_OK) {
@@ -109,6 +110,7 @@ int mrn_run(mrn_sim *sim, mrn_output *out, mrn_run_options *opt) {
       }
       if ((rc = mrn_sim_step_dt(sim, dt)) != MRN_OK) break;
     }
+    if ((rc = mrn_watchdog_check(&sim->watch, sim, sim->step == step_start + 1)) != MRN_OK) break;
     rc = after_step(sim, out, opt, 0);
     if (rc == MRN_OK && mrn_interrupt_pending()) {
       rc = mrn_error_code(MRN_ERR_INTERRUPTED, "interrupted by signal %d after step %ld (t = %g s)",

@@ -25,6 +25,7 @@ mrn_sim *mrn_sim_new(const mrn_sim_config *cfg) {
   for (int d = 0; d < 3; d++) sim->gravity[d] = d < cfg->dim ? cfg->gravity[d] : 0.0;
   mrn_dt_policy_a_tau(&sim->dt_policy, 0.05);
   sim->load_factor = 1.0;
+  mrn_watchdog_default(&sim->watchdog);
   return sim;
 }
 
@@ -79,7 +80,7 @@ static void add_pieces(double part[DIAG_PIECES][DIAG_SUMS], int nsums, double *t
 
 enum { S_EK, S_EG, S_EEL, S_WPL, S_MASS, S_MOM, S_ANG = S_MOM + 3, S_MX = S_ANG + 3 };
 
-void mrn_sim_diagnostics(const mrn_sim *sim, mrn_diagnostics *out) {
+void mrn_sim_energies(const mrn_sim *sim, mrn_diagnostics *out) {
   const mrn_particles *ps = &sim->particles;
   const long n = (long)ps->n;
   double part[DIAG_PIECES][DIAG_SUMS], t[DIAG_SUMS];
@@ -131,9 +132,15 @@ void mrn_sim_diagnostics(const mrn_sim *sim, mrn_diagnostics *out) {
       out->com_velocity[d] = out->momentum[d] / mass;
     }
   out->particles = n;
+}
+
+void mrn_sim_diagnostics(const mrn_sim *sim, mrn_diagnostics *out) {
+  const mrn_particles *ps = &sim->particles;
+  const long n = (long)ps->n;
+  mrn_sim_energies(sim, out);
   if (n == 0) return;
   /* angular momentum about the unweighted centroid (000, Eqs. 54 and 56) */
-  double c[DIAG_SUMS];
+  double part[DIAG_PIECES][DIAG_SUMS], c[DIAG_SUMS];
 #pragma omp parallel for schedule(static) if (n > MRN_OMP_MIN_ITEMS)
   for (int k = 0; k < DIAG_PIECES; k++) {
     long lo, hi;

@@ -18,6 +18,7 @@
 #include "shape/shape.h"
 #include "solver/diagnostics.h"
 #include "solver/timestep.h"
+#include "solver/watchdog.h"
 #include "transfer/scheme.h"
 
 #define MRN_MAX_MATERIALS 64
@@ -89,6 +90,9 @@ typedef struct mrn_sim {
    * the explicit step */
   mrn_integrator integrator;
 
+  mrn_watchdog watchdog;        /* the bounds of the physical-sanity checks of mrn_run */
+  mrn_watchdog_state watch;     /* what those checks saw */
+
   /* scratch, sized to the particle count */
   double *scratch;
   size_t scratch_cap;
@@ -146,6 +150,9 @@ mrn_kernel_options mrn_sim_kernel_options(const mrn_sim *sim);
 
 /* Energies, momenta and centre of mass of the current state */
 void mrn_sim_diagnostics(const mrn_sim *sim, mrn_diagnostics *d);
+/* The same without the angular momentum about the centroid (L_centroid
+ * stays 0): one pass over the particles instead of three */
+void mrn_sim_energies(const mrn_sim *sim, mrn_diagnostics *d);
 
 /* Start the energy balance W_MPM (000, Eq. 68) from the current state;
  * mrn_run() does it before the first step of a simulation */

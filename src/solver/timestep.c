@@ -20,7 +20,7 @@ void mrn_dt_policy_cfl(mrn_dt_policy *p, mrn_dt_kind kind, double courant) {
   p->value = courant;
 }
 
-double mrn_dt_particle_critical(const mrn_sim *sim) {
+double mrn_dt_particle_critical_at(const mrn_sim *sim, long *fastest_particle, double *top_speed) {
   const mrn_particles *ps = &sim->particles;
   const double h = sim->grid.cell;
   double speed[MRN_MAX_MATERIALS], viscous = HUGE_VAL;
@@ -29,15 +29,24 @@ double mrn_dt_particle_critical(const mrn_sim *sim) {
     speed[i] = m->type->wave_speed ? m->type->wave_speed(m) : 0.0; /* (002, Eq. 34) */
     if (m->type->viscous_dt) viscous = fmin(viscous, m->type->viscous_dt(m, h)); /* h^2 / nu (002, Eq. 36) */
   }
-  double fastest = 0.0;
+  double fastest = 0.0, top = -1.0;
+  long top_p = -1;
   for (size_t p = 0; p < ps->n; p++) {
     const double *v = ps->v + 3 * p;
-    double s = speed[ps->material[p]] + sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+    double u = sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]), s = speed[ps->material[p]] + u;
     if (s > fastest) fastest = s;
+    if (u > top) {
+      top = u;
+      top_p = (long)p;
+    }
   }
+  if (fastest_particle) *fastest_particle = top_p;
+  if (top_speed) *top_speed = top_p >= 0 ? top : 0.0;
   double dt = fastest > 0.0 ? h / fastest : HUGE_VAL; /* (002, Eq. 35) */
   return fmin(dt, viscous);                              /* (002, Eq. 36) */
 }
+
+double mrn_dt_particle_critical(const mrn_sim *sim) { return mrn_dt_particle_critical_at(sim, NULL, NULL); }
 
 double mrn_dt_grid_critical(mrn_sim *sim) {
   const mrn_particles *ps = &sim->particles;

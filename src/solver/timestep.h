@@ -35,6 +35,9 @@ void mrn_dt_policy_cfl(mrn_dt_policy *p, mrn_dt_kind kind, double courant);
  * Courant number; HUGE_VAL when nothing limits the step */
 double mrn_dt_particle_critical(const struct mrn_sim *sim);
 double mrn_dt_grid_critical(struct mrn_sim *sim);
+/* the particle critical step, and the particle with the largest |v| (its
+ * index, -1 when there is none) and that speed (m/s) */
+double mrn_dt_particle_critical_at(const struct mrn_sim *sim, long *fastest_particle, double *top_speed);
 void mrn_dt_policy_release(mrn_dt_policy *p);
 const char *mrn_dt_kind_name(mrn_dt_kind k);
 

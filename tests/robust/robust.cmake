@@ -9,8 +9,14 @@ add_test(NAME robust.sigterm_twice COMMAND ${MORAINE_ROBUST_DIR}/sigterm_twice.s
 add_test(NAME robust.warnings COMMAND ${MORAINE_ROBUST_DIR}/warnings.sh $<TARGET_FILE:moraine> ${MORAINE_TEST_OUT}/robust_warnings)
 add_test(NAME robust.unstable_cfl
          COMMAND $<TARGET_FILE:moraine> ${MORAINE_ROBUST_DIR}/unstable_cfl.lua -q -o ${MORAINE_TEST_OUT}/robust_unstable_cfl)
+# the physical-sanity watchdog: an explosive run pinned to the walls stops;
+# violent runs that are right (bouncing cube, dam break) keep far from its bounds
+add_test(NAME robust.watchdog
+         COMMAND $<TARGET_FILE:moraine> ${MORAINE_ROBUST_DIR}/watchdog.lua -q -o ${MORAINE_TEST_OUT}/robust_watchdog)
+add_test(NAME robust.watchdog_legit
+         COMMAND $<TARGET_FILE:moraine> ${MORAINE_ROBUST_DIR}/watchdog_legit.lua -q -o ${MORAINE_TEST_OUT}/robust_watchdog_legit)
 set_tests_properties(robust.disk_full robust.permission robust.sigterm_twice robust.warnings robust.unstable_cfl
-                     PROPERTIES LABELS robust)
+                     robust.watchdog robust.watchdog_legit PROPERTIES LABELS robust)
 
 # doc/errors.md lists every case above and in tests/bad/ with its message
 add_test(NAME doc.errors_table COMMAND ${MORAINE_PYTHON} ${CMAKE_CURRENT_SOURCE_DIR}/bad/errors_table.py --check
