@@ -24,3 +24,15 @@ foreach(h ${MORAINE_FUZZ_HARNESSES})
     target_link_options(fuzz_${h} PRIVATE -fsanitize=fuzzer)
   endif()
 endforeach()
+
+# The long runs (doc/robustness.md, "The runs"): both harnesses side by side
+# for MORAINE_FUZZ_SECONDS each (default 1800), new inputs and any finding in
+# BUILD_DIR/fuzz-work. Not part of ctest:
+#   cmake --build build-fuzz --target fuzz_long
+if(MORAINE_FUZZ)
+  set(MORAINE_FUZZ_SECONDS 1800 CACHE STRING "seconds each harness runs under the fuzz_long target")
+  add_custom_target(fuzz_long
+                    COMMAND ${MORAINE_FUZZ_DIR}/run_long.sh ${CMAKE_BINARY_DIR} ${MORAINE_FUZZ_SECONDS}
+                            ${CMAKE_BINARY_DIR}/fuzz-work
+                    DEPENDS fuzz_checkpoint fuzz_deck USES_TERMINAL)
+endif()
