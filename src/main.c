@@ -1,6 +1,6 @@
 /* moraine: the command line.
  *
- *   moraine DECK.lua [-o OUTDIR] [--set NAME=VALUE ...] [--threads N] [--quiet]
+ *   moraine DECK.lua [-o OUTDIR] [--set NAME=VALUE ...] [--threads N] [--quiet] [--safe]
  *   moraine --help | --version | --list-options
  */
 #include <stdio.h>
@@ -34,6 +34,9 @@ static void usage(FILE *f) {
           "  --threads N          number of OpenMP threads (default: all cores)\n"
           "  -q, --quiet          no thermo lines, progress bar or information messages\n"
           "  --ignore-warning ID  silence one kind of warning (or 'all'); may be repeated\n"
+          "  --safe               restrict the deck: no os.execute, io.popen, C modules,\n"
+          "                       binary chunks or debug library, and writes only inside\n"
+          "                       the output directory (what it does not stop: doc/security.md)\n"
           "  --list-options       print every deck option with its type, default and unit\n"
           "  -h, --help           this text\n"
           "  -v, --version        the version\n"
@@ -87,6 +90,8 @@ int main(int argc, char **argv) {
       list_options();
       free(sets);
       return 0;
+    } else if (!strcmp(a, "--safe")) {
+      opt.safe = 1;
     } else if (!strcmp(a, "-q") || !strcmp(a, "--quiet")) {
       mrn_log_set_quiet(1);
     } else if (!strcmp(a, "-o") || !strcmp(a, "--output")) {

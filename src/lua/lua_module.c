@@ -15,6 +15,7 @@
 #include "io/provenance.h"
 #include "lua/lua_check.h"
 #include "lua/lua_internal.h"
+#include "lua/lua_safe.h"
 #include "lua/moraine_lua.h"
 
 static char library_dir[PATH_MAX + 128];
@@ -168,7 +169,9 @@ static int traceback_handler(lua_State *L) {
 }
 
 static int open_protected(lua_State *L) {
-  mrn_lua_open(L, lua_touserdata(L, 1));
+  const mrn_deck_options *opt = lua_touserdata(L, 1);
+  mrn_lua_open(L, opt);
+  if (opt && opt->safe) mrn_lua_safe_open(L, opt->outdir ? opt->outdir : "out");
   return 0;
 }
 
@@ -184,7 +187,8 @@ int mrn_lua_run_deck(const char *path, const mrn_deck_options *opt) {
   lua_pushcfunction(L, open_protected);
   lua_pushlightuserdata(L, (void *)opt);
   int status = lua_pcall(L, 1, 0, handler);
-  if (status == LUA_OK) status = luaL_loadfile(L, path);
+  /* with --safe the deck too must be source text */
+  if (status == LUA_OK) status = opt && opt->safe ? mrn_lua_load_text(L, path) : luaL_loadfile(L, path);
   /* provenance: the deck, the command line and the version beside the outputs */
   if (status == LUA_OK && opt && opt->outdir &&
       mrn_provenance_write(opt->outdir, path, opt->argc, opt->argv, opt->sets, opt->nsets) != MRN_OK)

@@ -13,6 +13,7 @@
 #include "io/particle_fields.h"
 #include "lua/lua_check.h"
 #include "lua/lua_internal.h"
+#include "lua/lua_safe.h"
 #include "solver/run.h"
 #include "solver/simulation.h"
 #include "solver/suspicious.h"
@@ -564,6 +565,7 @@ static int l_simulation(lua_State *L) {
     read_output(L, -1, where, b);
     lua_pop(L, 1);
   }
+  mrn_lua_check_outputs(L, where, &b->out, b->name);
   const char *integrator = mrn_lua_get_string(L, 1, where, sim_specs, MRN_COUNT(sim_specs), "integrator");
   const int implicit = integrator && !strcmp(integrator, "implicit");
   if (mrn_lua_has(L, 1, "implicit") && !implicit)
@@ -954,6 +956,7 @@ static const char *output_path(lua_State *L, sim_box *b, const char *path) {
 static int l_save(lua_State *L) {
   sim_box *b = check_sim(L, 1);
   const char *path = output_path(L, b, luaL_checkstring(L, 2));
+  mrn_lua_check_write(L, "save()", path);
   if (mrn_mkdir_p(b->out.dir) != MRN_OK) mrn_lua_error(L, "save()", "%s", mrn_error_message());
   if (mrn_checkpoint_save(b->sim, path) != MRN_OK) mrn_lua_output_error(L, "save()", "%s", mrn_error_message());
   lua_pushstring(L, path);
@@ -1016,6 +1019,7 @@ static int l_load(lua_State *L) {
       mrn_blocks_set_sort_every(&b->sim->grid,
                                 mrn_lua_get_integer(L, 2, where, load_specs, MRN_COUNT(load_specs), "sort_every"));
   }
+  mrn_lua_check_outputs(L, where, &b->out, b->name);
   lua_pushvalue(L, self);
   return 1;
 }
@@ -1071,6 +1075,7 @@ static int l_dt_estimate(lua_State *L) {
 static int l_set_output(lua_State *L) {
   sim_box *b = check_idle(L, 1, "output()");
   read_output(L, 2, "output()", b);
+  mrn_lua_check_outputs(L, "output()", &b->out, b->name);
   return 0;
 }
 

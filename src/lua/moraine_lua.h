@@ -10,6 +10,7 @@ typedef struct mrn_deck_options {
   int nsets;
   const char *const *argv;  /* the command line, for provenance */
   int argc;
+  int safe;                 /* --safe: the restrictions of lua_safe.h */
 } mrn_deck_options;
 
 /* Open the moraine module into L: package.preload["moraine"], the global

@@ -18,6 +18,14 @@ add_test(NAME robust.watchdog_legit
 set_tests_properties(robust.disk_full robust.permission robust.sigterm_twice robust.warnings robust.unstable_cfl
                      robust.watchdog robust.watchdog_legit PROPERTIES LABELS robust)
 
+# --safe (doc/security.md): the refusals are tests/bad/safe_*.lua; these check
+# a link leading out, what a deck may still do, and an example that runs as usual
+add_test(NAME robust.safe_symlink COMMAND ${MORAINE_ROBUST_DIR}/safe_symlink.sh $<TARGET_FILE:moraine> ${MORAINE_TEST_OUT}/robust_safe_symlink)
+add_test(NAME robust.safe_allowed
+         COMMAND $<TARGET_FILE:moraine> ${MORAINE_ROBUST_DIR}/safe_allowed.lua --safe -q -o ${MORAINE_TEST_OUT}/robust_safe_allowed)
+add_test(NAME robust.safe_example COMMAND ${MORAINE_ROBUST_DIR}/safe_example.sh $<TARGET_FILE:moraine> ${MORAINE_TEST_OUT}/robust_safe_example)
+set_tests_properties(robust.safe_symlink robust.safe_allowed robust.safe_example PROPERTIES LABELS robust)
+
 # doc/errors.md lists every case above and in tests/bad/ with its message
 add_test(NAME doc.errors_table COMMAND ${MORAINE_PYTHON} ${CMAKE_CURRENT_SOURCE_DIR}/bad/errors_table.py --check
                                        ${CMAKE_SOURCE_DIR}/doc/errors.md)
