@@ -9,8 +9,11 @@ add_test(NAME robust.sigterm_twice COMMAND ${MORAINE_ROBUST_DIR}/sigterm_twice.s
 add_test(NAME robust.warnings COMMAND ${MORAINE_ROBUST_DIR}/warnings.sh $<TARGET_FILE:moraine> ${MORAINE_TEST_OUT}/robust_warnings)
 add_test(NAME robust.unstable_cfl
          COMMAND $<TARGET_FILE:moraine> ${MORAINE_ROBUST_DIR}/unstable_cfl.lua -q -o ${MORAINE_TEST_OUT}/robust_unstable_cfl)
+# one damaged byte in a checkpoint, older checkpoints without checksums, no HDF5 printing
+add_test(NAME robust.checkpoint_damage
+         COMMAND ${MORAINE_ROBUST_DIR}/checkpoint_damage.sh $<TARGET_FILE:moraine> ${MORAINE_TEST_OUT}/robust_checkpoint_damage ${MORAINE_PYTHON})
 set_tests_properties(robust.disk_full robust.permission robust.sigterm_twice robust.warnings robust.unstable_cfl
-                     PROPERTIES LABELS robust)
+                     robust.checkpoint_damage PROPERTIES LABELS robust)
 
 # doc/errors.md lists every case above and in tests/bad/ with its message
 add_test(NAME doc.errors_table COMMAND ${MORAINE_PYTHON} ${CMAKE_CURRENT_SOURCE_DIR}/bad/errors_table.py --check
