@@ -11,6 +11,7 @@ static const mrn_warning_kind kinds[] = {
     {"dt_above_cfl", "a fixed time step above the particle CFL estimate (002, Eqs. 34-37)"},
     {"courant_above_one", "a CFL policy with a Courant number above 1"},
     {"one_particle_per_cell", "particles seeded one per cell (per_axis = 1)"},
+    {"checkpoint_no_checksums", "a checkpoint of format version 1, which has no checksums, loaded or imported"},
 };
 #define NKINDS ((int)(sizeof kinds / sizeof kinds[0]))
 

@@ -378,11 +378,11 @@ static herr_t image_udata_free(void *udata) {
   return 0;
 }
 
-static int build_image(const mrn_sim *sim, const char *final_path, void **image, size_t *size) {
-  mrn_h5w w = {.file = H5I_INVALID_HID};
-  image_catch c = {NULL, 0, NULL, 0};
-  H5FD_file_image_callbacks_t callbacks = {image_malloc, image_memcpy, image_realloc, image_free,
-                                           image_udata_copy, image_udata_free, &c};
+/* datasets a checkpoint of `sim` holds at most: the particle fields,
+ * material, id, state, the contacts, the registered fields, the grid nodes */
+static int dataset_count(const mrn_sim *sim) { return mrn_particle_field_count() + 3 + 1 + sim->particles.nuser + 3; }
+
+static hid_t image_fapl(H5FD_file_image_callbacks_t *callbacks) {
   hid_t fapl = H5Pcreate(H5P_FILE_ACCESS);
   int ok = fapl >= 0 && H5Pset_fclose_degree(fapl, H5F_CLOSE_STRONG) >= 0 &&
            /* The HDF5 1.8 file format: its metadata (superblock, object headers
@@ -390,23 +390,55 @@ static int build_image(const mrn_sim *sim, const char *final_path, void **image,
             * is refused by HDF5 instead of being decoded; every HDF5 since 1.8
             * and h5py read it. */
            H5Pset_libver_bounds(fapl, H5F_LIBVER_V18, H5F_LIBVER_V18) >= 0 &&
-           H5Pset_fapl_core(fapl, 1 << 20, 0) >= 0 && H5Pset_file_image_callbacks(fapl, &callbacks) >= 0;
-  w.file = ok ? H5Fcreate(final_path, H5F_ACC_TRUNC, H5P_DEFAULT, fapl) : H5I_INVALID_HID;
+           H5Pset_fapl_core(fapl, 1 << 20, 0) >= 0 && H5Pset_file_image_callbacks(fapl, callbacks) >= 0;
+  if (!ok && fapl >= 0) H5Pclose(fapl);
+  return ok ? fapl : H5I_INVALID_HID;
+}
+
+/* the file starts with a user block that will hold the checksum table */
+static hid_t image_fcpl(uint64_t userblock) {
+  hid_t fcpl = H5Pcreate(H5P_FILE_CREATE);
+  if (fcpl >= 0 && H5Pset_userblock(fcpl, (hsize_t)userblock) < 0) {
+    H5Pclose(fcpl);
+    return H5I_INVALID_HID;
+  }
+  return fcpl;
+}
+
+/* The image: a user block HDF5 leaves alone, then the HDF5 file. Once the
+ * file is closed the checksum table of its bytes goes into the user block
+ * (checkpoint_sum.c). */
+static int build_image(const mrn_sim *sim, const char *final_path, void **image, size_t *size) {
+  mrn_h5w w = {.file = H5I_INVALID_HID};
+  image_catch c = {NULL, 0, NULL, 0};
+  H5FD_file_image_callbacks_t callbacks = {image_malloc, image_memcpy, image_realloc, image_free,
+                                           image_udata_copy, image_udata_free, &c};
+  const uint64_t userblock = ck_sum_userblock(dataset_count(sim));
+  hid_t fapl = image_fapl(&callbacks), fcpl = image_fcpl(userblock);
+  if (fapl >= 0 && fcpl >= 0) w.file = H5Fcreate(final_path, H5F_ACC_TRUNC, fcpl, fapl);
   if (fapl >= 0) H5Pclose(fapl);
+  if (fcpl >= 0) H5Pclose(fcpl);
   *image = NULL;
   *size = 0;
   if (w.file < 0) return mrn_error_code(MRN_ERR_IO, "cannot write '%s': HDF5 could not create the file", final_path);
   save_all(&w, sim);
   /* the size of the file once everything is flushed (the image itself is
-   * taken from the closed file); the core driver's buffer beyond it is spare */
+   * taken from the closed file, the user block before HDF5's part); the core
+   * driver's buffer beyond it is spare. Where each dataset's values lie is
+   * settled once they are written. */
   ssize_t eof = H5Fflush(w.file, H5F_SCOPE_GLOBAL) >= 0 ? H5Fget_file_image(w.file, NULL, 0) : -1;
-  if (eof <= 0) w.failed = 1;
+  ck_ranges ranges = {0};
+  if (eof <= 0 || ck_sum_collect(w.file, &ranges)) w.failed = 1;
   if (H5Fclose(w.file) < 0) w.failed = 1;
-  if (c.kept && c.kept_buf == c.buf && !w.failed && (size_t)eof <= c.size) {
+  const uint64_t total = userblock + (uint64_t)(eof > 0 ? eof : 0);
+  if (c.kept && c.kept_buf == c.buf && !w.failed && total <= c.size &&
+      ck_sum_write_image(c.buf, total, userblock, &ranges) == 0) {
+    ck_ranges_free(&ranges);
     *image = c.buf;
-    *size = (size_t)eof;
+    *size = (size_t)total;
     return MRN_OK;
   }
+  ck_ranges_free(&ranges);
   if (c.kept) free(c.kept_buf);
   if (w.failed && w.what[0])
     return mrn_error_code(MRN_ERR_IO, "cannot write '%s': HDF5 could not write %s", final_path, w.what);
@@ -542,6 +574,7 @@ mrn_sim *mrn_checkpoint_load_info(const char *path, mrn_checkpoint_info *info) {
     mrn_error_code(MRN_ERR_IO, "'%s': %s", path, inner);
   } else {
     info->version = d.version;
+    info->checksums = d.checksums;
     snprintf(info->moraine_version, sizeof info->moraine_version, "%s", d.moraine_version);
     info->particles = (long)d.n;
   }

@@ -17,13 +17,16 @@
 #include "solver/simulation.h"
 
 #define MRN_CHECKPOINT_FORMAT "moraine checkpoint"
-#define MRN_CHECKPOINT_VERSION 1
+/* 2: the file starts with a checksum table (doc/checkpoint-format.md);
+ * files of version 1 have none and still load, with a warning */
+#define MRN_CHECKPOINT_VERSION 2
 
 /* What a load found besides the simulation itself. */
 typedef struct mrn_checkpoint_info {
   int version;               /* format version of the file */
   char moraine_version[64];  /* the moraine that wrote it, "0.1.0 (abc1234)" */
   long particles;
+  int checksums;             /* 1: every byte was checked against the file's checksums */
   /* The saved time-step policy was a function (a Lua callback), which a file
    * cannot hold: the loaded simulation steps with a fixed dt equal to the last
    * dt until the deck sets its function again. `note` says so in words. */
@@ -42,6 +45,14 @@ int mrn_checkpoint_save(const mrn_sim *sim, const char *path);
 mrn_sim *mrn_checkpoint_load(const char *path);
 /* the same, also filling `info` (may be NULL) */
 mrn_sim *mrn_checkpoint_load_info(const char *path, mrn_checkpoint_info *info);
+
+/* Write the checksum table of a checkpoint anew, for a file changed on
+ * purpose with another program (h5py, the HDF5 C API) after moraine wrote
+ * it: the loader refuses a file whose bytes differ from its table. The file
+ * must have been written by moraine with checksums (its user block holds the
+ * table); it is read whole into memory. 0, or MRN_ERR_IO with the path and
+ * the reason. */
+int mrn_checkpoint_sign(const char *path);
 
 /* Append the particles of a checkpoint to an existing simulation of the same
  * dimension (its grid may differ), keeping every particle field and the

@@ -5,6 +5,7 @@
 #ifndef MRN_IO_CHECKPOINT_INTERNAL_H
 #define MRN_IO_CHECKPOINT_INTERNAL_H
 
+#include <hdf5.h>
 #include <stdint.h>
 
 #include "solver/simulation.h"
@@ -18,6 +19,7 @@
 typedef struct ck_data {
   /* / */
   int version;
+  int checksums; /* 1: the file's checksum table was verified (checkpoint_sum.c) */
   char moraine_version[64];
   /* /simulation */
   int dim;
@@ -69,6 +71,37 @@ static inline double *ck_field(const ck_data *d, const char *name) {
  * message naming the file (nothing to free then). */
 int ck_read(const char *path, ck_data *d);
 void ck_free(ck_data *d);
+
+/* ---- the checksum table (checkpoint_sum.c) ---- */
+
+#define CK_SUM_PATH 160 /* longest dataset path in the table, with its NUL */
+
+/* a dataset's values: bytes [offset, offset + bytes) of the file */
+typedef struct ck_range {
+  uint64_t offset, bytes;
+  uint32_t crc;
+  char path[CK_SUM_PATH];
+} ck_range;
+
+typedef struct ck_ranges {
+  ck_range *r; /* sorted by offset */
+  int n, cap;
+} ck_ranges;
+
+/* the user block a file of `ndatasets` datasets reserves for its table */
+uint64_t ck_sum_userblock(int ndatasets);
+/* the ranges of the datasets of an open file; 0, or -1 (nothing to free) */
+int ck_sum_collect(hid_t file, ck_ranges *ranges);
+void ck_ranges_free(ck_ranges *ranges);
+/* Fill the first `userblock` bytes of the file image `image` (`size` bytes,
+ * the user block included) with the table of `ranges`; 0, or -1 when it
+ * does not fit. */
+int ck_sum_write_image(unsigned char *image, uint64_t size, uint64_t userblock, ck_ranges *ranges);
+/* Check the file at `path` against its table before HDF5 reads it: 0 when
+ * every checksum holds (*present = 1) or the file has no table (*present =
+ * 0: older files, or not a checkpoint); else MRN_ERR_IO with a message
+ * naming the file and the damaged dataset or part. */
+int ck_sum_verify(const char *path, int *present);
 
 /* NULL-terminated names of the time-step policy kinds, in enum order */
 const char *const *ck_dt_kind_names(void);

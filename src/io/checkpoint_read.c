@@ -14,6 +14,7 @@
 
 #include "core/error.h"
 #include "core/tensor.h"
+#include "core/warn.h"
 #include "io/checkpoint.h"
 #include "io/checkpoint_internal.h"
 #include "io/h5util.h"
@@ -83,9 +84,15 @@ static void read_root(mrn_h5r *r, ck_data *d) {
   if (version > MRN_CHECKPOINT_VERSION)
     mrn_h5r_fail(r, "written by a newer moraine (format version %lld; this moraine reads version %d)",
                  (long long)version, MRN_CHECKPOINT_VERSION);
-  require(r, version == MRN_CHECKPOINT_VERSION, "unknown checkpoint format version %lld", (long long)version);
+  require(r, version >= 1, "unknown checkpoint format version %lld", (long long)version);
   d->version = (int)version;
   mrn_h5r_string(r, "/", "moraine_version", d->moraine_version, sizeof d->moraine_version);
+  /* since version 2 the table is part of the format: a file without one was
+   * damaged in its first bytes, or rewritten by another program */
+  require(r, d->checksums || version < 2,
+          "format version %lld, but no checksum table in its first bytes: the file is damaged or was rewritten by "
+          "another program",
+          (long long)version);
 }
 
 static void read_simulation(mrn_h5r *r, ck_data *d) {
@@ -513,6 +520,8 @@ void ck_free(ck_data *d) {
 
 int ck_read(const char *path, ck_data *d) {
   memset(d, 0, sizeof *d);
+  /* every byte against the checksums first: HDF5 then parses intact files only */
+  if (ck_sum_verify(path, &d->checksums)) return MRN_ERR_IO;
   mrn_h5r r;
   if (mrn_h5r_open(&r, path)) return MRN_ERR_IO;
   read_root(&r, d);
@@ -529,5 +538,10 @@ int ck_read(const char *path, ck_data *d) {
     ck_free(d);
     return MRN_ERR_IO;
   }
+  if (!d->checksums)
+    mrn_warning("checkpoint_no_checksums",
+                "'%s' has no checksums (format version %d, written by moraine %s): damage to its values cannot be "
+                "detected; saving the loaded simulation writes a file with them",
+                path, d->version, d->moraine_version[0] ? d->moraine_version : "?");
   return MRN_OK;
 }

@@ -2,16 +2,21 @@
  *
  * An input is one of two things:
  *  - raw mode: bytes starting with 0x89 (the first byte of the HDF5
- *    signature) are written to a file as they are and loaded: truncated,
- *    bit-flipped and foreign files, with the HDF5 library's own parser in the
- *    path;
+ *    signature) or 'm' (of the checksum table that starts a checkpoint) are
+ *    written to a file as they are and loaded: truncated, bit-flipped and
+ *    foreign files, with the checksum table's reader and the HDF5 library's
+ *    own parser in the path;
  *  - edit mode: any other first byte picks a valid template checkpoint (2D or
  *    3D, built at start-up through the engine's C API) and the remaining bytes
  *    are a script of edits made through the HDF5 API: delete a dataset or an
  *    attribute, overwrite an element with NaN, infinity, a negative or huge
  *    value, replace an object by one of another type, rank or length, add a
  *    stray object. These files are well-formed HDF5 whose contents are
- *    hostile, which is what moraine's own validation has to catch.
+ *    hostile, which is what moraine's own validation has to catch. The
+ *    edited file is then signed (its checksum table written anew,
+ *    mrn_checkpoint_sign) so that the edits get past the checksums to that
+ *    validation; with bit 0x40 of the first byte set it is not, and the
+ *    checksums refuse it.
  * Either way the loader must refuse with a message or accept, and an accepted
  * file must give a simulation that can be freed; a crash, a hang or a
  * sanitizer report is a finding. */
@@ -336,12 +341,13 @@ static void apply_edits(const char *path, fuzz_bytes *in) {
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size) {
   if (size == 0) return 0;
-  if (data[0] == 0x89) {
+  if (data[0] == 0x89 || data[0] == 'm') {
     fuzz_write_file(case_path, data, size);
   } else {
     fuzz_bytes in = {data + 1, size - 1};
     fuzz_copy_file(template_path[data[0] & 1], case_path);
     apply_edits(case_path, &in);
+    if (!(data[0] & 0x40)) mrn_checkpoint_sign(case_path); /* may fail on what the edits left: then unsigned */
   }
   mrn_checkpoint_info info;
   mrn_sim *sim = mrn_checkpoint_load_info(case_path, &info);

@@ -15,8 +15,11 @@ add_test(NAME robust.watchdog
          COMMAND $<TARGET_FILE:moraine> ${MORAINE_ROBUST_DIR}/watchdog.lua -q -o ${MORAINE_TEST_OUT}/robust_watchdog)
 add_test(NAME robust.watchdog_legit
          COMMAND $<TARGET_FILE:moraine> ${MORAINE_ROBUST_DIR}/watchdog_legit.lua -q -o ${MORAINE_TEST_OUT}/robust_watchdog_legit)
+# one damaged byte in a checkpoint, older checkpoints without checksums, no HDF5 printing
+add_test(NAME robust.checkpoint_damage
+         COMMAND ${MORAINE_ROBUST_DIR}/checkpoint_damage.sh $<TARGET_FILE:moraine> ${MORAINE_TEST_OUT}/robust_checkpoint_damage ${MORAINE_PYTHON})
 set_tests_properties(robust.disk_full robust.permission robust.sigterm_twice robust.warnings robust.unstable_cfl
-                     robust.watchdog robust.watchdog_legit PROPERTIES LABELS robust)
+                     robust.watchdog robust.watchdog_legit robust.checkpoint_damage PROPERTIES LABELS robust)
 
 # --safe (doc/security.md): the refusals are tests/bad/safe_*.lua; these check
 # a link leading out, what a deck may still do, and an example that runs as usual

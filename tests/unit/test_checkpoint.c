@@ -8,8 +8,13 @@
  *    damaged checkpoints (wrong shape, type, kind names, values) are refused
  *    with a message naming the file and the problem; an import that fails
  *    leaves the target simulation as it was;
+ *  - checksums: one damaged byte anywhere in a checkpoint (every k-th byte
+ *    and a byte of every dataset) is refused, naming the dataset or the part
+ *    of the file; refusing leaks nothing, load after load; a file of format
+ *    version 1 (no checksums) still loads, with a warning;
  *  - import onto a 6x wider grid keeps positions and stresses exactly. */
 #include <hdf5.h>
+#include <malloc.h>
 #include <stdlib.h>
 #include <string.h>
 #include <signal.h>
@@ -21,6 +26,7 @@
 #include "check.h"
 #include "testfs.h"
 #include "core/error.h"
+#include "core/warn.h"
 #include "io/checkpoint.h"
 #include "solver/simulation.h"
 
@@ -402,7 +408,7 @@ static void poke_double(hid_t file, const char *path, long index, double v) {
 }
 
 static void d_format(hid_t f, long n) { set_string_attr(f, "/", "format", "spreadsheet"); }
-static void d_version(hid_t f, long n) { set_int_attr(f, "/", "version", 2); }
+static void d_version(hid_t f, long n) { set_int_attr(f, "/", "version", MRN_CHECKPOINT_VERSION + 1); }
 static void d_version_type(hid_t f, long n) { set_string_attr(f, "/", "version", "one"); }
 static void d_dim(hid_t f, long n) { set_int_attr(f, "/simulation", "dim", 4); }
 static void d_time(hid_t f, long n) { set_double_attr(f, "/simulation", "time", NAN); }
@@ -484,6 +490,8 @@ static const char *damaged(const char *name, damage_fn fn, long n) {
   CHECK(f >= 0);
   fn(f, n);
   CHECK(H5Fclose(f) >= 0);
+  /* checksums that fit the edit, so the loader's own checks are reached */
+  CHECK(mrn_checkpoint_sign(path) == MRN_OK);
   return path;
 }
 
@@ -498,7 +506,7 @@ static void test_damaged_files(void) {
   CHECK(n > 10);
   static const damage_case cases[] = {
       {"other format", d_format, "not a moraine checkpoint (format is 'spreadsheet')"},
-      {"newer version", d_version, "newer moraine (format version 2"},
+      {"newer version", d_version, "newer moraine (format version 3; this moraine reads version 2)"},
       {"version as text", d_version_type, "attribute 'version' of / is a string, expected an integer"},
       {"dimension 4", d_dim, "/simulation: dimension 4, expected 2 or 3"},
       {"time NaN", d_time, "attribute 'time' of /simulation is nan"},
@@ -559,6 +567,7 @@ static void test_file_with_vol(void) {
   CHECK(f >= 0);
   replace_dataset(f, "/particles/vol", H5T_NATIVE_DOUBLE, vol, (hsize_t)n, 0);
   CHECK(H5Fclose(f) >= 0);
+  CHECK(mrn_checkpoint_sign(path) == MRN_OK);
   free(vol);
   mrn_sim *old = mrn_checkpoint_load(path);
   CHECK(old != NULL);
@@ -566,6 +575,261 @@ static void test_file_with_vol(void) {
   printf("a file with /particles/vol (%zu particles) loads: %s\n", n, old ? "yes" : mrn_error_message());
   mrn_sim_free(old);
   mrn_sim_free(ref);
+}
+
+/* ---- checksums ----------------------------------------------------------------- */
+
+typedef struct region {
+  long long offset, bytes;
+  char path[160];
+} region;
+
+typedef struct regions {
+  region r[64];
+  int n;
+} regions;
+
+/* where each dataset's values lie, asked of HDF5 itself (not of moraine's table) */
+static herr_t add_region(hid_t root, const char *name, const H5O_info_t *info, void *data) {
+  regions *rs = data;
+  if (info->type != H5O_TYPE_DATASET || rs->n == 64) return 0;
+  hid_t d = H5Oopen(root, name, H5P_DEFAULT);
+  haddr_t offset = H5Dget_offset(d);
+  hsize_t bytes = H5Dget_storage_size(d);
+  H5Oclose(d);
+  if (offset == HADDR_UNDEF || bytes == 0) return 0;
+  region *r = &rs->r[rs->n++];
+  r->offset = (long long)offset;
+  r->bytes = (long long)bytes;
+  snprintf(r->path, sizeof r->path, "/%s", name);
+  return 0;
+}
+
+static void file_regions(const char *path, regions *rs, hsize_t *userblock) {
+  rs->n = 0;
+  hid_t f = H5Fopen(path, H5F_ACC_RDONLY, H5P_DEFAULT);
+  CHECK(f >= 0);
+  hid_t fcpl = H5Fget_create_plist(f);
+  CHECK(H5Pget_userblock(fcpl, userblock) >= 0);
+  H5Pclose(fcpl);
+  CHECK(H5Ovisit2(f, H5_INDEX_NAME, H5_ITER_INC, add_region, rs, H5O_INFO_BASIC) >= 0);
+  H5Fclose(f);
+}
+
+static const region *region_of(const regions *rs, long long offset) {
+  for (int i = 0; i < rs->n; i++)
+    if (offset >= rs->r[i].offset && offset < rs->r[i].offset + rs->r[i].bytes) return &rs->r[i];
+  return NULL;
+}
+
+/* a checkpoint with every kind of dataset: history variables, friction
+ * contacts, a registered field */
+static const char *checksum_sample(void) {
+  const char *path = tmp_path("checksum_sample.h5");
+  case_def c = {"checksums", 2, MRN_SHAPE_QUADRATIC_BSPLINE, "FLIP", MRN_STRESS_USF, MRN_BC_FRICTION,
+                &mrn_material_mohr_coulomb, 0};
+  mrn_sim *sim = make_sim(&c);
+  CHECK(mrn_particles_add_user_field(&sim->particles, "tag", 2, 0.5, "m") == MRN_OK);
+  CHECK(run(sim, 10) == MRN_OK);
+  CHECK(mrn_checkpoint_save(sim, path) == MRN_OK);
+  mrn_sim_free(sim);
+  return path;
+}
+
+static void write_bytes(const char *path, const unsigned char *bytes, size_t size) {
+  FILE *fp = fopen(path, "wb");
+  CHECK(fp && fwrite(bytes, 1, size, fp) == size);
+  if (fp) fclose(fp);
+}
+
+/* a copy of `bytes` with byte `offset` changed by xor `mask`, loaded: the
+ * message, which must name the file, goes to `msg` (NULL: it loaded) */
+static const char *load_damaged(const char *path, unsigned char *bytes, size_t size, long long offset,
+                                unsigned char mask) {
+  bytes[offset] ^= mask;
+  write_bytes(path, bytes, size);
+  bytes[offset] ^= mask;
+  mrn_sim *sim = mrn_checkpoint_load(path);
+  if (sim) {
+    mrn_sim_free(sim);
+    return NULL;
+  }
+  return mrn_error_message();
+}
+
+/* One damaged byte anywhere is refused: in a dataset's values the message
+ * names the dataset, in HDF5's metadata (the attributes among it) or in the
+ * checksum table it says so. Every k-th byte of the file, with masks from a
+ * single bit to the whole byte, and a byte in the middle of every dataset. */
+static void test_single_byte_damage(void) {
+  const char *sample = checksum_sample(), *path = tmp_path("one_byte.h5");
+  size_t size = 0;
+  unsigned char *bytes = (unsigned char *)read_all(sample, &size);
+  CHECK(bytes != NULL);
+  if (!bytes) return;
+  regions rs;
+  hsize_t userblock = 0;
+  file_regions(sample, &rs, &userblock);
+  CHECK(rs.n >= 18 && userblock >= 512);
+  static const unsigned char masks[] = {0x01, 0x80, 0xff, 0x5a, 0x10};
+  long long offsets[2048];
+  int n = 0;
+  const long long stride = (long long)size / 600 + 1;
+  for (long long at = 0; at < (long long)size && n < 1900; at += stride) offsets[n++] = at;
+  offsets[n++] = (long long)size - 1;
+  for (int i = 0; i < rs.n; i++) offsets[n++] = rs.r[i].offset + rs.r[i].bytes / 2;
+  int loaded = 0, in_table = 0, in_metadata = 0, in_data = 0, hit[64] = {0};
+  for (int k = 0; k < n; k++) {
+    const char *msg = load_damaged(path, bytes, size, offsets[k], masks[k % 5]);
+    const region *r = region_of(&rs, offsets[k]);
+    char want[256];
+    if (offsets[k] < (long long)userblock)
+      snprintf(want, sizeof want, "checksum table");
+    else if (r)
+      snprintf(want, sizeof want, "%s fails its checksum: its values are damaged", r->path);
+    else
+      snprintf(want, sizeof want, "the HDF5 metadata (groups, attributes, dataset layouts) fails its checksum");
+    int ok = msg && message_says(path, want);
+    CHECK(ok);
+    if (!ok) fprintf(stderr, "  byte %lld ^ 0x%02x: %s\n", offsets[k], masks[k % 5], msg ? msg : "loaded");
+    loaded += !msg;
+    in_table += offsets[k] < (long long)userblock;
+    in_metadata += offsets[k] >= (long long)userblock && !r;
+    if (r) {
+      in_data++;
+      hit[r - rs.r] = 1;
+    }
+  }
+  int datasets = 0;
+  for (int i = 0; i < rs.n; i++) datasets += hit[i];
+  CHECK(loaded == 0 && datasets == rs.n);
+  printf("one damaged byte: %d of %d offsets of a %zu-byte checkpoint refused (%d in the values of %d of its %d "
+         "datasets, %d in HDF5 metadata, %d in the checksum table); %d loaded\n",
+         n - loaded, n, size, in_data, datasets, rs.n, in_metadata, in_table, loaded);
+  free(bytes);
+}
+
+/* the case of the report: one byte of a particle's vol0, 6.25e-4 -> 6.6e179 */
+static void test_vol0_byte(void) {
+  const char *sample = sample_checkpoint(), *path = tmp_path("vol0_byte.h5");
+  size_t size = 0;
+  unsigned char *bytes = (unsigned char *)read_all(sample, &size);
+  regions rs;
+  hsize_t userblock = 0;
+  file_regions(sample, &rs, &userblock);
+  const region *vol0 = NULL;
+  for (int i = 0; i < rs.n; i++)
+    if (strcmp(rs.r[i].path, "/particles/vol0") == 0) vol0 = &rs.r[i];
+  CHECK(bytes && vol0);
+  if (!bytes || !vol0) return;
+  /* the top byte of particle 3's value (little-endian): sign and exponent */
+  long long at = vol0->offset + 3 * 8 + 7;
+  double before, after;
+  memcpy(&before, bytes + vol0->offset + 3 * 8, 8);
+  unsigned char mask = bytes[at] ^ 0x65;
+  bytes[at] ^= mask;
+  memcpy(&after, bytes + vol0->offset + 3 * 8, 8);
+  bytes[at] ^= mask;
+  const char *msg = load_damaged(path, bytes, size, at, mask);
+  CHECK(msg && message_says(path, "/particles/vol0 fails its checksum"));
+  printf("vol0 of particle 3, %g -> %g: %s\n", before, after, msg ? msg : "loaded");
+  free(bytes);
+}
+
+/* The first bytes wiped: HDF5 still reads the file, but a file of version 2
+ * without its table is refused; editing a checkpoint with HDF5 and signing
+ * it makes it load again. */
+static void test_table_rules(void) {
+  const char *sample = sample_checkpoint(), *path = tmp_path("no_table.h5");
+  size_t size = 0;
+  unsigned char *bytes = (unsigned char *)read_all(sample, &size);
+  CHECK(bytes != NULL);
+  if (!bytes) return;
+  memset(bytes, 0, 512);
+  write_bytes(path, bytes, size);
+  free(bytes);
+  expect_refused(path, "format version 2, but no checksum table in its first bytes", "table wiped");
+
+  const char *edited = tmp_path("edited.h5");
+  copy_file(sample, edited);
+  hid_t f = H5Fopen(edited, H5F_ACC_RDWR, H5P_DEFAULT);
+  set_double_attr(f, "/simulation", "time", 42.0);
+  H5Fclose(f);
+  expect_refused(edited, "fails its checksum: the file is damaged or was changed by another program",
+                 "edited, not signed");
+  CHECK(mrn_checkpoint_sign(edited) == MRN_OK);
+  mrn_checkpoint_info info;
+  mrn_sim *sim = mrn_checkpoint_load_info(edited, &info);
+  CHECK(sim && sim->time == 42.0 && info.checksums == 1 && info.version == MRN_CHECKPOINT_VERSION);
+  mrn_sim_free(sim);
+}
+
+/* the committed older checkpoint (format version 1, no checksums), beside this file's directory */
+static const char *older_checkpoint(void) {
+  static char path[600];
+  snprintf(path, sizeof path, "%s", __FILE__);
+  char *slash = strrchr(path, '/');
+  if (!slash) return "";
+  snprintf(slash, sizeof path - (size_t)(slash - path), "/../fuzz/corpus/checkpoint/valid_2d.h5");
+  return path;
+}
+
+/* a file of version 1 loads as before, with one warning naming it; saved
+ * again it has checksums */
+static void test_older_file(void) {
+  const char *older = older_checkpoint();
+  mrn_warning_reset();
+  mrn_checkpoint_info info;
+  mrn_sim *sim = mrn_checkpoint_load_info(older, &info);
+  CHECK(sim != NULL);
+  if (!sim) {
+    fprintf(stderr, "  %s\n", mrn_error_message());
+    return;
+  }
+  CHECK(info.version == 1 && info.checksums == 0 && mrn_warning_count() == 1);
+  printf("older file: version %d, %ld particles, checksums %d, warnings %d\n", info.version, info.particles,
+         info.checksums, mrn_warning_count());
+  const char *again = tmp_path("older_saved.h5");
+  CHECK(mrn_checkpoint_save(sim, again) == MRN_OK);
+  mrn_sim *back = mrn_checkpoint_load_info(again, &info);
+  CHECK(back && info.version == MRN_CHECKPOINT_VERSION && info.checksums == 1);
+  if (back) CHECK(same_particles(&sim->particles, &back->particles));
+  CHECK(mrn_checkpoint_sign(older) != MRN_OK && strstr(mrn_error_message(), "has no user block"));
+  mrn_warning_reset();
+  mrn_sim_free(back);
+  mrn_sim_free(sim);
+}
+
+static size_t heap_in_use(void) { return mallinfo2().uordblks; }
+
+/* Loading a damaged file again and again keeps the heap as it was: nothing
+ * is left behind by a refusal (under the sanitizers LeakSanitizer checks
+ * the same at exit). */
+static void test_refusals_leak_nothing(void) {
+  const char *sample = sample_checkpoint(), *path = tmp_path("refused_again.h5");
+  regions rs;
+  hsize_t userblock = 0;
+  file_regions(sample, &rs, &userblock);
+  CHECK(rs.n > 0);
+  /* a byte of HDF5's first object header, of a dataset, of the table, and the table wiped */
+  const long long at[4] = {(long long)userblock + 74, rs.n ? rs.r[0].offset : 0, 100, 0};
+  const char *what[4] = {"HDF5 metadata", "dataset values", "checksum table", "no table"};
+  for (int k = 0; k < 4; k++) {
+    size_t size = 0;
+    unsigned char *bytes = (unsigned char *)read_all(sample, &size);
+    CHECK(bytes != NULL);
+    if (!bytes) return;
+    bytes[at[k]] ^= 0x5a;
+    if (k == 3) memset(bytes, 0, 512);
+    write_bytes(path, bytes, size);
+    free(bytes);
+    CHECK(mrn_checkpoint_load(path) == NULL);
+    size_t before = heap_in_use();
+    for (int i = 0; i < 200; i++) CHECK(mrn_checkpoint_load(path) == NULL);
+    long grown = (long)heap_in_use() - (long)before;
+    CHECK(grown == 0);
+    printf("200 refusals, damaged %-14s: heap in use %+ld bytes (%s)\n", what[k], grown, mrn_error_message());
+  }
 }
 
 /* ---- import ---------------------------------------------------------------------- */
@@ -787,6 +1051,11 @@ int main(void) {
   test_unreadable_files();
   test_damaged_files();
   test_file_with_vol();
+  test_single_byte_damage();
+  test_vol0_byte();
+  test_table_rules();
+  test_older_file();
+  test_refusals_leak_nothing();
   test_import();
   test_import_history();
   test_save_errors();
