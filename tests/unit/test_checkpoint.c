@@ -823,12 +823,16 @@ static void test_refusals_leak_nothing(void) {
     if (k == 3) memset(bytes, 0, 512);
     write_bytes(path, bytes, size);
     free(bytes);
-    CHECK(mrn_checkpoint_load(path) == NULL);
+    /* HDF5 keeps freed blocks in its own free lists, whose size settles over
+     * the first refusals and then cycles by a few hundred bytes */
+    for (int i = 0; i < 20; i++) CHECK(mrn_checkpoint_load(path) == NULL);
     size_t before = heap_in_use();
     for (int i = 0; i < 200; i++) CHECK(mrn_checkpoint_load(path) == NULL);
     long grown = (long)heap_in_use() - (long)before;
-    CHECK(grown == 0);
     printf("200 refusals, damaged %-14s: heap in use %+ld bytes (%s)\n", what[k], grown, mrn_error_message());
+    /* a block left behind by each refusal would add at least 32 bytes
+     * (glibc's smallest chunk) per refusal: 6,400 over 200 */
+    CHECK(grown < 200 * 16);
   }
 }
 
