@@ -9,8 +9,17 @@ add_test(NAME robust.sigterm_twice COMMAND ${MORAINE_ROBUST_DIR}/sigterm_twice.s
 add_test(NAME robust.warnings COMMAND ${MORAINE_ROBUST_DIR}/warnings.sh $<TARGET_FILE:moraine> ${MORAINE_TEST_OUT}/robust_warnings)
 add_test(NAME robust.unstable_cfl
          COMMAND $<TARGET_FILE:moraine> ${MORAINE_ROBUST_DIR}/unstable_cfl.lua -q -o ${MORAINE_TEST_OUT}/robust_unstable_cfl)
+# every output file failing once (tests/robust/faults.py): faultfs, the LD_PRELOAD
+# library that injects the faults, goes next to moraine, where faults.py looks.
+# It is built without the sanitizers: a sanitised program wants their runtime
+# first among its libraries, and faultfs is preloaded before it.
+add_library(faultfs MODULE ${MORAINE_ROBUST_DIR}/faultfs.c)
+set_target_properties(faultfs PROPERTIES LIBRARY_OUTPUT_DIRECTORY ${CMAKE_BINARY_DIR} COMPILE_OPTIONS "-Wall;-Wextra" LINK_OPTIONS "")
+target_link_libraries(faultfs PRIVATE ${CMAKE_DL_LIBS})
+add_test(NAME robust.faults
+         COMMAND ${MORAINE_ROBUST_DIR}/faults.sh $<TARGET_FILE:moraine> ${MORAINE_TEST_OUT}/robust_faults ${MORAINE_PYTHON})
 set_tests_properties(robust.disk_full robust.permission robust.sigterm_twice robust.warnings robust.unstable_cfl
-                     PROPERTIES LABELS robust)
+                     robust.faults PROPERTIES LABELS robust)
 
 # doc/errors.md lists every case above and in tests/bad/ with its message
 add_test(NAME doc.errors_table COMMAND ${MORAINE_PYTHON} ${CMAKE_CURRENT_SOURCE_DIR}/bad/errors_table.py --check
