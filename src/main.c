@@ -162,7 +162,8 @@ int main(int argc, char **argv) {
   mrn_h5_quiet hdf5;
   mrn_h5_silence(&hdf5);
   int rc = mrn_lua_run_deck(deck, &opt);
-  if (rc && mrn_interrupt_pending()) rc = MRN_EXIT_INTERRUPTED;
+  /* a signal stopped the run; unless what it leaves could not be written */
+  if (rc && rc != MRN_EXIT_OUTPUT && mrn_interrupt_pending()) rc = MRN_EXIT_INTERRUPTED;
   free(sets);
   return rc;
 

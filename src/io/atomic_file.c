@@ -2,6 +2,7 @@
 
 #include <errno.h>
 #include <fcntl.h>
+#include <stdarg.h>
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
@@ -35,12 +36,13 @@ static void release(mrn_atomic_file *f) {
   f->temp_path = NULL;
 }
 
-/* ---- open / commit / abort --------------------------------------------- */
+/* ---- open / write / commit / abort ------------------------------------- */
 
 int mrn_atomic_open(mrn_atomic_file *f, const char *path) {
   f->fp = NULL;
   f->final_path = NULL;
   f->temp_path = NULL;
+  f->err = 0;
   if (!path || !*path || path[strlen(path) - 1] == '/')
     return mrn_error_code(MRN_ERR_IO, "cannot write '%s': not a file name", path ? path : "");
   f->final_path = strdup(path);
@@ -56,6 +58,32 @@ int mrn_atomic_open(mrn_atomic_file *f, const char *path) {
     return rc;
   }
   return MRN_OK;
+}
+
+/* A stream may take the bytes into its buffer and still fail the write that
+ * empties it: the error flag is checked after every call, while errno still
+ * belongs to that write. */
+static void check_stream(mrn_atomic_file *f, int failed) {
+  if ((failed || ferror(f->fp)) && !f->err) f->err = errno ? errno : EIO;
+}
+
+void mrn_atomic_write(mrn_atomic_file *f, const void *data, size_t size) {
+  if (f->err || !f->fp || size == 0) return;
+  errno = 0;
+  check_stream(f, fwrite(data, 1, size, f->fp) != size);
+}
+
+void mrn_atomic_vprintf(mrn_atomic_file *f, const char *fmt, va_list ap) {
+  if (f->err || !f->fp) return;
+  errno = 0;
+  check_stream(f, vfprintf(f->fp, fmt, ap) < 0);
+}
+
+void mrn_atomic_printf(mrn_atomic_file *f, const char *fmt, ...) {
+  va_list ap;
+  va_start(ap, fmt);
+  mrn_atomic_vprintf(f, fmt, ap);
+  va_end(ap);
 }
 
 /* Push everything the stream holds to the disk. A stream error flag set by an
@@ -87,7 +115,7 @@ int mrn_atomic_commit(mrn_atomic_file *f) {
   if (!f->fp) return mrn_error_code(MRN_ERR_IO, "cannot write '%s': file is not open",
                                     f->final_path ? f->final_path : "");
   errno = 0;
-  int err = flush_to_disk(f->fp);
+  int err = f->err ? f->err : flush_to_disk(f->fp);
   /* fclose must run in every case to release the stream; its own failure
    * (a delayed write error on some file systems) counts as well */
   if (fclose(f->fp) != 0 && !err) err = errno ? errno : EIO;
@@ -114,6 +142,14 @@ void mrn_atomic_abort(mrn_atomic_file *f) {
   if (f->fp) fclose(f->fp);
   if (f->temp_path) unlink(f->temp_path);
   release(f);
+}
+
+int mrn_atomic_write_file(const char *path, const void *data, size_t size) {
+  mrn_atomic_file f;
+  int rc = mrn_atomic_open(&f, path);
+  if (rc != MRN_OK) return rc;
+  mrn_atomic_write(&f, data, size);
+  return mrn_atomic_commit(&f);
 }
 
 /* ---- directories ------------------------------------------------------- */

@@ -11,6 +11,7 @@
 
 #include "core/error.h"
 #include "io/atomic_file.h"
+#include "io/h5image.h"
 #include "io/checkpoint_internal.h"
 #include "io/h5util.h"
 #include "transfer/blocks.h"
@@ -309,91 +310,9 @@ static void save_all(mrn_h5w *w, const mrn_sim *sim) {
   save_grid_nodes(w, &sim->grid);
 }
 
-/* The file is built in memory (HDF5's core driver without a backing store)
- * and its bytes are then written through mrn_atomic_file, which fsyncs the
- * temporary file and renames it into place: a crash leaves the old checkpoint
- * or the new one, never half of one. A full disk, a quota or a file-size
- * limit thus fails an ordinary write() that is reported with the path and
- * the reason; HDF5 never meets the failure itself (HDF5 1.10 keeps a file
- * whose flush failed half-closed and crashes on it at exit).
- *
- * The image is taken when the in-memory file is closed, complete: the core
- * driver hands its buffer to these callbacks, and the one for freeing it at
- * close keeps it instead. (An image taken from the open file carries a
- * superblock that HDF5 1.10 leaves with a wrong checksum.) */
-typedef struct image_catch {
-  void *buf;      /* the buffer allocated last */
-  size_t size;
-  void *kept_buf; /* the buffer of the last image closed */
-  int kept;
-} image_catch;
-
-static void *image_malloc(size_t size, H5FD_file_image_op_t op, void *udata) {
-  (void)op;
-  image_catch *c = udata;
-  void *p = malloc(size);
-  if (p) {
-    c->buf = p;
-    c->size = size;
-  }
-  return p;
-}
-
-static void *image_realloc(void *ptr, size_t size, H5FD_file_image_op_t op, void *udata) {
-  (void)op;
-  image_catch *c = udata;
-  void *p = realloc(ptr, size);
-  if (p) {
-    c->buf = p;
-    c->size = size;
-  }
-  return p;
-}
-
-static void *image_memcpy(void *dest, const void *src, size_t size, H5FD_file_image_op_t op, void *udata) {
-  (void)op;
-  (void)udata;
-  return memcpy(dest, src, size);
-}
-
-/* HDF5 also opens and closes a short-lived image of its own through these
- * callbacks; the file's buffer is the last one closed, and any buffer kept
- * before it is released. */
-static herr_t image_free(void *ptr, H5FD_file_image_op_t op, void *udata) {
-  image_catch *c = udata;
-  if (op == H5FD_FILE_IMAGE_OP_FILE_CLOSE && ptr && ptr == c->buf) {
-    if (c->kept && c->kept_buf != ptr) free(c->kept_buf);
-    c->kept_buf = ptr;
-    c->kept = 1;
-    return 0;
-  }
-  if (ptr == c->buf) c->buf = NULL;
-  free(ptr);
-  return 0;
-}
-
-static void *image_udata_copy(void *udata) { return udata; }
-static herr_t image_udata_free(void *udata) {
-  (void)udata;
-  return 0;
-}
-
 /* datasets a checkpoint of `sim` holds at most: the particle fields,
  * material, id, state, the contacts, the registered fields, the grid nodes */
 static int dataset_count(const mrn_sim *sim) { return mrn_particle_field_count() + 3 + 1 + sim->particles.nuser + 3; }
-
-static hid_t image_fapl(H5FD_file_image_callbacks_t *callbacks) {
-  hid_t fapl = H5Pcreate(H5P_FILE_ACCESS);
-  int ok = fapl >= 0 && H5Pset_fclose_degree(fapl, H5F_CLOSE_STRONG) >= 0 &&
-           /* The HDF5 1.8 file format: its metadata (superblock, object headers
-            * with the attributes, B-trees) carries checksums, so a damaged file
-            * is refused by HDF5 instead of being decoded; every HDF5 since 1.8
-            * and h5py read it. */
-           H5Pset_libver_bounds(fapl, H5F_LIBVER_V18, H5F_LIBVER_V18) >= 0 &&
-           H5Pset_fapl_core(fapl, 1 << 20, 0) >= 0 && H5Pset_file_image_callbacks(fapl, callbacks) >= 0;
-  if (!ok && fapl >= 0) H5Pclose(fapl);
-  return ok ? fapl : H5I_INVALID_HID;
-}
 
 /* the file starts with a user block that will hold the checksum table */
 static hid_t image_fcpl(uint64_t userblock) {
@@ -405,41 +324,35 @@ static hid_t image_fcpl(uint64_t userblock) {
   return fcpl;
 }
 
-/* The image: a user block HDF5 leaves alone, then the HDF5 file. Once the
- * file is closed the checksum table of its bytes goes into the user block
- * (checkpoint_sum.c). */
+/* The file is built in memory and written whole through the crash-safe
+ * file (io/h5image.h): a crash leaves the old checkpoint or the new one, and
+ * a full disk fails an ordinary write() reported with the path and reason.
+ * The image starts with a user block HDF5 leaves alone; once the file is
+ * complete the checksum table of its bytes goes there (checkpoint_sum.c). */
 static int build_image(const mrn_sim *sim, const char *final_path, void **image, size_t *size) {
   mrn_h5w w = {.file = H5I_INVALID_HID};
-  image_catch c = {NULL, 0, NULL, 0};
-  H5FD_file_image_callbacks_t callbacks = {image_malloc, image_memcpy, image_realloc, image_free,
-                                           image_udata_copy, image_udata_free, &c};
+  mrn_h5_image img;
   const uint64_t userblock = ck_sum_userblock(dataset_count(sim));
-  hid_t fapl = image_fapl(&callbacks), fcpl = image_fcpl(userblock);
-  if (fapl >= 0 && fcpl >= 0) w.file = H5Fcreate(final_path, H5F_ACC_TRUNC, fcpl, fapl);
-  if (fapl >= 0) H5Pclose(fapl);
-  if (fcpl >= 0) H5Pclose(fcpl);
+  hid_t fcpl = image_fcpl(userblock);
+  if (fcpl >= 0) {
+    w.file = mrn_h5_image_create(&img, final_path, fcpl);
+    H5Pclose(fcpl);
+  }
   *image = NULL;
   *size = 0;
   if (w.file < 0) return mrn_error_code(MRN_ERR_IO, "cannot write '%s': HDF5 could not create the file", final_path);
   save_all(&w, sim);
-  /* the size of the file once everything is flushed (the image itself is
-   * taken from the closed file, the user block before HDF5's part); the core
-   * driver's buffer beyond it is spare. Where each dataset's values lie is
-   * settled once they are written. */
-  ssize_t eof = H5Fflush(w.file, H5F_SCOPE_GLOBAL) >= 0 ? H5Fget_file_image(w.file, NULL, 0) : -1;
+  /* where each dataset's values lie is settled once they are flushed */
   ck_ranges ranges = {0};
-  if (eof <= 0 || ck_sum_collect(w.file, &ranges)) w.failed = 1;
-  if (H5Fclose(w.file) < 0) w.failed = 1;
-  const uint64_t total = userblock + (uint64_t)(eof > 0 ? eof : 0);
-  if (c.kept && c.kept_buf == c.buf && !w.failed && total <= c.size &&
-      ck_sum_write_image(c.buf, total, userblock, &ranges) == 0) {
+  if (H5Fflush(w.file, H5F_SCOPE_GLOBAL) < 0 || ck_sum_collect(w.file, &ranges)) w.failed = 1;
+  if (mrn_h5_image_close(&img, w.file, image, size) == 0 && !w.failed &&
+      ck_sum_write_image(*image, *size, userblock, &ranges) == 0) {
     ck_ranges_free(&ranges);
-    *image = c.buf;
-    *size = (size_t)total;
     return MRN_OK;
   }
   ck_ranges_free(&ranges);
-  if (c.kept) free(c.kept_buf);
+  free(*image);
+  *image = NULL;
   if (w.failed && w.what[0])
     return mrn_error_code(MRN_ERR_IO, "cannot write '%s': HDF5 could not write %s", final_path, w.what);
   return mrn_error_code(MRN_ERR_IO, "cannot write '%s': HDF5 could not build the file in memory", final_path);
@@ -452,18 +365,7 @@ int mrn_checkpoint_save(const mrn_sim *sim, const char *path) {
   mrn_h5_silence(&quiet);
   int rc = build_image(sim, path, &image, &size);
   mrn_h5_restore(&quiet);
-  if (rc) return rc;
-  mrn_atomic_file file;
-  rc = mrn_atomic_open(&file, path);
-  if (rc == MRN_OK) {
-    errno = 0;
-    if (fwrite(image, 1, size, file.fp) != size) {
-      rc = mrn_error_code(MRN_ERR_IO, "cannot write '%s': %s", path, strerror(errno ? errno : EIO));
-      mrn_atomic_abort(&file);
-    } else {
-      rc = mrn_atomic_commit(&file);
-    }
-  }
+  if (rc == MRN_OK) rc = mrn_atomic_write_file(path, image, size);
   free(image);
   return rc;
 }

@@ -1,10 +1,13 @@
 #include "io/output.h"
 
 #include <errno.h>
+#include <fcntl.h>
 #include <math.h>
 #include <stdint.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
 #include "core/error.h"
 #include "core/spec.h"
@@ -21,19 +24,26 @@ void mrn_output_init(mrn_output *o, const char *dir) {
   o->vtk_last_step = -1;
   o->csv_every = 10;
   o->csv_last_step = -1;
+  o->csv_fd = -1;
   o->encoding = MRN_VTK_BINARY;
 }
 
-void mrn_output_free(mrn_output *o) {
+static int close_csv(mrn_output *o);
+
+int mrn_output_free(mrn_output *o) {
+  int rc = close_csv(o);
+  /* the series' last rewrite: rows appended since the one before */
+  int src = o->series ? mrn_series_close(o->series) : MRN_OK;
+  if (rc == MRN_OK) rc = src;
   free(o->dir);
   free(o->vtk_name);
   free(o->csv_name);
-  if (o->csv) fclose(o->csv);
   if (o->pvd.path) mrn_pvd_free(&o->pvd);
   if (o->grid_pvd.path) mrn_pvd_free(&o->grid_pvd);
-  if (o->series) mrn_series_close(o->series);
   free(o->series_name);
   memset(o, 0, sizeof *o);
+  o->csv_fd = -1;
+  return rc;
 }
 
 int mrn_output_set_vtk(mrn_output *o, const char *name, double every_time, long every_steps) {
@@ -55,26 +65,25 @@ int mrn_output_set_vtk(mrn_output *o, const char *name, double every_time, long 
 }
 
 int mrn_output_set_csv(mrn_output *o, const char *name, long every) {
-  if (o->csv && (!name || !o->csv_name || strcmp(name, o->csv_name) != 0)) {
-    fclose(o->csv);
-    o->csv = NULL;
-  }
+  int rc = MRN_OK;
+  if (o->csv_fd >= 0 && (!name || !o->csv_name || strcmp(name, o->csv_name) != 0)) rc = close_csv(o);
   free(o->csv_name);
   o->csv_name = dup_or_null(name);
   if (every > 0) o->csv_every = every;
-  return MRN_OK;
+  return rc;
 }
 
 static int csv_seen_before(const char *path);
 
 int mrn_output_set_series(mrn_output *o, const char *name) {
+  int rc = MRN_OK;
   if (o->series && (!name || !o->series_name || strcmp(name, o->series_name) != 0)) {
-    mrn_series_close(o->series);
+    rc = mrn_series_close(o->series);
     o->series = NULL;
   }
   free(o->series_name);
   o->series_name = dup_or_null(name);
-  return MRN_OK;
+  return rc;
 }
 
 /* HDF5 series cannot be appended to by a second writer like the CSV: a second
@@ -243,6 +252,67 @@ void mrn_output_forget_files(void) {
   csv_seen_count = 0;
 }
 
+/* ---- the CSV ------------------------------------------------------------ */
+
+/* The CSV is appended to with write(2), a row at a time, so what the file
+ * holds is known to the byte: csv_size, the end of its last whole row. */
+
+static int csv_error(const mrn_output *o, int err, const char *what) {
+  return mrn_error_code(MRN_ERR_IO, "cannot write '%s': %s%s", o->csv_path, strerror(err), what);
+}
+
+/* `len` bytes at the end of the CSV, whole or not at all: a write cut short
+ * (a disk filling up within it) is taken back by truncating the file to its
+ * length before, so the file never ends in part of a row */
+static int csv_append(mrn_output *o, const char *text, size_t len) {
+  for (size_t done = 0; done < len;) {
+    ssize_t n = write(o->csv_fd, text + done, len - done);
+    if (n > 0) {
+      done += (size_t)n;
+      continue;
+    }
+    if (n < 0 && errno == EINTR) continue;
+    int err = n < 0 ? errno : EIO;
+    if (ftruncate(o->csv_fd, o->csv_size) != 0)
+      return csv_error(o, err, " (and the part of a row written could not be removed)");
+    return csv_error(o, err, "");
+  }
+  o->csv_size += (off_t)len;
+  return MRN_OK;
+}
+
+/* some file systems cannot sync (EINVAL); the rows are still written */
+static int sync_csv(const mrn_output *o) {
+  if (fsync(o->csv_fd) == 0 || errno == EINVAL || errno == ENOTSUP) return MRN_OK;
+  return csv_error(o, errno, "");
+}
+
+/* the rows on disk, then the file closed: a delayed write error shows in either */
+static int close_csv(mrn_output *o) {
+  int rc = MRN_OK;
+  if (o->csv_fd >= 0) {
+    rc = sync_csv(o);
+    if (close(o->csv_fd) != 0 && rc == MRN_OK) rc = csv_error(o, errno, "");
+  }
+  o->csv_fd = -1;
+  free(o->csv_path);
+  o->csv_path = NULL;
+  return rc;
+}
+
+/* the header, or nothing: a new file whose header cannot be written is removed */
+static int csv_header(mrn_output *o) {
+  char header[4096];
+  size_t len = (size_t)snprintf(header, sizeof header, "step,time,dt");
+  for (int i = 0; i < mrn_diagnostics_column_count() && len < sizeof header; i++)
+    len += (size_t)snprintf(header + len, sizeof header - len, ",%s", mrn_diagnostics_column_name(i));
+  if (len + 1 >= sizeof header) return mrn_error_code(MRN_ERR_IO, "cannot write '%s': header too long", o->csv_path);
+  header[len++] = '\n';
+  int rc = csv_append(o, header, len);
+  if (rc != MRN_OK) unlink(o->csv_path);
+  return rc;
+}
+
 static int open_csv(mrn_output *o) {
   char *path = mrn_path_join(o->dir, o->csv_name);
   char *slash = strrchr(path, '/');
@@ -256,19 +326,18 @@ static int open_csv(mrn_output *o) {
     }
   }
   int append = csv_seen_before(path);
-  o->csv = fopen(path, append ? "a" : "w");
-  if (!o->csv) {
-    int rc = mrn_error_code(MRN_ERR_IO, "cannot write '%s': %s", path, strerror(errno));
-    free(path);
+  /* O_APPEND: every row lands at the end, also after a row taken back */
+  o->csv_fd = open(path, O_WRONLY | O_CREAT | O_APPEND | O_CLOEXEC | (append ? 0 : O_TRUNC), 0666);
+  o->csv_path = path;
+  if (o->csv_fd < 0) {
+    int rc = csv_error(o, errno, "");
+    close_csv(o);
     return rc;
   }
-  if (!append) {
-    fprintf(o->csv, "step,time,dt");
-    for (int i = 0; i < mrn_diagnostics_column_count(); i++) fprintf(o->csv, ",%s", mrn_diagnostics_column_name(i));
-    fputc('\n', o->csv);
-  }
-  free(path);
-  return MRN_OK;
+  o->csv_size = append ? lseek(o->csv_fd, 0, SEEK_END) : 0;
+  int rc = o->csv_size < 0 ? csv_error(o, errno, "") : append ? MRN_OK : csv_header(o);
+  if (rc != MRN_OK) close_csv(o);
+  return rc;
 }
 
 int mrn_output_maybe_csv(mrn_output *o, const mrn_sim *sim, const mrn_diagnostics *d, int force) {
@@ -289,21 +358,21 @@ int mrn_output_maybe_csv(mrn_output *o, const mrn_sim *sim, const mrn_diagnostic
     o->csv_last_step = sim->step;
     return MRN_OK;
   }
-  if (!o->csv && open_csv(o) != MRN_OK) return MRN_ERR_IO;
-  /* the row is formatted first and handed over in one write: with the stream
-   * flushed after every row, a kill never leaves part of a row in the file */
+  if (o->csv_fd < 0 && open_csv(o) != MRN_OK) return MRN_ERR_IO;
+  /* the row is formatted first and handed over in one write: a kill never
+   * leaves part of a row in the file, and a full disk is taken back */
   char row[64 * 26 + 64];
   int len = snprintf(row, sizeof row, "%ld,%.17g,%.17g", sim->step, sim->time, sim->dt);
   for (int i = 0; i < mrn_diagnostics_column_count(); i++)
     len += snprintf(row + len, sizeof row - (size_t)len, ",%.17g", values[i]);
   len += snprintf(row + len, sizeof row - (size_t)len, "\n");
-  fwrite(row, 1, (size_t)len, o->csv);
-  o->csv_last_step = sim->step;
-  if (fflush(o->csv) != 0 || ferror(o->csv)) {
-    char *path = mrn_path_join(o->dir, o->csv_name);
-    int rc = mrn_error_code(MRN_ERR_IO, "cannot write '%s': %s", path, strerror(errno));
-    free(path);
-    return rc;
-  }
-  return MRN_OK;
+  int rc = csv_append(o, row, (size_t)len);
+  if (rc == MRN_OK) o->csv_last_step = sim->step;
+  return rc;
+}
+
+int mrn_output_flush(mrn_output *o) {
+  int rc = o->series ? mrn_series_flush(o->series) : MRN_OK;
+  if (rc == MRN_OK && o->csv_fd >= 0) rc = sync_csv(o);
+  return rc;
 }

@@ -6,7 +6,7 @@
 #ifndef MRN_IO_OUTPUT_H
 #define MRN_IO_OUTPUT_H
 
-#include <stdio.h>
+#include <sys/types.h>
 
 #include "io/series_h5.h"
 #include "io/vtk.h"
@@ -46,11 +46,16 @@ typedef struct mrn_output {
   char *csv_name;
   long csv_every;
   long csv_last_step;      /* step of the last row (-1: none yet) */
-  FILE *csv;
+  int csv_fd;              /* -1 while not open */
+  char *csv_path;          /* the open file, for messages */
+  off_t csv_size;          /* bytes of whole rows in the file */
 } mrn_output;
 
 void mrn_output_init(mrn_output *o, const char *dir);
-void mrn_output_free(mrn_output *o);
+/* Close the files and free everything. 0, or MRN_ERR_IO with the file in the
+ * message when the last rewrite of the HDF5 series, or syncing and closing
+ * the CSV, failed. */
+int mrn_output_free(mrn_output *o);
 /* (re)configure the VTK series; name NULL disables it. A new name starts a new .pvd */
 int mrn_output_set_vtk(mrn_output *o, const char *name, double every_time, long every_steps);
 int mrn_output_set_csv(mrn_output *o, const char *name, long every);
@@ -66,7 +71,12 @@ void mrn_output_forget_files(void);
 int mrn_output_write_vtk(mrn_output *o, const struct mrn_sim *sim);
 /* write a snapshot if one is due at the current time/step */
 int mrn_output_maybe_vtk(mrn_output *o, const struct mrn_sim *sim);
-/* append a CSV row if one is due (always when force is set) */
+/* Append a CSV row if one is due (always when force is set). A row is
+ * written whole or not at all: a write cut short by a full disk is taken back
+ * by truncating the file to its last whole row. 0 or MRN_ERR_IO. */
 int mrn_output_maybe_csv(mrn_output *o, const struct mrn_sim *sim, const mrn_diagnostics *d, int force);
+/* Put every row so far on disk, as when a run stops early: the HDF5 series
+ * rewritten if it lags, the CSV fsynced. 0 or MRN_ERR_IO. */
+int mrn_output_flush(mrn_output *o);
 
 #endif

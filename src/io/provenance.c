@@ -16,17 +16,6 @@
 
 #define PROVENANCE_DIR "provenance"
 
-/* ---- writing through an atomic file, remembering the first error -------- */
-
-static int finish(mrn_atomic_file *f) {
-  if (ferror(f->fp)) {
-    int rc = mrn_error_code(MRN_ERR_IO, "cannot write '%s': %s", f->final_path, strerror(errno ? errno : EIO));
-    mrn_atomic_abort(f);
-    return rc;
-  }
-  return mrn_atomic_commit(f);
-}
-
 /* ---- the deck copy ---------------------------------------------------------- */
 
 static int copy_deck(const char *deck_path, const char *dest) {
@@ -41,77 +30,76 @@ static int copy_deck(const char *deck_path, const char *dest) {
   }
   char buf[65536];
   size_t got;
-  while ((got = fread(buf, 1, sizeof buf, in)) > 0)
-    if (fwrite(buf, 1, got, out.fp) != got) break;
+  while (!out.err && (got = fread(buf, 1, sizeof buf, in)) > 0) mrn_atomic_write(&out, buf, got);
   int read_err = ferror(in) ? errno : 0;
   fclose(in);
   if (read_err) {
     mrn_atomic_abort(&out);
     return mrn_error_code(MRN_ERR_IO, "cannot read '%s' to copy it into '%s': %s", deck_path, dest, strerror(read_err));
   }
-  return finish(&out);
+  return mrn_atomic_commit(&out);
 }
 
 /* ---- values on one line -------------------------------------------------------- */
 
 /* C-style escapes for anything that would break the "key: value" line */
-static void put_escaped(FILE *fp, const char *s) {
+static void put_escaped(mrn_atomic_file *f, const char *s) {
   for (const unsigned char *p = (const unsigned char *)s; *p; p++) {
     switch (*p) {
-      case '\\': fputs("\\\\", fp); break;
-      case '\n': fputs("\\n", fp); break;
-      case '\r': fputs("\\r", fp); break;
-      case '\t': fputs("\\t", fp); break;
+      case '\\': mrn_atomic_printf(f, "\\\\"); break;
+      case '\n': mrn_atomic_printf(f, "\\n"); break;
+      case '\r': mrn_atomic_printf(f, "\\r"); break;
+      case '\t': mrn_atomic_printf(f, "\\t"); break;
       default:
         if (*p < 0x20 || *p == 0x7f)
-          fprintf(fp, "\\x%02x", *p);
+          mrn_atomic_printf(f, "\\x%02x", *p);
         else
-          fputc(*p, fp);
+          mrn_atomic_printf(f, "%c", *p);
     }
   }
 }
 
-static void put_line(FILE *fp, const char *key, const char *value) {
-  fprintf(fp, "%s: ", key);
-  put_escaped(fp, value ? value : "");
-  fputc('\n', fp);
+static void put_line(mrn_atomic_file *f, const char *key, const char *value) {
+  mrn_atomic_printf(f, "%s: ", key);
+  put_escaped(f, value ? value : "");
+  mrn_atomic_printf(f, "\n");
 }
 
 /* one shell word: as is when only harmless characters, else in single quotes
  * (a quote inside becomes '\''), so the command line can be pasted back */
-static void put_shell_word(FILE *fp, const char *s) {
+static void put_shell_word(mrn_atomic_file *f, const char *s) {
   const char *safe = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789_-+=./,:@%^";
   if (*s && strspn(s, safe) == strlen(s)) {
-    put_escaped(fp, s);
+    put_escaped(f, s);
     return;
   }
-  fputc('\'', fp);
+  mrn_atomic_printf(f, "'");
   for (const char *p = s; *p; p++) {
     if (*p == '\'') {
-      fputs("'\\''", fp);
+      mrn_atomic_printf(f, "'\\''");
     } else {
       char one[2] = {*p, '\0'};
-      put_escaped(fp, one);
+      put_escaped(f, one);
     }
   }
-  fputc('\'', fp);
+  mrn_atomic_printf(f, "'");
 }
 
 /* ---- what the run was --------------------------------------------------------- */
 
-static void put_start_time(FILE *fp) {
+static void put_start_time(mrn_atomic_file *f) {
   char stamp[64] = "unknown";
   time_t now = time(NULL);
   struct tm utc;
   if (now != (time_t)-1 && gmtime_r(&now, &utc)) strftime(stamp, sizeof stamp, "%Y-%m-%dT%H:%M:%SZ", &utc);
-  put_line(fp, "started_utc", stamp);
+  put_line(f, "started_utc", stamp);
 }
 
-static void put_host(FILE *fp) {
+static void put_host(mrn_atomic_file *f) {
   char host[256];
   if (gethostname(host, sizeof host) != 0) snprintf(host, sizeof host, "unknown");
   host[sizeof host - 1] = '\0';
-  put_line(fp, "hostname", host);
+  put_line(f, "hostname", host);
 }
 
 static int thread_count(void) {
@@ -122,46 +110,44 @@ static int thread_count(void) {
 #endif
 }
 
-static void put_paths(FILE *fp, const char *deck_path) {
+static void put_paths(mrn_atomic_file *f, const char *deck_path) {
   char buf[PATH_MAX];
-  put_line(fp, "working_directory", getcwd(buf, sizeof buf) ? buf : "unknown");
+  put_line(f, "working_directory", getcwd(buf, sizeof buf) ? buf : "unknown");
   if (!deck_path) {
-    put_line(fp, "deck", "(none given; no copy)");
+    put_line(f, "deck", "(none given; no copy)");
     return;
   }
-  put_line(fp, "deck", deck_path);
-  if (realpath(deck_path, buf)) put_line(fp, "deck_absolute", buf);
-  put_line(fp, "deck_copy", PROVENANCE_DIR "/deck.lua");
+  put_line(f, "deck", deck_path);
+  if (realpath(deck_path, buf)) put_line(f, "deck_absolute", buf);
+  put_line(f, "deck_copy", PROVENANCE_DIR "/deck.lua");
 }
 
-static void put_command(FILE *fp, int argc, const char *const *argv) {
-  fputs("command: ", fp);
+static void put_command(mrn_atomic_file *f, int argc, const char *const *argv) {
+  mrn_atomic_printf(f, "command: ");
   for (int i = 0; argv && i < argc; i++) {
-    if (i) fputc(' ', fp);
-    put_shell_word(fp, argv[i] ? argv[i] : "");
+    if (i) mrn_atomic_printf(f, " ");
+    put_shell_word(f, argv[i] ? argv[i] : "");
   }
-  fputc('\n', fp);
+  mrn_atomic_printf(f, "\n");
 }
 
 static int write_run_txt(const char *dest, const char *deck_path, int argc, const char *const *argv,
                          const char *const *sets, int nsets) {
-  mrn_atomic_file f;
-  int rc = mrn_atomic_open(&f, dest);
+  mrn_atomic_file out, *f = &out;
+  int rc = mrn_atomic_open(f, dest);
   if (rc != MRN_OK) return rc;
-  FILE *fp = f.fp;
-  fputs("# moraine provenance: how the files of this directory were made.\n"
-        "# One \"key: value\" per line; values use C escapes (\\n, \\t, \\\\, \\xHH);\n"
-        "# one \"set:\" line per --set, in the order given.\n",
-        fp);
-  put_line(fp, "moraine_version", MORAINE_VERSION);
-  put_line(fp, "git_commit", MORAINE_GIT_COMMIT);
-  put_start_time(fp);
-  put_host(fp);
-  fprintf(fp, "threads: %d\n", thread_count());
-  put_paths(fp, deck_path);
-  put_command(fp, argc, argv);
-  for (int i = 0; sets && i < nsets; i++) put_line(fp, "set", sets[i]);
-  return finish(&f);
+  mrn_atomic_printf(f, "# moraine provenance: how the files of this directory were made.\n"
+                       "# One \"key: value\" per line; values use C escapes (\\n, \\t, \\\\, \\xHH);\n"
+                       "# one \"set:\" line per --set, in the order given.\n");
+  put_line(f, "moraine_version", MORAINE_VERSION);
+  put_line(f, "git_commit", MORAINE_GIT_COMMIT);
+  put_start_time(f);
+  put_host(f);
+  mrn_atomic_printf(f, "threads: %d\n", thread_count());
+  put_paths(f, deck_path);
+  put_command(f, argc, argv);
+  for (int i = 0; sets && i < nsets; i++) put_line(f, "set", sets[i]);
+  return mrn_atomic_commit(f);
 }
 
 /* ---- entry point ------------------------------------------------------------- */

@@ -11,6 +11,7 @@
 
 #include "core/error.h"
 #include "io/atomic_file.h"
+#include "io/h5image.h"
 #include "io/h5util.h"
 
 #define SERIES_FORMAT "moraine-series"
@@ -52,8 +53,9 @@ static double wall_seconds(void) {
 
 /* ---- failures --------------------------------------------------------------- */
 
-/* Remember what failed and errno at that moment (the write(2) that hit a full
- * disk); HDF5 calls are made with errno cleared first, see begin(). */
+/* Remember what failed and errno at that moment (the file is built in
+ * memory, so ENOMEM if anything); HDF5 calls are made with errno cleared
+ * first, see begin(). */
 static void note_fail(mrn_h5w *w, const char *fmt, const char *name) {
   if (w->failed) return;
   w->failed = 1;
@@ -76,18 +78,7 @@ static int report(const mrn_h5w *w, const char *path) {
                         detail[0] ? " (" : "", detail, detail[0] ? ")" : "");
 }
 
-/* ---- file and dataset properties -------------------------------------------- */
-
-/* The HDF5 1.8 file format, as the checkpoints use: checksummed metadata, and
- * readable by every HDF5 since 1.8. The file is only open while a rewrite
- * builds it under its temporary name, which no reader opens. */
-static hid_t file_access(void) {
-  hid_t fapl = H5Pcreate(H5P_FILE_ACCESS);
-  if (fapl < 0) return fapl;
-  H5Pset_fclose_degree(fapl, H5F_CLOSE_STRONG);
-  H5Pset_libver_bounds(fapl, H5F_LIBVER_V18, H5F_LIBVER_V18);
-  return fapl;
-}
+/* ---- datasets ----------------------------------------------------------------- */
 
 /* A 1D dataset of `rows` entries holding `data`, chunked with an unlimited
  * maximum size (a reader may extend or append to a copy) and NaN as the fill
@@ -117,19 +108,18 @@ static void write_dataset(mrn_h5w *w, hid_t file, const char *name, hid_t type, 
 
 /* ---- publishing the file ------------------------------------------------------ */
 
-/* the whole series into a new file at temp_path */
-static void write_all(mrn_h5w *w, const mrn_series *s, const char *temp_path) {
-  hid_t fapl = file_access();
+/* the whole series into a new file in memory (io/h5image.h); its bytes, or NULL */
+static void *build_image(mrn_h5w *w, const mrn_series *s, size_t *size) {
   hid_t fcpl = H5Pcreate(H5P_FILE_CREATE);
   /* datasets listed in the order added (h5dump --sort_by=creation_order) */
   if (fcpl >= 0) H5Pset_link_creation_order(fcpl, H5P_CRT_ORDER_TRACKED | H5P_CRT_ORDER_INDEXED);
+  mrn_h5_image img;
   errno = 0;
-  w->file = H5Fcreate(temp_path, H5F_ACC_TRUNC, fcpl >= 0 ? fcpl : H5P_DEFAULT, fapl >= 0 ? fapl : H5P_DEFAULT);
+  w->file = mrn_h5_image_create(&img, s->path, fcpl >= 0 ? fcpl : H5P_DEFAULT);
   if (fcpl >= 0) H5Pclose(fcpl);
-  if (fapl >= 0) H5Pclose(fapl);
   if (w->file < 0) {
     note_fail(w, "%s", "the file");
-    return;
+    return NULL;
   }
   mrn_h5w_string(w, w->file, "format", SERIES_FORMAT);
   mrn_h5w_int32(w, w->file, "version", SERIES_VERSION);
@@ -142,29 +132,28 @@ static void write_all(mrn_h5w *w, const mrn_series *s, const char *temp_path) {
   for (int i = 0; i < s->ncol; i++)
     write_dataset(w, w->file, s->cols[i].name, H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, rows, s->cols[i].values,
                   s->cols[i].units, s->cols[i].description);
+  void *bytes;
   errno = 0;
-  if (H5Fclose(w->file) < 0) note_fail(w, "%s", "the file (closing it)");
+  if (mrn_h5_image_close(&img, w->file, &bytes, size) != 0) note_fail(w, "%s", "the file (closing it)");
   w->file = H5I_INVALID_HID;
+  if (w->failed) {
+    free(bytes);
+    return NULL;
+  }
+  return bytes;
 }
 
-/* HDF5 writes the temporary file by name; mrn_atomic_file reserved that name
- * and on commit fsyncs and renames it, so the file on disk is always a whole
- * series: the previous publication or this one. */
+/* The file on disk is always a whole series, the previous publication or
+ * this one: the new one is built in memory and written through
+ * mrn_atomic_write_file, renamed into place only when complete. */
 static int publish(mrn_series *s) {
   if (s->broken) return mrn_error_code(MRN_ERR_IO, "cannot write '%s': an earlier write failed", s->path);
   const double t0 = wall_seconds();
-  mrn_atomic_file tmp;
-  int rc = mrn_atomic_open(&tmp, s->path);
-  if (rc == MRN_OK) {
-    mrn_h5w w = {.file = H5I_INVALID_HID};
-    write_all(&w, s, tmp.temp_path);
-    if (w.failed) {
-      rc = report(&w, s->path);
-      mrn_atomic_abort(&tmp);
-    } else {
-      rc = mrn_atomic_commit(&tmp);
-    }
-  }
+  mrn_h5w w = {.file = H5I_INVALID_HID};
+  size_t size;
+  void *bytes = build_image(&w, s, &size);
+  int rc = bytes ? mrn_atomic_write_file(s->path, bytes, size) : report(&w, s->path);
+  free(bytes);
   if (rc != MRN_OK) {
     s->broken = 1;
     return rc;

@@ -21,8 +21,8 @@
  * by name.
  *
  * Crash-safety: the series is kept in memory and the file is a copy of it,
- * written whole under a temporary name (`.NAME.tmp.PID`, io/atomic_file.h),
- * fsynced and renamed over NAME. A reader, or a run killed at any instant
+ * built in memory (io/h5image.h) and written whole under a temporary name
+ * (`.NAME.tmp.PID`, io/atomic_file.h), fsynced and renamed over NAME. A reader, or a run killed at any instant
  * (SIGKILL included), therefore finds either no file or a complete series
  * that HDF5 opens, never a half-written one; a kill during a rewrite can
  * leave the hidden temporary file, which no reader looks at. The file is
@@ -31,7 +31,8 @@
  * of the run, however long the series grows), at mrn_series_flush() and at
  * the close: while a run goes on, the file may lag the appended rows by that
  * interval (a few milliseconds for a short series; the CSV beside it is
- * written row by row). Memory: 8 bytes per value, rows x (columns + 2). */
+ * written row by row). Memory: 8 bytes per value, rows x (columns + 2), and
+ * the size of the file again while a rewrite is built. */
 #ifndef MRN_IO_SERIES_H5_H
 #define MRN_IO_SERIES_H5_H
 

@@ -86,10 +86,10 @@ static void w_array_tag(mrn_xml_writer *w, const mrn_vtk_array *a, mrn_vtk_encod
 /* one node per line */
 static void w_ascii_values(mrn_xml_writer *w, const mrn_grid *g, const image *im, const mrn_vtk_array *a) {
   for (int k = 0; k < im->np[2]; k++)
-    for (int j = 0; j < im->np[1] && !w->err; j++) {
+    for (int j = 0; j < im->np[1] && !w->file.err; j++) {
       size_t first = row_start(g, j, k) * (size_t)a->ncomp;
       size_t count = (size_t)im->np[0] * (size_t)a->ncomp;
-      for (size_t i = 0; i < count && !w->err; i++) {
+      for (size_t i = 0; i < count && !w->file.err; i++) {
         const char *sep = (i + 1) % (size_t)a->ncomp == 0 ? "\n" : " ";
         if (a->type == MRN_VTK_INT32)
           mrn_xw_printf(w, "%d%s", (int)((const int32_t *)a->data)[first + i], sep);
@@ -134,7 +134,7 @@ static void w_block(mrn_xml_writer *w, const mrn_grid *g, const image *im, const
   size_t row_values = (size_t)im->np[0] * (size_t)a->ncomp;
   const unsigned char *base = a->data;
   for (int k = 0; k < im->np[2]; k++)
-    for (int j = 0; j < im->np[1] && !w->err; j++)
+    for (int j = 0; j < im->np[1] && !w->file.err; j++)
       mrn_xw_le(w, base + row_start(g, j, k) * (size_t)a->ncomp * elem, elem, row_values, scratch);
 }
 
@@ -146,12 +146,12 @@ static void w_appended(mrn_xml_writer *w, const mrn_grid *g, const image *im, co
       if (arrays[i].ncomp > widest) widest = arrays[i].ncomp;
     scratch = malloc((size_t)im->np[0] * (size_t)widest * 8 + 8);
     if (!scratch) {
-      w->err = ENOMEM;
+      w->file.err = ENOMEM;
       return;
     }
   }
   mrn_xw_printf(w, "  <AppendedData encoding=\"raw\">\n   _");
-  for (int i = 0; i < narrays && !w->err; i++) w_block(w, g, im, &arrays[i], scratch);
+  for (int i = 0; i < narrays && !w->file.err; i++) w_block(w, g, im, &arrays[i], scratch);
   mrn_xw_printf(w, "\n  </AppendedData>\n");
   free(scratch);
 }
@@ -165,19 +165,14 @@ int mrn_vti_write(const char *path, const mrn_grid *g, double time, const mrn_vt
   int rc = check_input(path, g, arrays, narrays);
   if (rc != MRN_OK) return rc;
   image im = image_of(g);
-  mrn_xml_writer w = {.err = 0};
-  rc = mrn_atomic_open(&w.file, path);
+  mrn_xml_writer w;
+  rc = mrn_xw_open(&w, path);
   if (rc != MRN_OK) return rc;
   w_header(&w, g, &im, time);
   w_point_data(&w, g, &im, arrays, narrays, encoding);
   if (encoding == MRN_VTK_BINARY) w_appended(&w, g, &im, arrays, narrays);
   mrn_xw_printf(&w, "</VTKFile>\n");
-  if (w.err) {
-    rc = mrn_error_code(MRN_ERR_IO, "cannot write '%s': %s", path, strerror(w.err));
-    mrn_atomic_abort(&w.file);
-    return rc;
-  }
-  return mrn_atomic_commit(&w.file);
+  return mrn_xw_finish(&w);
 }
 
 int mrn_vti_write_grid(const char *path, const mrn_grid *g, double time, mrn_vtk_encoding encoding) {

@@ -104,7 +104,7 @@ static void w_ascii_values(mrn_xml_writer *w, const block *b, size_t n, void *bu
   size_t total = b->ncomp ? n * (size_t)b->ncomp : n;
   const void *vals = NULL;
   size_t base = 0, held = 0; /* vals holds the values [base, base + held) */
-  for (size_t i = 0; i < total && !w->err; i++) {
+  for (size_t i = 0; i < total && !w->file.err; i++) {
     int last = (i + 1) % per_line == 0 || i + 1 == total;
     const char *sep = last ? "\n" : " ";
     if (b->source == SRC_CONNECTIVITY) {
@@ -166,7 +166,7 @@ static void w_structure(mrn_xml_writer *w, const block *b, int narrays, size_t n
 /* the vertex cells are generated, not stored: fill a buffer chunk by chunk
  * (connectivity 0..n-1, offsets 1..n) */
 static void w_cell_values(mrn_xml_writer *w, int64_t first, size_t n, int64_t *buf, unsigned char *scratch) {
-  for (size_t done = 0; done < n && !w->err;) {
+  for (size_t done = 0; done < n && !w->file.err;) {
     size_t m = n - done < MRN_VTK_FILL_VALUES ? n - done : MRN_VTK_FILL_VALUES;
     for (size_t i = 0; i < m; i++) buf[i] = first + (int64_t)(done + i);
     mrn_xw_le(w, buf, sizeof(int64_t), m, scratch);
@@ -182,7 +182,7 @@ static void w_block(mrn_xml_writer *w, const block *b, size_t n, int64_t *buf, u
     w_cell_values(w, 1, n, buf, scratch);
   } else { /* held or made on demand, a chunk of points at a time */
     const size_t most = MRN_VTK_FILL_POINTS(b->ncomp);
-    for (size_t first = 0; first < n && !w->err; first += most) {
+    for (size_t first = 0; first < n && !w->file.err; first += most) {
       const size_t count = n - first < most ? n - first : most;
       mrn_xw_le(w, block_values(b, first, count, buf), b->elem, count * (size_t)b->ncomp, scratch);
     }
@@ -193,7 +193,7 @@ static int w_appended(mrn_xml_writer *w, const block *b, int nblocks, size_t n, 
   unsigned char *scratch = mrn_host_is_little_endian() ? NULL : malloc(MRN_XW_CHUNK_VALUES * 8);
   if (!mrn_host_is_little_endian() && !scratch) return ENOMEM;
   mrn_xw_printf(w, "  <AppendedData encoding=\"raw\">\n   _");
-  for (int i = 0; i < nblocks && !w->err; i++) w_block(w, &b[i], n, buf, scratch);
+  for (int i = 0; i < nblocks && !w->file.err; i++) w_block(w, &b[i], n, buf, scratch);
   mrn_xw_printf(w, "\n  </AppendedData>\n");
   free(scratch);
   return 0;
@@ -222,9 +222,9 @@ int mrn_vtp_write(const char *path, size_t npoints, const double *points, const 
   rc = mrn_xw_open(&w, path);
   if (rc == MRN_OK) {
     w_structure(&w, blocks, narrays, npoints, encoding, buf);
-    if (encoding == MRN_VTK_BINARY && !w.err) {
+    if (encoding == MRN_VTK_BINARY && !w.file.err) {
       int err = w_appended(&w, blocks, nblocks, npoints, buf);
-      if (err && !w.err) w.err = err;
+      if (err && !w.file.err) w.file.err = err;
     }
     mrn_xw_printf(&w, "</VTKFile>\n");
     rc = mrn_xw_finish(&w);

@@ -1,9 +1,9 @@
 /* moraine: the file stream the VTK XML writers (.vtp, .vti, .pvd) share.
  *
- * Every write goes through these helpers so the first failing call keeps its
- * errno (ENOSPC, EDQUOT, ...) for the error message; later calls are skipped
- * because the file is lost anyway. The file itself is an mrn_atomic_file:
- * written under a temporary name and renamed into place when complete. */
+ * The file is an mrn_atomic_file: written under a temporary name and renamed
+ * into place when complete. Its first failing write keeps its errno (ENOSPC,
+ * EDQUOT, ...) in file.err for the error message; later calls are skipped
+ * because the file is lost anyway. */
 #ifndef MRN_IO_XML_WRITER_H
 #define MRN_IO_XML_WRITER_H
 
@@ -16,8 +16,7 @@
 #define MRN_XW_CHUNK_VALUES 65536
 
 typedef struct mrn_xml_writer {
-  mrn_atomic_file file;
-  int err; /* errno of the first failed write, 0 while all is well */
+  mrn_atomic_file file; /* file.err: errno of the first failed write, 0 while all is well */
 } mrn_xml_writer;
 
 /* 0, or MRN_ERR_IO with the path in the message */

@@ -36,6 +36,24 @@ int mrn_lua_output_error(lua_State *L, const char *where, const char *fmt, ...) 
   return lua_error(L);
 }
 
+static int late_output_failure;
+
+void mrn_lua_late_output_error(const char *fmt, ...) {
+  va_list ap;
+  va_start(ap, fmt);
+  fprintf(stderr, "moraine: ");
+  vfprintf(stderr, fmt, ap);
+  fputc('\n', stderr);
+  va_end(ap);
+  late_output_failure = 1;
+}
+
+int mrn_lua_take_late_output_failure(void) {
+  int failed = late_output_failure;
+  late_output_failure = 0;
+  return failed;
+}
+
 int mrn_lua_exit_status(lua_State *L) {
   lua_getfield(L, LUA_REGISTRYINDEX, OUTPUT_ERROR_KEY);
   int output = lua_type(L, -1) == LUA_TSTRING && lua_type(L, -2) == LUA_TSTRING && lua_rawequal(L, -1, -2);

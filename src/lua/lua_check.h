@@ -25,6 +25,13 @@ int mrn_lua_output_error(lua_State *L, const char *where, const char *fmt, ...) 
 /* the exit status for the error message at the top of the stack: 1, or
  * MRN_EXIT_OUTPUT when it is the last output error raised */
 int mrn_lua_exit_status(lua_State *L);
+/* An output that fails where no error can be raised (the last rewrite of a
+ * series when the garbage collector closes a simulation, at the latest when
+ * the deck ends): the message is printed at once, and
+ * mrn_lua_take_late_output_failure() then answers 1 (once), so that moraine
+ * exits with MRN_EXIT_OUTPUT. */
+void mrn_lua_late_output_error(const char *fmt, ...) __attribute__((format(printf, 1, 2)));
+int mrn_lua_take_late_output_failure(void);
 
 /* check that idx is a table whose keys are all in specs and whose values have
  * the declared types; `where` names the function for messages ("simulation{}") */

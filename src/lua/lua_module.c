@@ -189,11 +189,15 @@ int mrn_lua_run_deck(const char *path, const mrn_deck_options *opt) {
   int status = lua_pcall(L, 1, 0, handler);
   /* with --safe the deck too must be source text */
   if (status == LUA_OK) status = opt && opt->safe ? mrn_lua_load_text(L, path) : luaL_loadfile(L, path);
-  /* provenance: the deck, the command line and the version beside the outputs */
+  /* provenance: the deck, the command line and the version beside the
+   * outputs; a run whose record cannot be written is not started */
+  int rc = 0;
   if (status == LUA_OK && opt && opt->outdir &&
-      mrn_provenance_write(opt->outdir, path, opt->argc, opt->argv, opt->sets, opt->nsets) != MRN_OK)
-    fprintf(stderr, "moraine: warning: %s\n", mrn_error_message());
-  if (status == LUA_OK) {
+      mrn_provenance_write(opt->outdir, path, opt->argc, opt->argv, opt->sets, opt->nsets) != MRN_OK) {
+    fprintf(stderr, "moraine: %s\n", mrn_error_message());
+    rc = MRN_EXIT_OUTPUT;
+  }
+  if (status == LUA_OK && rc == 0) {
     /* mpm.deck and mpm.deck_dir: decks find their neighbouring files through these */
     lua_getglobal(L, "mpm");
     lua_pushstring(L, path);
@@ -205,12 +209,12 @@ int mrn_lua_run_deck(const char *path, const mrn_deck_options *opt) {
     lua_pop(L, 1);
     status = lua_pcall(L, 0, 0, handler);
   }
-  int rc = 0;
   if (status != LUA_OK) {
     fprintf(stderr, "moraine: %s\n", lua_tostring(L, -1));
     rc = mrn_lua_exit_status(L);
   }
-  lua_close(L);
+  lua_close(L); /* closes the simulations still open: their last outputs */
+  if (mrn_lua_take_late_output_failure()) rc = MRN_EXIT_OUTPUT;
   mrn_output_forget_files();
   return rc;
 }

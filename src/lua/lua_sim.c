@@ -1,6 +1,8 @@
 /* moraine: the simulation object of a deck — mpm.simulation{...} and its
  * methods. A thin, checked skin over solver/simulation.h and solver/run.h. */
 #include <math.h>
+#include <stdarg.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <unistd.h>
@@ -725,25 +727,46 @@ static int call_stop_when(void *ctx, mrn_sim *sim) {
 }
 
 /* When a run stops on an invalid state or a signal, the state it reached is
- * kept: a checkpoint OUTDIR/<name>_<why>.h5 and, when a VTK series is set, a
- * last snapshot. A failed state may hold non-finite values, which mpm.load
- * refuses; h5py and h5dump read it for the post-mortem. Returns a note for
- * the message (empty when nothing could be written). */
-static void write_final_state(sim_box *b, const char *why, char *note, size_t len) {
+ * kept: a checkpoint OUTDIR/<name>_<why>.h5, when a VTK series is set a last
+ * snapshot, and every CSV and series row on disk. A failed state may hold
+ * non-finite values, which mpm.load refuses; h5py and h5dump read it for the
+ * post-mortem. Fills `note` for the message with what was written and what
+ * could not be (its file and reason); MRN_ERR_IO when something could not. */
+static void note_add(char *note, size_t len, const char *fmt, ...) __attribute__((format(printf, 3, 4)));
+static void note_add(char *note, size_t len, const char *fmt, ...) {
+  size_t used = strlen(note);
+  va_list ap;
+  va_start(ap, fmt);
+  vsnprintf(note + used, len - used, fmt, ap);
+  va_end(ap);
+}
+
+static int write_final_state(sim_box *b, const char *why, char *note, size_t len) {
   note[0] = '\0';
   char file[96];
   snprintf(file, sizeof file, "%s_%s.h5", b->name, why);
   char *path = mrn_path_join(b->out.dir, file);
   char saved[2048];
-  snprintf(saved, sizeof saved, "%s", mrn_error_message()); /* the save may overwrite it */
-  if (mrn_mkdir_p(b->out.dir) == MRN_OK && mrn_checkpoint_save(b->sim, path) == MRN_OK)
-    snprintf(note, len, "; the state at step %ld is in %s", b->sim->step, path);
-  if (b->out.vtk_name && b->out.vtk_last_step != b->sim->step && mrn_output_write_vtk(&b->out, b->sim) == MRN_OK) {
-    size_t used = strlen(note);
-    snprintf(note + used, len - used, "%s a last VTK snapshot was written", used ? " and" : "; ");
+  snprintf(saved, sizeof saved, "%s", mrn_error_message()); /* the writes may overwrite it */
+  int rc = mrn_mkdir_p(b->out.dir);
+  if (rc == MRN_OK) rc = mrn_checkpoint_save(b->sim, path);
+  if (rc == MRN_OK) note_add(note, len, "; the state at step %ld is in %s", b->sim->step, path);
+  else note_add(note, len, "; the state at step %ld could not be saved: %s", b->sim->step, mrn_error_message());
+  if (b->out.vtk_name && b->out.vtk_last_step != b->sim->step) {
+    if (mrn_output_write_vtk(&b->out, b->sim) == MRN_OK) {
+      note_add(note, len, "%s a last VTK snapshot was written", rc == MRN_OK ? " and" : ";");
+    } else {
+      note_add(note, len, "; no last VTK snapshot: %s", mrn_error_message());
+      rc = MRN_ERR_IO;
+    }
+  }
+  if (mrn_output_flush(&b->out) != MRN_OK) {
+    note_add(note, len, "; %s", mrn_error_message());
+    rc = MRN_ERR_IO;
   }
   free(path);
   mrn_error_code(MRN_ERR_STATE, "%s", saved);
+  return rc == MRN_OK ? MRN_OK : MRN_ERR_IO;
 }
 
 /* raise the engine's message; a hook's own error already carries its location */
@@ -754,14 +777,16 @@ static int raise_engine_error(lua_State *L, int rc, const char *where, sim_box *
   }
   if (rc == MRN_ERR_IO) return mrn_lua_output_error(L, where, "%s", mrn_error_message());
   if (rc == MRN_ERR_STATE || rc == MRN_ERR_INTERRUPTED) {
-    char note[1024];
-    write_final_state(b, rc == MRN_ERR_STATE ? "failed" : "interrupted", note, sizeof note);
+    char note[1536];
+    int written = write_final_state(b, rc == MRN_ERR_STATE ? "failed" : "interrupted", note, sizeof note);
     char message[2048];
     snprintf(message, sizeof message, "%s%s", mrn_error_message(), note);
     /* a state the grid cannot hold (a particle outside it) may not be stepped
      * or measured on the grid again: run{} and dt_estimate() refuse it */
     if (rc == MRN_ERR_STATE && mrn_sim_check_state(b->sim) != MRN_OK)
       b->invalid_step = b->sim->step > 0 ? b->sim->step : 1;
+    /* what a stopped run promises to leave could not be written: exit status 3 */
+    if (written != MRN_OK) return mrn_lua_output_error(L, where, "%s", message);
     return mrn_lua_error(L, where, "%s", message);
   }
   return mrn_lua_error(L, where, "%s", mrn_error_message());
@@ -1339,16 +1364,31 @@ static int l_info(lua_State *L) {
   return 1;
 }
 
-static int l_gc(lua_State *L) {
+/* free everything; 0, or MRN_ERR_IO when the last outputs (the series'
+ * last rewrite, closing the CSV) could not be written */
+static int release_sim(lua_State *L) {
   sim_box *b = luaL_checkudata(L, 1, MRN_LUA_SIM);
   /* __gc never comes while running (the run holds the simulation); free() and __close can */
   if (b->busy) check_idle(L, 1, "free()");
   for (int i = 0; i < b->nhooks; i++) mrn_lua_callback_release(b->hook_cb[i]);
   b->nhooks = 0;
-  if (b->out_ready) mrn_output_free(&b->out);
+  int rc = b->out_ready ? mrn_output_free(&b->out) : MRN_OK;
   b->out_ready = 0;
   mrn_sim_free(b->sim);
   b->sim = NULL;
+  return rc;
+}
+
+/* sim:free() and the end of a `<close>` variable: a failure is raised */
+static int l_free(lua_State *L) {
+  if (release_sim(L) != MRN_OK) mrn_lua_output_error(L, "free()", "%s", mrn_error_message());
+  return 0;
+}
+
+/* the collector, at the latest when the deck ends: nothing can be raised */
+static int l_gc(lua_State *L) {
+  sim_box *b = luaL_checkudata(L, 1, MRN_LUA_SIM);
+  if (release_sim(L) != MRN_OK) mrn_lua_late_output_error("closing simulation '%s': %s", b->name, mrn_error_message());
   return 0;
 }
 
@@ -1370,14 +1410,14 @@ static int l_tostring(lua_State *L) {
 
 void mrn_lua_open_simulation(lua_State *L, int module) {
   luaL_newmetatable(L, MRN_LUA_SIM);
-  static const luaL_Reg meta[] = {{"__gc", l_gc}, {"__close", l_gc}, {"__tostring", l_tostring}, {NULL, NULL}};
+  static const luaL_Reg meta[] = {{"__gc", l_gc}, {"__close", l_free}, {"__tostring", l_tostring}, {NULL, NULL}};
   luaL_setfuncs(L, meta, 0);
   static const luaL_Reg methods[] = {
       {"add_particles", l_add_particles}, {"run", l_run}, {"hook", l_hook}, {"set_gravity", l_set_gravity},
       {"set_boundary", l_set_boundary}, {"set_scheme", l_set_scheme}, {"set_dt", l_set_dt}, {"constrain", l_constrain}, {"reaction", l_reaction}, {"set_constraint", l_set_constraint}, {"save", l_save}, {"import", l_import}, {"set_damping", l_set_damping}, {"dt_estimate", l_dt_estimate},
       {"output", l_set_output}, {"write_vtk", l_write_vtk}, {"time", l_time}, {"step", l_step}, {"dt", l_dt},
       {"particle_count", l_count}, {"dim", l_dim}, {"energy", l_energy}, {"diagnostics", l_diagnostics},
-      {"field", l_field}, {"reduce", l_reduce}, {"record", l_record}, {"particle", l_particle}, {"info", l_info}, {"free", l_gc}, {NULL, NULL}};
+      {"field", l_field}, {"reduce", l_reduce}, {"record", l_record}, {"particle", l_particle}, {"info", l_info}, {"free", l_free}, {NULL, NULL}};
   lua_newtable(L);
   luaL_setfuncs(L, methods, 0);
   mrn_lua_add_field_methods(L, lua_gettop(L));

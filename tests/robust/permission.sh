@@ -1,12 +1,13 @@
 #!/usr/bin/env bash
 # moraine robustness: the output directory is not writable.
 # case: permission | the output directory is read-only
-# expect: run\{\}: cannot write '.*/part_000000\.vtp': Permission denied
+# expect: cannot create directory '.*/locked/provenance': Permission denied
 #
-# The run must stop at its first output with exit status 3 and the path and
-# reason, leaving nothing behind. moraine runs as an ordinary user: as root
-# the test drops to 'nobody' with setpriv (root may write anywhere); it is
-# skipped (status 77) when that is not possible.
+# The run must stop at its first output (the provenance, written before the
+# deck runs) with exit status 3 and the path and reason, leaving nothing
+# behind. moraine runs as an ordinary user: as root the test drops to 'nobody'
+# with setpriv (root may write anywhere); it is skipped (status 77) when that
+# is not possible.
 # usage: permission.sh MORAINE OUTDIR
 set -u
 moraine=$1 out=$2 here=$(cd "$(dirname "$0")" && pwd)
@@ -22,7 +23,7 @@ if [ "$(id -u)" -eq 0 ]; then
 fi
 "${run[@]}" 2>"$out/stderr.txt"
 status=$?
-err=$(grep -v "warning" "$out/stderr.txt")
+err=$(cat "$out/stderr.txt")
 fail=0
 [ $status -eq 3 ] || { echo "FAIL: exit status $status, expected 3"; fail=1; }
 grep -Eq -- "$expect" <<<"$err" || { echo "FAIL: message does not match /$expect/"; fail=1; }

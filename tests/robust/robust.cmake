@@ -9,6 +9,15 @@ add_test(NAME robust.sigterm_twice COMMAND ${MORAINE_ROBUST_DIR}/sigterm_twice.s
 add_test(NAME robust.warnings COMMAND ${MORAINE_ROBUST_DIR}/warnings.sh $<TARGET_FILE:moraine> ${MORAINE_TEST_OUT}/robust_warnings)
 add_test(NAME robust.unstable_cfl
          COMMAND $<TARGET_FILE:moraine> ${MORAINE_ROBUST_DIR}/unstable_cfl.lua -q -o ${MORAINE_TEST_OUT}/robust_unstable_cfl)
+# every output file failing once (tests/robust/faults.py): faultfs, the LD_PRELOAD
+# library that injects the faults, goes next to moraine, where faults.py looks.
+# It is built without the sanitizers: a sanitised program wants their runtime
+# first among its libraries, and faultfs is preloaded before it.
+add_library(faultfs MODULE ${MORAINE_ROBUST_DIR}/faultfs.c)
+set_target_properties(faultfs PROPERTIES LIBRARY_OUTPUT_DIRECTORY ${CMAKE_BINARY_DIR} COMPILE_OPTIONS "-Wall;-Wextra" LINK_OPTIONS "")
+target_link_libraries(faultfs PRIVATE ${CMAKE_DL_LIBS})
+add_test(NAME robust.faults
+         COMMAND ${MORAINE_ROBUST_DIR}/faults.sh $<TARGET_FILE:moraine> ${MORAINE_TEST_OUT}/robust_faults ${MORAINE_PYTHON})
 # the physical-sanity watchdog: an explosive run pinned to the walls stops;
 # violent runs that are right (bouncing cube, dam break) keep far from its bounds
 add_test(NAME robust.watchdog
@@ -19,7 +28,7 @@ add_test(NAME robust.watchdog_legit
 add_test(NAME robust.checkpoint_damage
          COMMAND ${MORAINE_ROBUST_DIR}/checkpoint_damage.sh $<TARGET_FILE:moraine> ${MORAINE_TEST_OUT}/robust_checkpoint_damage ${MORAINE_PYTHON})
 set_tests_properties(robust.disk_full robust.permission robust.sigterm_twice robust.warnings robust.unstable_cfl
-                     robust.watchdog robust.watchdog_legit robust.checkpoint_damage PROPERTIES LABELS robust)
+                     robust.watchdog robust.watchdog_legit robust.checkpoint_damage robust.faults PROPERTIES LABELS robust)
 
 # --safe (doc/security.md): the refusals are tests/bad/safe_*.lua; these check
 # a link leading out, what a deck may still do, and an example that runs as usual
