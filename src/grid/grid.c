@@ -11,7 +11,7 @@
 int mrn_grid_init(mrn_grid *g, int dim, const double origin[3], const double size[3], double cell) {
   memset(g, 0, sizeof *g);
   if (dim != 2 && dim != 3) return mrn_error("grid: dimension must be 2 or 3, got %d", dim);
-  if (!(cell > 0) || !isfinite(cell)) return mrn_error("grid: cell size must be > 0, got %g", cell);
+  if (!(cell > 0) || !isfinite(cell)) return mrn_error("grid: cell size must be > 0, got %s", mrn_num(cell).s);
   g->dim = dim;
   g->cell = cell;
   g->inv_cell = 1.0 / cell;
@@ -20,7 +20,7 @@ int mrn_grid_init(mrn_grid *g, int dim, const double origin[3], const double siz
   for (int d = 0; d < 3; d++) {
     if (d < dim) {
       if (!(size[d] > 0) || !isfinite(size[d]))
-        return mrn_error("grid: size[%d] must be > 0, got %g", d + 1, size[d]);
+        return mrn_error("grid: size[%d] must be > 0, got %s", d + 1, mrn_num(size[d]).s);
       double cells = size[d] / cell;
       /* both bounds before rounding: lround of a huge or infinite count is undefined */
       if (cells < 1 - 1e-6)

@@ -20,7 +20,7 @@ static mrn_region *region_new(mrn_region_kind kind, const char *what) {
 static int finite3(const double x[3]) { return isfinite(x[0]) && isfinite(x[1]) && isfinite(x[2]); }
 
 static int check_radius(const char *what, double radius) {
-  if (!(radius > 0) || !isfinite(radius)) return mrn_error("%s: radius must be a finite number > 0, got %g", what, radius);
+  if (!(radius > 0) || !isfinite(radius)) return mrn_error("%s: radius must be a finite number > 0, got %s", what, mrn_num(radius).s);
   return MRN_OK;
 }
 
@@ -52,7 +52,8 @@ mrn_region *mrn_region_box(const double lo[3], const double hi[3]) {
 
 mrn_region *mrn_region_sphere(const double center[3], double radius) {
   if (!finite3(center)) {
-    mrn_error("sphere: the center (%g, %g, %g) must be finite", center[0], center[1], center[2]);
+    mrn_error("sphere: the center (%s, %s, %s) must be finite", mrn_num(center[0]).s, mrn_num(center[1]).s,
+              mrn_num(center[2]).s);
     return NULL;
   }
   if (check_radius("sphere", radius) != MRN_OK) return NULL;
@@ -98,7 +99,7 @@ mrn_region *mrn_region_polygon(const double *xy, int nvert) {
   }
   for (int i = 0; i < 2 * nvert; i++)
     if (!isfinite(xy[i])) {
-      mrn_error("polygon: vertex %d has a coordinate that is not finite (%g)", i / 2 + 1, xy[i]);
+      mrn_error("polygon: vertex %d has a coordinate that is not finite (%s)", i / 2 + 1, mrn_num(xy[i]).s);
       return NULL;
     }
   mrn_region *r = region_new(MRN_REGION_POLYGON, "polygon");

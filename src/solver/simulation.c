@@ -176,9 +176,10 @@ int mrn_sim_particle_error(const mrn_sim *sim, size_t p) {
   if (!mrn_sim_particle_finite(sim, p))
     return mrn_error_code(MRN_ERR_STATE,
                           "step %ld (t = %g s): particle %lld has a non-finite position, velocity or stress "
-                          "(x = (%g, %g, %g), v = (%g, %g, %g)); the time step %g s is probably above the "
+                          "(x = (%s, %s, %s), v = (%s, %s, %s)); the time step %g s is probably above the "
                           "stability limit",
-                          sim->step, sim->time, (long long)ps->id[p], x[0], x[1], x[2], v[0], v[1], v[2], sim->dt);
+                          sim->step, sim->time, (long long)ps->id[p], mrn_num(x[0]).s, mrn_num(x[1]).s,
+                          mrn_num(x[2]).s, mrn_num(v[0]).s, mrn_num(v[1]).s, mrn_num(v[2]).s, sim->dt);
   return mrn_error_code(MRN_ERR_STATE,
                         "step %ld (t = %g s): particle %lld left the grid at (%g, %g, %g) with velocity "
                         "(%g, %g, %g); the domain is [%g, %g] x [%g, %g]%s",
