@@ -38,8 +38,21 @@ int mrn_lua_get_boolean(lua_State *L, int idx, const char *where, const mrn_spec
 /* string value or NULL when absent and not required; checks `choices` with did-you-mean */
 const char *mrn_lua_get_string(lua_State *L, int idx, const char *where, const mrn_spec *specs, int count,
                                const char *key);
-/* reads a vector of exactly `dim` numbers into out (untouched when absent); returns 1 if present */
-int mrn_lua_get_vector(lua_State *L, int idx, const char *where, const char *key, int dim, double *out, int required);
+/* reads the vector `key` of exactly `dim` numbers into out (untouched when
+ * absent), each checked against the key's spec; returns 1 if present */
+int mrn_lua_get_vector(lua_State *L, int idx, const char *where, const mrn_spec *specs, int count, const char *key,
+                       int dim, double *out, int required);
+
+/* The checks a key's getter makes, for values that come without a table
+ * (setters such as sim:set_gravity{...} and sim:set_dt(0.001)): a setter and
+ * the constructor key it changes share one spec, so they refuse the same
+ * values with the same message. */
+/* raise "NAME = V is out of range (expected ...)" unless v is a finite number
+ * in the spec's range; NAME is `name`, or the spec's key when NULL */
+void mrn_lua_check_number(lua_State *L, const char *where, const mrn_spec *spec, const char *name, double v);
+/* the value at idx as a vector of exactly `dim` numbers, each checked by
+ * mrn_lua_check_number and named KEY[i] */
+void mrn_lua_to_vector(lua_State *L, int idx, const char *where, const mrn_spec *spec, int dim, double *out);
 /* 1 when the key is present (not nil) */
 int mrn_lua_has(lua_State *L, int idx, const char *key);
 

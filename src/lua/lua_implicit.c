@@ -271,9 +271,7 @@ static int l_point_force(lua_State *L) {
 
 static int l_load_factor(lua_State *L) {
   mrn_implicit *im = check_implicit(L, 1);
-  double f = luaL_checknumber(L, 2);
-  if (!isfinite(f)) return luaL_error(L, "load_factor(): expected a finite number, got %f", f);
-  mrn_implicit_set_load_factor(im, f);
+  mrn_implicit_set_load_factor(im, mrn_lua_check_load_factor(L, 2));
   return 0;
 }
 

@@ -59,6 +59,8 @@ void mrn_lua_add_load_methods(lua_State *L, int methods);
 struct mrn_sim;
 long mrn_lua_point_force_args(lua_State *L, int idx, const struct mrn_sim *sim, const char *where,
                               int (*set)(void *ctx, size_t p, const double f[3]), void *ctx);
+/* the load factor at idx of sim:load_factor(f) and imp:load_factor(f): a finite number */
+double mrn_lua_check_load_factor(lua_State *L, int idx);
 mrn_material *mrn_lua_check_material(lua_State *L, int idx, const char *where);
 
 /* read a vector of the simulation's dimension from a function's results or a table at idx */

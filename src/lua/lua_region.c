@@ -26,18 +26,16 @@ mrn_region *mrn_lua_check_region(lua_State *L, int idx, const char *where) {
 }
 
 /* read a point of 2 or 3 numbers; z = 0 when absent */
-static void get_point(lua_State *L, int idx, const char *where, const char *key, double out[3], int required) {
+static void get_point(lua_State *L, int idx, const char *where, const mrn_spec *specs, int count, const char *key,
+                      double out[3]) {
   out[0] = out[1] = out[2] = 0.0;
   lua_getfield(L, idx, key);
   int present = !lua_isnil(L, -1);
   int n = present && lua_istable(L, -1) ? (int)luaL_len(L, -1) : 0;
   lua_pop(L, 1);
-  if (!present) {
-    if (required) mrn_lua_error(L, where, "missing required key '%s' (a point {x, y} or {x, y, z})", key);
-    return;
-  }
+  if (!present) mrn_lua_error(L, where, "missing required key '%s' (a point {x, y} or {x, y, z})", key);
   if (n != 2 && n != 3) mrn_lua_error(L, where, "%s must be a point {x, y} or {x, y, z}", key);
-  mrn_lua_get_vector(L, idx, where, key, n, out, 1);
+  mrn_lua_get_vector(L, idx, where, specs, count, key, n, out, 1);
 }
 
 static const mrn_spec box_specs[] = {
@@ -49,8 +47,8 @@ static int l_box(lua_State *L) {
   const char *where = "box{}";
   mrn_lua_check_table(L, 1, where, box_specs, MRN_COUNT(box_specs));
   double lo[3], hi[3];
-  get_point(L, 1, where, "min", lo, 1);
-  get_point(L, 1, where, "max", hi, 1);
+  get_point(L, 1, where, box_specs, MRN_COUNT(box_specs), "min", lo);
+  get_point(L, 1, where, box_specs, MRN_COUNT(box_specs), "max", hi);
   push_region(L, mrn_region_box(lo, hi), where);
   return 1;
 }
@@ -64,7 +62,7 @@ static int l_sphere(lua_State *L) {
   const char *where = lua_tostring(L, lua_upvalueindex(1));
   mrn_lua_check_table(L, 1, where, sphere_specs, MRN_COUNT(sphere_specs));
   double c[3];
-  get_point(L, 1, where, "center", c, 1);
+  get_point(L, 1, where, sphere_specs, MRN_COUNT(sphere_specs), "center", c);
   double r = mrn_lua_get_number(L, 1, where, sphere_specs, MRN_COUNT(sphere_specs), "radius");
   push_region(L, mrn_region_sphere(c, r), where);
   return 1;
@@ -80,8 +78,8 @@ static int l_cylinder(lua_State *L) {
   const char *where = "cylinder{}";
   mrn_lua_check_table(L, 1, where, cylinder_specs, MRN_COUNT(cylinder_specs));
   double a[3], b[3];
-  get_point(L, 1, where, "from", a, 1);
-  get_point(L, 1, where, "to", b, 1);
+  get_point(L, 1, where, cylinder_specs, MRN_COUNT(cylinder_specs), "from", a);
+  get_point(L, 1, where, cylinder_specs, MRN_COUNT(cylinder_specs), "to", b);
   double r = mrn_lua_get_number(L, 1, where, cylinder_specs, MRN_COUNT(cylinder_specs), "radius");
   push_region(L, mrn_region_cylinder(a, b, r), where);
   return 1;

@@ -217,9 +217,7 @@ static void read_face(lua_State *L, int value_idx, const char *where, const char
         const char *k = lua_tostring(L, -1);
         if (!mrn_spec_find(face_specs, MRN_COUNT(face_specs), k)) {
           const char *hint = mrn_spec_suggest(face_specs, MRN_COUNT(face_specs), k);
-          lua_pop(L, 1);
-          mrn_lua_error(L, where, "%s: unknown key '%s'%s%s%s", key, k, hint ? " (did you mean '" : "",
-                        hint ? hint : "", hint ? "'?)" : "");
+          mrn_lua_error(L, where, "%s: unknown key '%s'%s", key, k, mrn_hint(hint).s);
         }
       }
     }
@@ -245,7 +243,7 @@ static void read_face(lua_State *L, int value_idx, const char *where, const char
       mrn_lua_error(L, where, "%s: a velocity face needs v, e.g. {\"velocity\", v = {0.001, 0}}", key);
     char sub[96];
     snprintf(sub, sizeof sub, "%s %s", where, key);
-    mrn_lua_get_vector(L, value_idx, sub, "v", dim, f->velocity, 1);
+    mrn_lua_get_vector(L, value_idx, sub, face_specs, MRN_COUNT(face_specs), "v", dim, f->velocity, 1);
   }
 }
 
@@ -355,9 +353,9 @@ static void read_dt(lua_State *L, int idx, const char *where, mrn_sim *sim) {
   idx = lua_absindex(L, idx);
   mrn_dt_policy *p = &sim->dt_policy;
   double min = p->min, max = p->max;
-  if (lua_type(L, idx) == LUA_TNUMBER) {
+  if (lua_type(L, idx) == LUA_TNUMBER) { /* dt = 0.001 is short for dt = {fixed = 0.001} */
     double dt = lua_tonumber(L, idx);
-    if (!(dt > 0) || !isfinite(dt)) mrn_lua_error(L, where, "dt = %g is out of range (expected a value > 0, in s)", dt);
+    mrn_lua_check_number(L, where, mrn_spec_find(dt_specs, MRN_COUNT(dt_specs), "fixed"), "dt", dt);
     mrn_dt_policy_fixed(p, dt);
   } else if (lua_type(L, idx) == LUA_TFUNCTION) {
     mrn_dt_policy_release(p);
@@ -482,11 +480,9 @@ static int l_simulation(lua_State *L) {
   lua_getfield(L, 1, "grid");
   char gwhere[] = "simulation{} grid";
   mrn_lua_check_table(L, -1, gwhere, grid_specs, MRN_COUNT(grid_specs));
-  mrn_lua_get_vector(L, -1, gwhere, "origin", dim, cfg.origin, 0);
-  mrn_lua_get_vector(L, -1, gwhere, "size", dim, cfg.size, 1);
+  mrn_lua_get_vector(L, -1, gwhere, grid_specs, MRN_COUNT(grid_specs), "origin", dim, cfg.origin, 0);
+  mrn_lua_get_vector(L, -1, gwhere, grid_specs, MRN_COUNT(grid_specs), "size", dim, cfg.size, 1);
   cfg.cell = mrn_lua_get_number(L, -1, gwhere, grid_specs, MRN_COUNT(grid_specs), "cell");
-  for (int d = 0; d < dim; d++)
-    if (!(cfg.size[d] > 0)) mrn_lua_error(L, gwhere, "size[%d] = %g must be > 0", d + 1, cfg.size[d]);
   lua_pop(L, 1);
 
   cfg.shape = MRN_SHAPE_QUADRATIC_BSPLINE;
@@ -495,7 +491,7 @@ static int l_simulation(lua_State *L) {
     mrn_lua_check_choice(L, where, "shape", shape, mrn_shape_names());
     mrn_shape_from_name(shape, &cfg.shape);
   }
-  mrn_lua_get_vector(L, 1, where, "gravity", dim, cfg.gravity, 0);
+  mrn_lua_get_vector(L, 1, where, sim_specs, MRN_COUNT(sim_specs), "gravity", dim, cfg.gravity, 0);
   const char *sb = mrn_lua_get_string(L, 1, where, sim_specs, MRN_COUNT(sim_specs), "shape_boundary");
   cfg.kernel_boundary = MRN_KERNEL_EXTENDED;
   if (sb) {
@@ -827,12 +823,11 @@ static int l_hook(lua_State *L) {
 
 /* ------------------------------------------------------- changing a simulation */
 
+/* the checks of simulation{gravity}, on the value given alone */
 static int l_set_gravity(lua_State *L) {
   sim_box *b = check_sim(L, 1);
-  luaL_checktype(L, 2, LUA_TTABLE);
   double g[3] = {0, 0, 0};
-  if ((int)luaL_len(L, 2) != b->sim->dim || !mrn_lua_read_numbers(L, 2, b->sim->dim, g))
-    mrn_lua_error(L, "set_gravity()", "expected a table of %d numbers", b->sim->dim);
+  mrn_lua_to_vector(L, 2, "set_gravity()", mrn_spec_find(sim_specs, MRN_COUNT(sim_specs), "gravity"), b->sim->dim, g);
   memcpy(b->sim->gravity, g, sizeof g);
   return 0;
 }
@@ -1032,7 +1027,7 @@ static int l_import(lua_State *L) {
       override = mrn_lua_check_material(L, -1, where);
       lua_pop(L, 1);
     }
-    mrn_lua_get_vector(L, 3, where, "offset", b->sim->dim, offset, 0);
+    mrn_lua_get_vector(L, 3, where, import_specs, MRN_COUNT(import_specs), "offset", b->sim->dim, offset, 0);
   }
   if (path[0] != '/' && access(path, F_OK) != 0) path = output_path(L, b, path);
   long count = 0;
@@ -1194,8 +1189,7 @@ static int l_reduce(lua_State *L) {
     if (!mrn_field_lookup(b->sim, field, &f)) {
       const char *hint = mrn_suggest_from(mrn_output_field_names(), field);
       if (!hint) hint = mrn_suggest_from(extra, field);
-      mrn_lua_error(L, where, "unknown field '%s'%s%s%s (fields: x, y, z and those of sim:field)", field,
-                    hint ? " (did you mean '" : "", hint ? hint : "", hint ? "'?)" : "");
+      mrn_lua_error(L, where, "unknown field '%s'%s (fields: x, y, z and those of sim:field)", field, mrn_hint(hint).s);
     }
     ncomp = f.ncomp;
     double *buf = lua_newuserdatauv(L, (n ? n : 1) * ncomp * sizeof(double), 0);
