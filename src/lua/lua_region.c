@@ -128,22 +128,40 @@ static int l_region(lua_State *L) {
   return 1;
 }
 
+/* The regions at stack indices lo..hi combined as a balanced tree, so that
+ * n regions nest about log2(n) deep instead of n (MRN_REGION_MAX_DEPTH);
+ * union and intersection are associative, and their operands are still
+ * tested from the first. A new reference, or NULL with the message set. */
+static mrn_region *combine_range(lua_State *L, mrn_region_kind kind, int lo, int hi) {
+  if (lo == hi) {
+    mrn_region *r = ((region_box *)lua_touserdata(L, lo))->r;
+    mrn_region_ref(r);
+    return r;
+  }
+  int mid = lo + (hi - lo) / 2;
+  mrn_region *a = combine_range(L, kind, lo, mid);
+  mrn_region *b = a ? combine_range(L, kind, mid + 1, hi) : NULL;
+  mrn_region *c = b ? mrn_region_combine(kind, a, b) : NULL;
+  mrn_region_unref(a);
+  mrn_region_unref(b);
+  return c;
+}
+
 static int combine(lua_State *L, mrn_region_kind kind, const char *where) {
   int n = lua_gettop(L);
   if (n < 2) mrn_lua_error(L, where, "expected at least two regions, got %d", n);
   /* every argument is checked before any reference is taken: an error
    * raised half-way through would leak the partial combination */
   for (int i = 1; i <= n; i++) mrn_lua_check_region(L, i, where);
-  mrn_region *acc = mrn_lua_check_region(L, 1, where);
-  mrn_region_ref(acc);
-  for (int i = 2; i <= n; i++) {
-    mrn_region *next = mrn_lua_check_region(L, i, where);
-    mrn_region *c = mrn_region_combine(kind, acc, next);
-    mrn_region_unref(acc);
-    if (!c) mrn_lua_error(L, where, "%s", mrn_error_message());
-    acc = c;
+  mrn_region *r;
+  if (kind == MRN_REGION_DIFFERENCE) { /* a - b - c ... is a - (b + c + ...) */
+    mrn_region *rest = combine_range(L, MRN_REGION_UNION, 2, n);
+    r = rest ? mrn_region_combine(kind, mrn_lua_check_region(L, 1, where), rest) : NULL;
+    mrn_region_unref(rest);
+  } else {
+    r = combine_range(L, kind, 1, n);
   }
-  push_region(L, acc, where);
+  push_region(L, r, where); /* raises the message when r is NULL */
   return 1;
 }
 

@@ -14,6 +14,7 @@ static mrn_region *region_new(mrn_region_kind kind, const char *what) {
   }
   r->kind = kind;
   r->refcount = 1;
+  r->depth = 1;
   return r;
 }
 
@@ -159,9 +160,16 @@ mrn_region *mrn_region_combine(mrn_region_kind kind, mrn_region *a, mrn_region *
     mrn_error("region: cannot combine a %dD region with a %dD region", a->dim, b->dim);
     return NULL;
   }
+  const int depth = 1 + (a->depth > b->depth ? a->depth : b->depth);
+  if (depth > MRN_REGION_MAX_DEPTH) {
+    mrn_error("region: the combination would nest regions %d levels deep, more than the limit of %d (combine many "
+              "regions in one call rather than one at a time)", depth, MRN_REGION_MAX_DEPTH);
+    return NULL;
+  }
   mrn_region *r = region_new(kind, "region");
   if (!r) return NULL;
   r->dim = a->dim ? a->dim : b->dim;
+  r->depth = depth;
   mrn_region_ref(a);
   mrn_region_ref(b);
   r->a = a;
