@@ -10,6 +10,7 @@
 #include <unistd.h>
 
 #include "core/error.h"
+#include "core/interrupt.h"
 #include "core/spec.h"
 #include "io/output.h"
 #include "io/provenance.h"
@@ -164,6 +165,8 @@ static int traceback_handler(lua_State *L) {
   const char *msg = lua_tostring(L, 1);
   if (!msg) msg = luaL_tolstring(L, 1, NULL);
   lua_pushstring(L, msg);
+  /* here, before the stack unwinds, the deck still holds its simulations */
+  if (mrn_interrupt_pending()) mrn_lua_save_interrupted(L);
   return 1;
 }
 
@@ -179,6 +182,7 @@ int mrn_lua_run_deck(const char *path, const mrn_deck_options *opt) {
     return 1;
   }
   luaL_openlibs(L);
+  mrn_lua_watch_interrupts(L);
   lua_pushcfunction(L, traceback_handler);
   int handler = lua_gettop(L);
   lua_pushcfunction(L, open_protected);
@@ -206,6 +210,7 @@ int mrn_lua_run_deck(const char *path, const mrn_deck_options *opt) {
     fprintf(stderr, "moraine: %s\n", lua_tostring(L, -1));
     rc = mrn_lua_exit_status(L);
   }
+  mrn_lua_watch_interrupts(NULL);
   lua_close(L);
   mrn_output_forget_files();
   return rc;

@@ -32,6 +32,7 @@ typedef struct sim_box {
   char name[64];
   const char *busy; /* "run{}" or "add_particles()" while deck callbacks can run inside it */
   long invalid_step; /* > 0: a run stopped keeping an invalid state (a particle outside the grid) at this step */
+  int interrupted;   /* a run stopped on a signal and wrote <name>_interrupted.h5 */
 } sim_box;
 
 static sim_box *check_sim(lua_State *L, int idx) {
@@ -341,7 +342,8 @@ static int call_dt_function(void *ctx, mrn_sim *sim, double *dt) {
   (void)sim;
   mrn_lua_callback_push(L, ctx);
   lua_pushvalue(L, 1); /* the simulation userdata is argument 1 of sim:run */
-  if (mrn_lua_callback_pcall(L, 1, 1) != MRN_OK) return MRN_ERR_HOOK;
+  int rc = mrn_lua_callback_pcall(L, 1, 1);
+  if (rc != MRN_OK) return rc;
   int isnum = 0;
   *dt = lua_tonumberx(L, -1, &isnum);
   lua_pop(L, 1);
@@ -447,11 +449,34 @@ static const char *output_dir(lua_State *L) {
 
 /* ------------------------------------------------------- constructor */
 
+/* Every simulation userdata is a key of this registry table, whose weak keys
+ * do not keep one alive: the simulations a signal finds (save_interrupted). */
+#define SIMULATIONS "moraine.simulations"
+
+static void remember_sim(lua_State *L, int idx) {
+  idx = lua_absindex(L, idx);
+  if (lua_getfield(L, LUA_REGISTRYINDEX, SIMULATIONS) != LUA_TTABLE) {
+    lua_pop(L, 1);
+    lua_newtable(L);
+    lua_createtable(L, 0, 1);
+    lua_pushstring(L, "k");
+    lua_setfield(L, -2, "__mode");
+    lua_setmetatable(L, -2);
+    lua_pushvalue(L, -1);
+    lua_setfield(L, LUA_REGISTRYINDEX, SIMULATIONS);
+  }
+  lua_pushvalue(L, idx);
+  lua_pushboolean(L, 1);
+  lua_rawset(L, -3);
+  lua_pop(L, 1);
+}
+
 /* a new simulation userdata with its outputs ready and no engine simulation yet */
 static sim_box *push_sim_box(lua_State *L) {
   sim_box *b = lua_newuserdatauv(L, sizeof *b, 0);
   memset(b, 0, sizeof *b);
   luaL_setmetatable(L, MRN_LUA_SIM);
+  remember_sim(L, -1);
   mrn_output_init(&b->out, output_dir(L));
   b->out_ready = 1;
   b->thermo_every = 100;
@@ -743,6 +768,7 @@ static int raise_engine_error(lua_State *L, int rc, const char *where, sim_box *
   if (rc == MRN_ERR_STATE || rc == MRN_ERR_INTERRUPTED) {
     char note[1024];
     write_final_state(b, rc == MRN_ERR_STATE ? "failed" : "interrupted", note, sizeof note);
+    b->interrupted = rc == MRN_ERR_INTERRUPTED;
     char message[2048];
     snprintf(message, sizeof message, "%s%s", mrn_error_message(), note);
     /* a state the grid cannot hold (a particle outside it) may not be stepped
@@ -1348,6 +1374,59 @@ static int l_tostring(lua_State *L) {
                   s->dim, cells, s->grid.cell, (lua_Integer)s->particles.n, s->scheme.name,
                   mrn_stress_update_names()[s->scheme.stress_update], (lua_Integer)s->step, s->time);
   return 1;
+}
+
+/* A simulation worth a checkpoint when a signal stops the deck: it holds
+ * particles, no call of its own is under way (its state is whole), its run
+ * did not write one already and it is not left on a state its grid cannot
+ * hold (which has <name>_failed.h5). */
+static int wants_checkpoint(const sim_box *b) {
+  return b->sim && b->sim->particles.n > 0 && !b->busy && !b->interrupted && !b->invalid_step;
+}
+
+/* pushes the table name -> true of the names in use by checkpoints already
+ * written, so that a second simulation of the same name does not overwrite one */
+static void push_names_written(lua_State *L, int sims) {
+  lua_newtable(L);
+  lua_pushnil(L);
+  while (lua_next(L, sims)) {
+    lua_pop(L, 1);
+    const sim_box *b = lua_touserdata(L, -1);
+    if (b->sim && b->interrupted) {
+      lua_pushboolean(L, 1);
+      lua_setfield(L, -3, b->name);
+    }
+  }
+}
+
+void mrn_lua_save_interrupted(lua_State *L) {
+  lua_gc(L, LUA_GCCOLLECT, 0); /* the simulations the deck no longer holds go first */
+  if (lua_getfield(L, LUA_REGISTRYINDEX, SIMULATIONS) != LUA_TTABLE) {
+    lua_pop(L, 1);
+    return;
+  }
+  int sims = lua_gettop(L), message = sims - 1;
+  push_names_written(L, sims);
+  int written = lua_gettop(L);
+  lua_pushnil(L);
+  while (lua_next(L, sims)) {
+    lua_pop(L, 1);
+    sim_box *b = lua_touserdata(L, -1);
+    if (!wants_checkpoint(b)) continue;
+    int taken = lua_getfield(L, written, b->name) != LUA_TNIL;
+    lua_pop(L, 1);
+    if (taken) continue;
+    char note[1024];
+    write_final_state(b, "interrupted", note, sizeof note);
+    b->interrupted = 1;
+    lua_pushboolean(L, 1);
+    lua_setfield(L, written, b->name);
+    lua_pushvalue(L, message);
+    lua_pushstring(L, note);
+    lua_concat(L, 2);
+    lua_replace(L, message);
+  }
+  lua_pop(L, 2);
 }
 
 void mrn_lua_open_simulation(lua_State *L, int module) {
