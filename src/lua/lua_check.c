@@ -206,3 +206,35 @@ int mrn_lua_get_vector(lua_State *L, int idx, const char *where, const mrn_spec 
   lua_pop(L, 1);
   return 1;
 }
+
+int mrn_lua_no_such(lua_State *L, const char *what, const char *kind, const char *key, const char *const *names) {
+  return luaL_error(L, "%s has no %s '%s'%s", what, kind, key, mrn_hint(mrn_suggest_from(names, key)).s);
+}
+
+#define STRICT_MAX_NAMES 256
+
+/* __index(t, key) of a strict table; upvalues: what, kind */
+static int strict_index(lua_State *L) {
+  const char *what = lua_tostring(L, lua_upvalueindex(1)), *kind = lua_tostring(L, lua_upvalueindex(2));
+  const char *key = luaL_tolstring(L, 2, NULL);
+  /* the table's own names; they stay alive in it while the error is built */
+  const char *names[STRICT_MAX_NAMES + 1];
+  int n = 0;
+  lua_pushnil(L);
+  while (n < STRICT_MAX_NAMES && lua_next(L, 1)) {
+    lua_pop(L, 1);
+    if (lua_type(L, -1) == LUA_TSTRING) names[n++] = lua_tostring(L, -1);
+  }
+  names[n] = NULL;
+  return mrn_lua_no_such(L, what, kind, key, names);
+}
+
+void mrn_lua_strict(lua_State *L, int idx, const char *what, const char *kind) {
+  idx = lua_absindex(L, idx);
+  lua_createtable(L, 0, 1);
+  lua_pushstring(L, what);
+  lua_pushstring(L, kind);
+  lua_pushcclosure(L, strict_index, 2);
+  lua_setfield(L, -2, "__index");
+  lua_setmetatable(L, idx);
+}

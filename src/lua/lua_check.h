@@ -56,6 +56,15 @@ void mrn_lua_to_vector(lua_State *L, int idx, const char *where, const mrn_spec 
 /* 1 when the key is present (not nil) */
 int mrn_lua_has(lua_State *L, int idx, const char *key);
 
+/* Reading a name that the table at idx does not hold (mpm.boxx,
+ * sim:ad_particles) raises "<what> has no <kind> 'boxx' (did you mean
+ * 'box'?)" at the deck line, instead of Lua's "attempt to call a nil value":
+ * the table gets a metatable whose __index suggests the nearest of its keys.
+ * Names present are found as before, without the metatable. */
+void mrn_lua_strict(lua_State *L, int idx, const char *what, const char *kind);
+/* raise "<what> has no <kind> 'key'" with the nearest of names (NULL-terminated) */
+int mrn_lua_no_such(lua_State *L, const char *what, const char *kind, const char *key, const char *const *names);
+
 /* check a string against a NULL-terminated list, raising with did-you-mean and the valid names */
 void mrn_lua_check_choice(lua_State *L, const char *where, const char *key, const char *value,
                           const char *const *choices);

@@ -291,6 +291,7 @@ void mrn_lua_open_implicit(lua_State *L, int module) {
                                      {NULL, NULL}};
   lua_newtable(L);
   luaL_setfuncs(L, methods, 0);
+  mrn_lua_strict(L, -1, "implicit integrator", "method");
   lua_setfield(L, -2, "__index");
   lua_pop(L, 1);
   /* sim:implicit{...} joins the simulation's methods */

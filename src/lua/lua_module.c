@@ -127,6 +127,7 @@ int luaopen_moraine(lua_State *L) {
   } else {
     lua_pop(L, 1);
   }
+  mrn_lua_strict(L, module, "mpm", "function"); /* once complete: mpm.boxx names mpm.box */
   return 1;
 }
 

@@ -201,6 +201,7 @@ void mrn_lua_open_regions(lua_State *L, int module) {
   lua_newtable(L);
   lua_pushcfunction(L, l_contains);
   lua_setfield(L, -2, "contains");
+  mrn_lua_strict(L, -1, "region", "method");
   lua_setfield(L, -2, "__index");
   lua_pop(L, 1);
 

@@ -1443,6 +1443,7 @@ void mrn_lua_open_simulation(lua_State *L, int module) {
   luaL_setfuncs(L, methods, 0);
   mrn_lua_add_field_methods(L, lua_gettop(L));
   mrn_lua_add_load_methods(L, lua_gettop(L));
+  mrn_lua_strict(L, -1, "simulation", "method");
   lua_setfield(L, -2, "__index");
   lua_pop(L, 1);
   lua_pushcfunction(L, l_simulation);
