@@ -674,6 +674,10 @@ static int l_add_particles(lua_State *L) {
   mrn_seed_placement pl = placement && strcmp(placement, "regular") == 0 ? MRN_SEED_REGULAR : MRN_SEED_GAUSS;
   if (region->dim && region->dim != dim)
     mrn_lua_error(L, where, "this region is %dD only, the simulation is %dD", region->dim, dim);
+  /* mpm.box{min = {x, y}, max = {x, y}} is flat at z = 0: it holds no seeding point of a 3D grid */
+  if (dim == 3 && !(region->hi[2] > region->lo[2]))
+    mrn_lua_error(L, where, "the region has no extent along z (z from %g to %g), so it seeds nothing in a 3D "
+                  "simulation (a box needs min and max of 3 components)", region->lo[2], region->hi[2]);
 
   int mat_index = mrn_sim_add_material(b->sim, mat);
   if (mat_index < 0) mrn_lua_error(L, where, "%s", mrn_error_message());
