@@ -3,9 +3,10 @@
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
-#include <unistd.h>
+#include <stdio.h>
 
 #include "core/error.h"
+#include "core/memory.h"
 #include "transfer/blocks.h"
 
 int mrn_grid_init(mrn_grid *g, int dim, const double origin[3], const double size[3], double cell) {
@@ -47,13 +48,10 @@ int mrn_grid_init(mrn_grid *g, int dim, const double origin[3], const double siz
   total = (long)g->nnode[0] * g->nnode[1] * g->nnode[2];
   if (total > 400000000L) return mrn_error("grid: %ld nodes is more than this build allows (4e8)", total);
   /* a grid whose arrays alone exceed the machine's memory (a cell size typed
-   * a hundred times too small) is refused with the figures, rather than
-   * swapping or being killed by the kernel half-way: 19 doubles per node */
-  double need = (double)total * 19 * sizeof(double);
-  long pages = sysconf(_SC_PHYS_PAGES), page = sysconf(_SC_PAGESIZE);
-  if (pages > 0 && page > 0 && need > (double)pages * (double)page)
-    return mrn_error("grid: %ld nodes need %.1f GB, more than this machine's %.1f GB of memory (is the cell size right?)",
-                     total, need / 1e9, (double)pages * (double)page / 1e9);
+   * a hundred times too small) is refused with the figures: 19 doubles per node */
+  char what[64];
+  snprintf(what, sizeof what, "grid: %ld nodes", total);
+  if (mrn_memory_check(what, (double)total * 19 * sizeof(double), " (is the cell size right?)") != MRN_OK) return MRN_ERR;
   g->n = (size_t)total;
   g->mass = calloc(g->n, sizeof(double));
   g->mom = calloc(3 * g->n, sizeof(double));
