@@ -155,19 +155,18 @@ static int l_set_value(lua_State *L) {
 
 /* sim:set_field(name, values): values is a number (every component of every
  * particle), a flat table of n * ncomp numbers (as sim:field gives), or a
- * function(x, y, z, i) returning the particle's value */
+ * function(x, y, z, i) returning the particle's value. The values are all
+ * read and checked before any is stored: a refused call changes nothing. */
 static int l_set_field(lua_State *L) {
   mrn_sim *sim = mrn_lua_check_sim(L, 1);
   const char *where = "set_field()";
   const mrn_user_field *f = check_user(L, sim, luaL_checkstring(L, 2), where);
-  mrn_particles *ps = &sim->particles;
-  const size_t n = ps->n, nc = (size_t)f->ncomp;
-  double *base = ps->user + f->offset;
+  const size_t n = sim->particles.n, nc = (size_t)f->ncomp;
+  double *values = lua_newuserdatauv(L, (n ? n : 1) * nc * sizeof(double), 0); /* freed by the GC, even on error */
   if (lua_type(L, 3) == LUA_TNUMBER) {
     double v = lua_tonumber(L, 3);
     for (size_t k = 0; k < nc; k++) check_component(L, where, f, (int)k, v);
-    for (size_t p = 0; p < n; p++)
-      for (size_t k = 0; k < nc; k++) base[p * ps->user_stride + k] = v;
+    for (size_t i = 0; i < n * nc; i++) values[i] = v;
   } else if (lua_istable(L, 3)) {
     if ((size_t)luaL_len(L, 3) != n * nc)
       mrn_lua_error(L, where, "'%s' needs %zu values (%zu particles x %zu), the table has %lld", f->name, n * nc, n,
@@ -175,29 +174,34 @@ static int l_set_field(lua_State *L) {
     for (size_t i = 0; i < n * nc; i++) {
       if (lua_geti(L, 3, (lua_Integer)i + 1) != LUA_TNUMBER)
         mrn_lua_error(L, where, "value %zu is %s, expected a number", i + 1, luaL_typename(L, -1));
-      check_component(L, where, f, (int)(i % nc), lua_tonumber(L, -1));
-      base[(i / nc) * ps->user_stride + i % nc] = lua_tonumber(L, -1);
+      values[i] = lua_tonumber(L, -1);
+      check_component(L, where, f, (int)(i % nc), values[i]);
       lua_pop(L, 1);
     }
   } else if (lua_isfunction(L, 3)) {
     for (size_t p = 0; p < n; p++) {
       lua_pushvalue(L, 3);
-      for (int d = 0; d < 3; d++) lua_pushnumber(L, ps->x[3 * p + d]);
+      for (int d = 0; d < 3; d++) lua_pushnumber(L, sim->particles.x[3 * p + d]);
       lua_pushinteger(L, (lua_Integer)p + 1);
       lua_call(L, 4, (int)nc);
-      double v[9];
+      double *v = values + p * nc;
       if (nc == 1 && lua_type(L, -1) == LUA_TNUMBER) v[0] = lua_tonumber(L, -1);
       else if (lua_istable(L, -1)) read_value(L, -1, f, where, v);
       else if (!mrn_lua_read_numbers(L, -(int)nc, (int)nc, v))
         mrn_lua_error(L, where, "the function gave no %zu number%s for particle %zu", nc, nc == 1 ? "" : "s", p + 1);
       for (size_t k = 0; k < nc; k++) check_component(L, where, f, (int)k, v[k]);
       lua_pop(L, (int)nc);
-      memcpy(base + p * ps->user_stride, v, sizeof(double) * nc);
     }
+    /* the function may have freed the simulation or changed its particles */
+    sim = mrn_lua_check_sim(L, 1);
+    if (sim->particles.n != n)
+      mrn_lua_error(L, where, "the particles changed (%zu, now %zu) while the function ran", n, sim->particles.n);
   } else {
     mrn_lua_error(L, where, "values must be a number, a table of %zu numbers or a function(x, y, z, i), got %s",
                   n * nc, luaL_typename(L, 3));
   }
+  const mrn_particles *ps = &sim->particles;
+  for (size_t p = 0; p < n; p++) memcpy(ps->user + p * ps->user_stride + f->offset, values + p * nc, sizeof(double) * nc);
   return 0;
 }
 

@@ -7,7 +7,8 @@
 --   setters.lua:LINE: WHERE: KEY = VALUE is out of range (expected RANGE)
 -- naming the line of the call, the key and the expected range. Where the key
 -- exists in simulation{} too, the constructor refuses the same value with
--- the same words after its own WHERE (one shared check per key).
+-- the same words after its own WHERE (one shared check per key). A refused
+-- call changes nothing.
 local T = dofile(mpm.deck_dir .. "/testlib.lua")
 local mat = mpm.material.linear_elastic{ density = 1000, E = 1e6, nu = 0.3 }
 local grid = { size = { 1, 1 }, cell = 0.1 }
@@ -155,5 +156,14 @@ end
 local g = sim:info().gravity
 T.check(g[1] == 0 and g[2] == 0, "set_gravity changed the gravity to {%s, %s} while refusing", g[1], g[2])
 T.check(sim:value("damage", 1) == 0, "set_value changed the field while refusing")
+-- set_field reads and checks every value before it stores one
+local values = {}
+for i = 1, sim:particle_count() do values[i] = 7 end
+values[#values] = 0 / 0
+T.check(not pcall(sim.set_field, sim, "damage", values), "set_field accepted a NaN among its values")
+T.check(sim:value("damage", 1) == 0, "a refused set_field stored the values before the NaN")
+T.check(not pcall(sim.set_field, sim, "damage", function(x, y, z, i) return i == 5 and 1 / 0 or 7 end),
+        "set_field accepted an inf from its function")
+T.check(sim:value("damage", 1) == 0, "a refused set_field stored the function's values before the inf")
 print(string.format("setters: %d setters, %d refusals", #setters, walked))
 T.done("setters")
