@@ -11,8 +11,8 @@
  * machine call out at every instruction, which doubles the time of plain Lua
  * loops. Code in C (a step, a seeding, a library function) is not cut
  * short: the hook fires when it returns to Lua, and a second signal still
- * exits at once. A coroutine that loops without calling the engine stops
- * when it yields or returns. */
+ * exits at once. Coroutines made after the signal inherit the hook; one
+ * already running stops when it yields or returns to the main thread. */
 #include <lauxlib.h>
 
 #include "core/interrupt.h"
@@ -49,17 +49,14 @@ static void on_instruction(lua_State *L, lua_Debug *ar) {
   lua_error(L);
 }
 
-static void arm(lua_State *L) {
-  if (L) lua_sethook(L, on_instruction, LUA_MASKCOUNT, 1);
-}
+static void arm(lua_State *L) { lua_sethook(L, on_instruction, LUA_MASKCOUNT, 1); }
 
-/* in the signal handler: the deck's thread, and the coroutine that last
- * called the engine when it is another */
+/* in the signal handler. Only the main thread, which lives as long as the
+ * state: a coroutine may have been collected by the time a signal comes. */
 static void on_signal(int sig) {
   (void)sig;
-  lua_State *L = watched, *active = mrn_lua_active;
-  arm(L);
-  if (L && active != L) arm(active);
+  lua_State *L = watched;
+  if (L) arm(L);
 }
 
 void mrn_lua_watch_interrupts(lua_State *L) {
