@@ -18,6 +18,10 @@ moraine_deck_test(free_fall free_fall.lua)
 moraine_deck_test(outflow outflow.lua)
 # point forces (sim:point_force, load_factor, clear_forces): momentum, energy, traction, checkpoint
 moraine_deck_test(point_force point_force.lua)
+# every setter (found in the method table) refuses NaN, inf and out-of-range values as its constructor key does
+moraine_deck_test(setters setters.lua)
+# many regions combined in one call nest as a balanced tree, under the limit of 1000 levels
+moraine_deck_test(region_nesting region_nesting.lua)
 moraine_deck_test(lithostatic lithostatic.lua)
 # Coulomb friction faces against closed forms (slide, stick, stop, side wall)
 # for every strategy of 000 Table 1, two shape functions each

@@ -1,5 +1,6 @@
 #include "core/error.h"
 
+#include <math.h>
 #include <stdarg.h>
 #include <stdio.h>
 
@@ -28,3 +29,12 @@ int mrn_error_code(int code, const char *fmt, ...) {
 const char *mrn_error_message(void) { return error_buffer; }
 
 void mrn_error_clear(void) { error_buffer[0] = '\0'; }
+
+mrn_num_text mrn_num_digits(double v, int digits) {
+  mrn_num_text t;
+  if (isnan(v)) snprintf(t.s, sizeof t.s, "NaN");
+  else snprintf(t.s, sizeof t.s, "%.*g", digits, v);
+  return t;
+}
+
+mrn_num_text mrn_num(double v) { return mrn_num_digits(v, 6); }

@@ -25,4 +25,15 @@ int mrn_error_code(int code, const char *fmt, ...) __attribute__((format(printf,
 const char *mrn_error_message(void);
 void mrn_error_clear(void);
 
+/* A double as messages print it: like %g (or %.<digits>g), except that NaN is
+ * always spelt "NaN" (glibc prints "nan" or "-nan" by the sign bit); the
+ * infinities are "inf" and "-inf". For values that may not be finite:
+ *   mrn_error("dt = %s", mrn_num(dt).s)
+ * The text lives until the end of the full expression that made it. */
+typedef struct mrn_num_text {
+  char s[32];
+} mrn_num_text;
+mrn_num_text mrn_num(double v);
+mrn_num_text mrn_num_digits(double v, int digits);
+
 #endif

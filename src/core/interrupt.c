@@ -5,6 +5,7 @@
 #include <unistd.h>
 
 static volatile sig_atomic_t received = 0;
+static void (*volatile notify)(int sig);
 
 static void on_signal(int sig) {
   if (received) {
@@ -13,6 +14,8 @@ static void on_signal(int sig) {
     _exit(MRN_EXIT_INTERRUPTED);
   }
   received = sig;
+  void (*fn)(int) = notify;
+  if (fn) fn(sig);
 }
 
 void mrn_interrupt_install(void) {
@@ -30,3 +33,5 @@ void mrn_interrupt_install(void) {
 int mrn_interrupt_pending(void) { return (int)received; }
 
 void mrn_interrupt_clear(void) { received = 0; }
+
+void mrn_interrupt_notify(void (*fn)(int sig)) { notify = fn; }

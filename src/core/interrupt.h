@@ -12,5 +12,9 @@ void mrn_interrupt_install(void);
 /* the signal number received (0 when none) */
 int mrn_interrupt_pending(void);
 void mrn_interrupt_clear(void);
+/* fn(sig) is called inside the signal handler at the first signal, after
+ * the flag is set, so that code which does not read the flag can be stopped
+ * (the Lua layer arms a hook there); fn must be async-signal-safe. NULL: none. */
+void mrn_interrupt_notify(void (*fn)(int sig));
 
 #endif

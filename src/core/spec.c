@@ -66,22 +66,30 @@ const char *mrn_suggest_from(const char *const *names, const char *key) {
   return best && close_enough(best, key, best_d ? best_d - 1 : 0) ? best : NULL;
 }
 
+mrn_hint_text mrn_hint(const char *suggestion) {
+  mrn_hint_text t = {""};
+  if (suggestion) snprintf(t.s, sizeof t.s, " (did you mean '%.64s'?)", suggestion);
+  return t;
+}
+
+/* Every non-finite value is refused; a range open at one end or both says
+ * "a finite value" then, so that NaN and inf learn what was expected too. */
 int mrn_spec_check_range(const mrn_spec *spec, double v, char *buf, size_t len) {
-  if (!isfinite(v)) {
-    snprintf(buf, len, "a finite number");
-    return 1;
-  }
+  const int finite = isfinite(v);
   int below = spec->min_open ? !(v > spec->min) : !(v >= spec->min);
   int above = spec->max_open ? !(v < spec->max) : !(v <= spec->max);
-  if (!below && !above) return 0;
-  int has_min = spec->min > -HUGE_VAL, has_max = spec->max < HUGE_VAL;
+  if (finite && !below && !above) return 0;
+  const int has_min = spec->min > -HUGE_VAL, has_max = spec->max < HUGE_VAL;
+  const char *value = finite ? "a value" : "a finite value";
   if (has_min && has_max)
     snprintf(buf, len, "a value in %s%g, %g%s", spec->min_open ? "(" : "[", spec->min, spec->max,
              spec->max_open ? ")" : "]");
   else if (has_min)
-    snprintf(buf, len, "a value %s %g", spec->min_open ? ">" : ">=", spec->min);
+    snprintf(buf, len, "%s %s %g", value, spec->min_open ? ">" : ">=", spec->min);
+  else if (has_max)
+    snprintf(buf, len, "%s %s %g", value, spec->max_open ? "<" : "<=", spec->max);
   else
-    snprintf(buf, len, "a value %s %g", spec->max_open ? "<" : "<=", spec->max);
+    snprintf(buf, len, "a finite value");
   return 1;
 }
 

@@ -46,13 +46,20 @@ typedef struct mrn_spec_group {
 const mrn_spec *mrn_spec_find(const mrn_spec *specs, int count, const char *key);
 /* the closest key by edit distance, or NULL when nothing is close */
 const char *mrn_spec_suggest(const mrn_spec *specs, int count, const char *key);
-/* returns 0 when `value` is inside the spec's range; otherwise writes a
- * description of the expected range into buf and returns 1 */
+/* returns 0 when `value` is a finite number inside the spec's range;
+ * otherwise writes a description of the expected range into buf and returns 1 */
 int mrn_spec_check_range(const mrn_spec *spec, double value, char *buf, size_t len);
 /* Levenshtein distance, exposed for other did-you-mean lists */
 int mrn_edit_distance(const char *a, const char *b);
 /* closest entry of a NULL-terminated list, or NULL */
 const char *mrn_suggest_from(const char *const *names, const char *key);
+/* The one wording of a suggestion: " (did you mean 'NAME'?)" for a name,
+ * "" for NULL. As with mrn_num, the text lives until the end of the full
+ * expression: mrn_error("unknown key '%s'%s", key, mrn_hint(name).s) */
+typedef struct mrn_hint_text {
+  char s[112];
+} mrn_hint_text;
+mrn_hint_text mrn_hint(const char *suggestion);
 
 /* registry of every spec group, for --list-options */
 void mrn_spec_register_group(const char *name, const mrn_spec *specs, int count);

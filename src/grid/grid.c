@@ -3,15 +3,16 @@
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
-#include <unistd.h>
+#include <stdio.h>
 
 #include "core/error.h"
+#include "core/memory.h"
 #include "transfer/blocks.h"
 
 int mrn_grid_init(mrn_grid *g, int dim, const double origin[3], const double size[3], double cell) {
   memset(g, 0, sizeof *g);
   if (dim != 2 && dim != 3) return mrn_error("grid: dimension must be 2 or 3, got %d", dim);
-  if (!(cell > 0) || !isfinite(cell)) return mrn_error("grid: cell size must be > 0, got %g", cell);
+  if (!(cell > 0) || !isfinite(cell)) return mrn_error("grid: cell size must be > 0, got %s", mrn_num(cell).s);
   g->dim = dim;
   g->cell = cell;
   g->inv_cell = 1.0 / cell;
@@ -20,7 +21,7 @@ int mrn_grid_init(mrn_grid *g, int dim, const double origin[3], const double siz
   for (int d = 0; d < 3; d++) {
     if (d < dim) {
       if (!(size[d] > 0) || !isfinite(size[d]))
-        return mrn_error("grid: size[%d] must be > 0, got %g", d + 1, size[d]);
+        return mrn_error("grid: size[%d] must be > 0, got %s", d + 1, mrn_num(size[d]).s);
       double cells = size[d] / cell;
       /* both bounds before rounding: lround of a huge or infinite count is undefined */
       if (cells < 1 - 1e-6)
@@ -47,13 +48,10 @@ int mrn_grid_init(mrn_grid *g, int dim, const double origin[3], const double siz
   total = (long)g->nnode[0] * g->nnode[1] * g->nnode[2];
   if (total > 400000000L) return mrn_error("grid: %ld nodes is more than this build allows (4e8)", total);
   /* a grid whose arrays alone exceed the machine's memory (a cell size typed
-   * a hundred times too small) is refused with the figures, rather than
-   * swapping or being killed by the kernel half-way: 19 doubles per node */
-  double need = (double)total * 19 * sizeof(double);
-  long pages = sysconf(_SC_PHYS_PAGES), page = sysconf(_SC_PAGESIZE);
-  if (pages > 0 && page > 0 && need > (double)pages * (double)page)
-    return mrn_error("grid: %ld nodes need %.1f GB, more than this machine's %.1f GB of memory (is the cell size right?)",
-                     total, need / 1e9, (double)pages * (double)page / 1e9);
+   * a hundred times too small) is refused with the figures: 19 doubles per node */
+  char what[64];
+  snprintf(what, sizeof what, "grid: %ld nodes", total);
+  if (mrn_memory_check(what, (double)total * 19 * sizeof(double), " (is the cell size right?)") != MRN_OK) return MRN_ERR;
   g->n = (size_t)total;
   g->mass = calloc(g->n, sizeof(double));
   g->mom = calloc(3 * g->n, sizeof(double));

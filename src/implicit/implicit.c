@@ -148,7 +148,7 @@ void mrn_implicit_clear_point_forces(mrn_implicit *im) { memset(im->fpt, 0, 3 * 
 
 int mrn_implicit_next_dt(mrn_implicit *im, double *dt) {
   *dt = im->opt.dt > 0 ? im->opt.dt : im->opt.dt_factor * mrn_dt_grid_critical(im->sim); /* 001 Eq. 61 */
-  if (!(*dt > 0) || !isfinite(*dt)) return mrn_error_code(MRN_ERR_STATE, "implicit: time step %g", *dt);
+  if (!(*dt > 0) || !isfinite(*dt)) return mrn_error_code(MRN_ERR_STATE, "implicit: time step %s", mrn_num(*dt).s);
   return 0;
 }
 
@@ -371,12 +371,13 @@ int mrn_implicit_step(mrn_implicit *im, mrn_implicit_history *h) {
   if (!converged) {
     char hist[256] = "";
     for (int q = 0, len = 0; q < h->iterations && len < 200; q++)
-      len += snprintf(hist + len, sizeof hist - (size_t)len, " %.2g", h->err[q]);
+      len += snprintf(hist + len, sizeof hist - (size_t)len, " %s", mrn_num_digits(h->err[q], 2).s);
     char cuts[96] = "";
     if (cut > 0) snprintf(cuts, sizeof cuts, " after %d cutback%s from dt = %g s", cut, cut > 1 ? "s" : "", dt_first);
     return mrn_error_code(MRN_ERR_STATE, "implicit: step %ld (t = %g s, dt = %g s%s): Newton did not converge in %d "
-                                         "iterations (f_err ratios:%s; tol %.3g, max |r| %.3g N)",
-                          sim->step + 1, sim->time, dt, cuts, im->opt.max_iter, hist, im->opt.tol, h->residual);
+                                         "iterations (f_err ratios:%s; tol %.3g, max |r| %s N)",
+                          sim->step + 1, sim->time, dt, cuts, im->opt.max_iter, hist, im->opt.tol,
+                          mrn_num_digits(h->residual, 3).s);
   }
   h->cuts = cut;
   h->rejected_iterations = rejected;

@@ -589,7 +589,7 @@ static int import_data(mrn_sim *sim, const ck_data *d, mrn_material *override, c
   static const double no_offset[3] = {0, 0, 0};
   for (int k = 0; k < 3 && offset; k++)
     if (!isfinite(offset[k]))
-      return mrn_error("import '%s': offset[%d] is %g, expected a finite number", path, k + 1, offset[k]);
+      return mrn_error("import '%s': offset[%d] is %s, expected a finite number", path, k + 1, mrn_num(offset[k]).s);
   import_plan plan;
   int rc = check_landing(sim, d, offset ? offset : no_offset, path);
   if (!rc) rc = make_plan(&plan, sim, d, override, path);

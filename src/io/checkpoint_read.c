@@ -51,7 +51,7 @@ static int require(mrn_h5r *r, int ok, const char *fmt, ...) {
 /* a finite double attribute of at least `min` (pass -HUGE_VAL for any) */
 static void read_finite(mrn_h5r *r, const char *obj, const char *name, double min, double *out) {
   if (mrn_h5r_double(r, obj, name, out)) return;
-  require(r, isfinite(*out), "attribute '%s' of %s is %g, expected a finite number", name, obj, *out);
+  require(r, isfinite(*out), "attribute '%s' of %s is %s, expected a finite number", name, obj, mrn_num(*out).s);
   require(r, *out >= min, "attribute '%s' of %s is %g, expected at least %g", name, obj, *out, min);
 }
 
@@ -146,8 +146,10 @@ static void read_simulation(mrn_h5r *r, ck_data *d) {
 
 static void read_grid_axis(mrn_h5r *r, ck_data *d, int k, const int64_t *ncell) {
   const char *g = "/grid";
-  if (require(r, isfinite(d->origin[k]), "%s: origin[%d] is %g, expected a finite number", g, k + 1, d->origin[k]) ||
-      require(r, d->size[k] > 0 && isfinite(d->size[k]), "%s: size[%d] is %g, expected > 0", g, k + 1, d->size[k]) ||
+  if (require(r, isfinite(d->origin[k]), "%s: origin[%d] is %s, expected a finite number", g, k + 1,
+              mrn_num(d->origin[k]).s) ||
+      require(r, d->size[k] > 0 && isfinite(d->size[k]), "%s: size[%d] is %s, expected > 0", g, k + 1,
+              mrn_num(d->size[k]).s) ||
       require(r, ncell[k] >= 1 && ncell[k] <= 1000000, "%s: ncell[%d] is %lld, expected 1 to 1000000", g, k + 1,
               (long long)ncell[k]))
     return;
@@ -205,7 +207,7 @@ static void read_scheme(mrn_h5r *r, ck_data *d) {
   mrn_h5r_choice(r, g, "stress_update", mrn_stress_update_names(), &su);
   if (!mrn_h5r_double(r, g, "flip_fraction", &s->flip_fraction))
     require(r, s->flip_fraction >= 0.0 && s->flip_fraction <= 1.0,
-            "attribute 'flip_fraction' of %s is %g, expected 0 to 1", g, s->flip_fraction);
+            "attribute 'flip_fraction' of %s is %s, expected 0 to 1", g, mrn_num(s->flip_fraction).s);
   s->grid_velocity = (mrn_grid_velocity_kind)gv;
   s->velocity_update = (mrn_velocity_update_kind)vu;
   s->position_update = (mrn_position_update_kind)pu;
@@ -432,8 +434,8 @@ static void check_finite(mrn_h5r *r, const ck_data *d) {
     for (size_t k = 0; k < count; k++)
       if (!isfinite(d->field[i][k])) {
         size_t p = k / (size_t)f->ncomp;
-        mrn_h5r_fail(r, "/particles/%s: particle %zu (id %lld) has a non-finite value %g (%s)", f->name, p,
-                     (long long)d->id[p], d->field[i][k], f->doc);
+        mrn_h5r_fail(r, "/particles/%s: particle %zu (id %lld) has a non-finite value %s (%s)", f->name, p,
+                     (long long)d->id[p], mrn_num(d->field[i][k]).s, f->doc);
         break;
       }
   }

@@ -179,10 +179,8 @@ int mrn_output_write_vtk(mrn_output *o, const mrn_sim *sim) {
       for (const char *const *b = mrn_output_field_names(); *b; b++) known[k++] = *b;
       for (int u = 0; u < sim->particles.nuser; u++) known[k++] = sim->particles.user_fields[u].name;
       known[k] = NULL;
-      const char *hint = mrn_suggest_from(known, name);
       rc = mrn_error("output field '%s' is neither a built-in particle field nor one registered with "
-                     "sim:particle_field%s%s%s", name, hint ? " (did you mean '" : "", hint ? hint : "",
-                     hint ? "'?)" : "");
+                     "sim:particle_field%s", name, mrn_hint(mrn_suggest_from(known, name)).s);
       break;
     }
     sources[nf] = (field_source){sim, f};

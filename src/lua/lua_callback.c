@@ -2,6 +2,7 @@
 #include <string.h>
 
 #include "core/error.h"
+#include "core/interrupt.h"
 #include "lua/lua_internal.h"
 
 lua_State *mrn_lua_active = NULL;
@@ -26,10 +27,13 @@ void mrn_lua_callback_push(lua_State *L, const mrn_lua_callback *cb) { lua_rawge
 
 int mrn_lua_callback_pcall(lua_State *L, int nargs, int nresults) {
   if (lua_pcall(L, nargs, nresults, 0) != LUA_OK) {
+    /* a signal stopped the callback (lua_interrupt.c): a run ends as on a
+     * signal between steps, with its checkpoint */
+    int code = mrn_interrupt_pending() ? MRN_ERR_INTERRUPTED : MRN_ERR_HOOK;
     const char *msg = lua_tostring(L, -1);
-    mrn_error_code(MRN_ERR_HOOK, "%s", msg ? msg : "error object is not a string");
+    mrn_error_code(code, "%s", msg ? msg : "error object is not a string");
     lua_pop(L, 1);
-    return MRN_ERR_HOOK;
+    return code;
   }
   return MRN_OK;
 }

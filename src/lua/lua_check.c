@@ -1,4 +1,5 @@
 #include "lua/lua_check.h"
+#include "core/error.h"
 #include "lua/moraine_lua.h"
 
 #include <lauxlib.h>
@@ -31,8 +32,7 @@ int mrn_lua_output_error(lua_State *L, const char *where, const char *fmt, ...) 
   va_start(ap, fmt);
   push_message(L, where, fmt, ap);
   va_end(ap);
-  lua_pushvalue(L, -1);
-  lua_setfield(L, LUA_REGISTRYINDEX, OUTPUT_ERROR_KEY);
+  mrn_lua_mark_output_error(L, -1);
   return lua_error(L);
 }
 
@@ -54,12 +54,20 @@ int mrn_lua_take_late_output_failure(void) {
   return failed;
 }
 
-int mrn_lua_exit_status(lua_State *L) {
+int mrn_lua_is_output_error(lua_State *L, int idx) {
+  idx = lua_absindex(L, idx);
   lua_getfield(L, LUA_REGISTRYINDEX, OUTPUT_ERROR_KEY);
-  int output = lua_type(L, -1) == LUA_TSTRING && lua_type(L, -2) == LUA_TSTRING && lua_rawequal(L, -1, -2);
+  int output = lua_type(L, -1) == LUA_TSTRING && lua_type(L, idx) == LUA_TSTRING && lua_rawequal(L, -1, idx);
   lua_pop(L, 1);
-  return output ? MRN_EXIT_OUTPUT : 1;
+  return output;
 }
+
+void mrn_lua_mark_output_error(lua_State *L, int idx) {
+  lua_pushvalue(L, idx);
+  lua_setfield(L, LUA_REGISTRYINDEX, OUTPUT_ERROR_KEY);
+}
+
+int mrn_lua_exit_status(lua_State *L) { return mrn_lua_is_output_error(L, -1) ? MRN_EXIT_OUTPUT : 1; }
 
 static void list_choices(const char *const *choices, char *buf, size_t len) {
   buf[0] = '\0';
@@ -75,10 +83,8 @@ void mrn_lua_check_choice(lua_State *L, const char *where, const char *key, cons
     if (strcmp(choices[i], value) == 0) return;
   char valid[512];
   list_choices(choices, valid, sizeof valid);
-  const char *hint = mrn_suggest_from(choices, value);
-  if (hint)
-    mrn_lua_error(L, where, "%s = '%s' is not valid (did you mean '%s'?); valid: %s", key, value, hint, valid);
-  mrn_lua_error(L, where, "%s = '%s' is not valid; valid: %s", key, value, valid);
+  mrn_lua_error(L, where, "%s = '%s' is not valid%s; valid: %s", key, value, mrn_hint(mrn_suggest_from(choices, value)).s,
+                valid);
 }
 
 static int type_matches(lua_State *L, int idx, mrn_spec_type t) {
@@ -109,7 +115,7 @@ void mrn_lua_check_table(lua_State *L, int idx, const char *where, const mrn_spe
     const mrn_spec *s = mrn_spec_find(specs, count, key);
     if (!s) {
       const char *hint = mrn_spec_suggest(specs, count, key);
-      if (hint) mrn_lua_error(L, where, "unknown key '%s' (did you mean '%s'?)", key, hint);
+      if (hint) mrn_lua_error(L, where, "unknown key '%s'%s", key, mrn_hint(hint).s);
       char valid[1024] = "";
       for (int i = 0; i < count; i++) {
         size_t used = strlen(valid);
@@ -119,7 +125,7 @@ void mrn_lua_check_table(lua_State *L, int idx, const char *where, const mrn_spe
     }
     if (!type_matches(L, -1, s->type)) {
       if (s->type == MRN_SPEC_INTEGER && lua_type(L, -1) == LUA_TNUMBER)
-        mrn_lua_error(L, where, "%s must be a whole number, got %g", key, lua_tonumber(L, -1));
+        mrn_lua_error(L, where, "%s must be a whole number, got %s", key, mrn_num(lua_tonumber(L, -1)).s);
       mrn_lua_error(L, where, "%s must be %s %s, got %s", key,
                     s->type == MRN_SPEC_INTEGER ? "an" : "a", mrn_spec_type_name(s->type), luaL_typename(L, -1));
     }
@@ -147,10 +153,10 @@ static const mrn_spec *spec_or_die(lua_State *L, const char *where, const mrn_sp
   return s;
 }
 
-static void check_range(lua_State *L, const char *where, const mrn_spec *s, double v) {
+void mrn_lua_check_number(lua_State *L, const char *where, const mrn_spec *s, const char *name, double v) {
   char expected[160];
   if (mrn_spec_check_range(s, v, expected, sizeof expected))
-    mrn_lua_error(L, where, "%s = %g is out of range (expected %s%s%s)", s->key, v, expected,
+    mrn_lua_error(L, where, "%s = %s is out of range (expected %s%s%s)", name ? name : s->key, mrn_num(v).s, expected,
                   s->unit && s->unit[0] ? ", in " : "", s->unit && s->unit[0] ? s->unit : "");
 }
 
@@ -159,7 +165,7 @@ double mrn_lua_get_number(lua_State *L, int idx, const char *where, const mrn_sp
   lua_getfield(L, idx, key);
   double v = lua_isnil(L, -1) ? s->def : lua_tonumber(L, -1);
   lua_pop(L, 1);
-  check_range(L, where, s, v);
+  mrn_lua_check_number(L, where, s, NULL, v);
   return v;
 }
 
@@ -168,7 +174,7 @@ long mrn_lua_get_integer(lua_State *L, int idx, const char *where, const mrn_spe
   lua_getfield(L, idx, key);
   double v = lua_isnil(L, -1) ? s->def : lua_tonumber(L, -1);
   lua_pop(L, 1);
-  check_range(L, where, s, v);
+  mrn_lua_check_number(L, where, s, NULL, v);
   return (long)v;
 }
 
@@ -192,26 +198,68 @@ const char *mrn_lua_get_string(lua_State *L, int idx, const char *where, const m
   return v;
 }
 
-int mrn_lua_get_vector(lua_State *L, int idx, const char *where, const char *key, int dim, double *out, int required) {
+void mrn_lua_to_vector(lua_State *L, int idx, const char *where, const mrn_spec *s, int dim, double *out) {
+  idx = lua_absindex(L, idx);
+  if (!lua_istable(L, idx))
+    mrn_lua_error(L, where, "%s must be a table of %d numbers, got %s", s->key, dim, luaL_typename(L, idx));
+  lua_Integer len = luaL_len(L, idx);
+  if (len != dim)
+    mrn_lua_error(L, where, "%s must have %d components (the simulation is %dD), got %lld", s->key, dim, dim,
+                  (long long)len);
+  for (int d = 0; d < dim; d++) {
+    lua_geti(L, idx, d + 1);
+    if (lua_type(L, -1) != LUA_TNUMBER)
+      mrn_lua_error(L, where, "%s[%d] must be a number, got %s", s->key, d + 1, luaL_typename(L, -1));
+    out[d] = lua_tonumber(L, -1);
+    lua_pop(L, 1);
+    char name[80];
+    snprintf(name, sizeof name, "%s[%d]", s->key, d + 1);
+    mrn_lua_check_number(L, where, s, name, out[d]);
+  }
+}
+
+int mrn_lua_get_vector(lua_State *L, int idx, const char *where, const mrn_spec *specs, int count, const char *key,
+                       int dim, double *out, int required) {
+  const mrn_spec *s = spec_or_die(L, where, specs, count, key);
   lua_getfield(L, idx, key);
   if (lua_isnil(L, -1)) {
     lua_pop(L, 1);
     if (required) mrn_lua_error(L, where, "missing required key '%s' (a table of %d numbers)", key, dim);
     return 0;
   }
-  if (!lua_istable(L, -1)) mrn_lua_error(L, where, "%s must be a table of %d numbers, got %s", key, dim, luaL_typename(L, -1));
-  lua_Integer len = luaL_len(L, -1);
-  if (len != dim) mrn_lua_error(L, where, "%s must have %d components (the simulation is %dD), got %lld", key, dim, dim, (long long)len);
-  for (int d = 0; d < dim; d++) {
-    lua_geti(L, -1, d + 1);
-    if (lua_type(L, -1) != LUA_TNUMBER)
-      mrn_lua_error(L, where, "%s[%d] must be a number, got %s", key, d + 1, luaL_typename(L, -1));
-    out[d] = lua_tonumber(L, -1);
-    if (!isfinite(out[d]))
-      mrn_lua_error(L, where, "%s[%d] must be finite, got %s", key, d + 1,
-                    isnan(out[d]) ? "NaN" : out[d] > 0 ? "inf" : "-inf");
-    lua_pop(L, 1);
-  }
+  mrn_lua_to_vector(L, -1, where, s, dim, out);
   lua_pop(L, 1);
   return 1;
+}
+
+int mrn_lua_no_such(lua_State *L, const char *what, const char *kind, const char *key, const char *const *names) {
+  return luaL_error(L, "%s has no %s '%s'%s", what, kind, key, mrn_hint(mrn_suggest_from(names, key)).s);
+}
+
+#define STRICT_MAX_NAMES 256
+
+/* __index(t, key) of a strict table; upvalues: what, kind */
+static int strict_index(lua_State *L) {
+  const char *what = lua_tostring(L, lua_upvalueindex(1)), *kind = lua_tostring(L, lua_upvalueindex(2));
+  const char *key = luaL_tolstring(L, 2, NULL);
+  /* the table's own names; they stay alive in it while the error is built */
+  const char *names[STRICT_MAX_NAMES + 1];
+  int n = 0;
+  lua_pushnil(L);
+  while (n < STRICT_MAX_NAMES && lua_next(L, 1)) {
+    lua_pop(L, 1);
+    if (lua_type(L, -1) == LUA_TSTRING) names[n++] = lua_tostring(L, -1);
+  }
+  names[n] = NULL;
+  return mrn_lua_no_such(L, what, kind, key, names);
+}
+
+void mrn_lua_strict(lua_State *L, int idx, const char *what, const char *kind) {
+  idx = lua_absindex(L, idx);
+  lua_createtable(L, 0, 1);
+  lua_pushstring(L, what);
+  lua_pushstring(L, kind);
+  lua_pushcclosure(L, strict_index, 2);
+  lua_setfield(L, -2, "__index");
+  lua_setmetatable(L, idx);
 }

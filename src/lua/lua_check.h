@@ -25,6 +25,10 @@ int mrn_lua_output_error(lua_State *L, const char *where, const char *fmt, ...) 
 /* the exit status for the error message at the top of the stack: 1, or
  * MRN_EXIT_OUTPUT when it is the last output error raised */
 int mrn_lua_exit_status(lua_State *L);
+/* whether the message at idx is the last output error raised; mark the
+ * message at idx as one (a message extended after it was raised) */
+int mrn_lua_is_output_error(lua_State *L, int idx);
+void mrn_lua_mark_output_error(lua_State *L, int idx);
 /* An output that fails where no error can be raised (the last rewrite of a
  * series when the garbage collector closes a simulation, at the latest when
  * the deck ends): the message is printed at once, and
@@ -45,10 +49,32 @@ int mrn_lua_get_boolean(lua_State *L, int idx, const char *where, const mrn_spec
 /* string value or NULL when absent and not required; checks `choices` with did-you-mean */
 const char *mrn_lua_get_string(lua_State *L, int idx, const char *where, const mrn_spec *specs, int count,
                                const char *key);
-/* reads a vector of exactly `dim` numbers into out (untouched when absent); returns 1 if present */
-int mrn_lua_get_vector(lua_State *L, int idx, const char *where, const char *key, int dim, double *out, int required);
+/* reads the vector `key` of exactly `dim` numbers into out (untouched when
+ * absent), each checked against the key's spec; returns 1 if present */
+int mrn_lua_get_vector(lua_State *L, int idx, const char *where, const mrn_spec *specs, int count, const char *key,
+                       int dim, double *out, int required);
+
+/* The checks a key's getter makes, for values that come without a table
+ * (setters such as sim:set_gravity{...} and sim:set_dt(0.001)): a setter and
+ * the constructor key it changes share one spec, so they refuse the same
+ * values with the same message. */
+/* raise "NAME = V is out of range (expected ...)" unless v is a finite number
+ * in the spec's range; NAME is `name`, or the spec's key when NULL */
+void mrn_lua_check_number(lua_State *L, const char *where, const mrn_spec *spec, const char *name, double v);
+/* the value at idx as a vector of exactly `dim` numbers, each checked by
+ * mrn_lua_check_number and named KEY[i] */
+void mrn_lua_to_vector(lua_State *L, int idx, const char *where, const mrn_spec *spec, int dim, double *out);
 /* 1 when the key is present (not nil) */
 int mrn_lua_has(lua_State *L, int idx, const char *key);
+
+/* Reading a name that the table at idx does not hold (mpm.boxx,
+ * sim:ad_particles) raises "<what> has no <kind> 'boxx' (did you mean
+ * 'box'?)" at the deck line, instead of Lua's "attempt to call a nil value":
+ * the table gets a metatable whose __index suggests the nearest of its keys.
+ * Names present are found as before, without the metatable. */
+void mrn_lua_strict(lua_State *L, int idx, const char *what, const char *kind);
+/* raise "<what> has no <kind> 'key'" with the nearest of names (NULL-terminated) */
+int mrn_lua_no_such(lua_State *L, const char *what, const char *kind, const char *key, const char *const *names);
 
 /* check a string against a NULL-terminated list, raising with did-you-mean and the valid names */
 void mrn_lua_check_choice(lua_State *L, const char *where, const char *key, const char *value,

@@ -78,9 +78,8 @@ static const mrn_user_field *check_user(lua_State *L, const mrn_sim *sim, const 
   const char *names[MRN_USER_FIELDS_MAX + 1];
   for (int k = 0; k < sim->particles.nuser; k++) names[k] = sim->particles.user_fields[k].name;
   names[sim->particles.nuser] = NULL;
-  const char *hint = mrn_suggest_from(names, name);
-  return mrn_lua_error(L, where, "no particle field '%s'%s%s%s (register it with sim:particle_field{name = ...})",
-                       name, hint ? " (did you mean '" : "", hint ? hint : "", hint ? "'?)" : ""),
+  return mrn_lua_error(L, where, "no particle field '%s'%s (register it with sim:particle_field{name = ...})", name,
+                       mrn_hint(mrn_suggest_from(names, name)).s),
          NULL;
 }
 
@@ -120,14 +119,25 @@ static int l_value(lua_State *L) {
   return 1;
 }
 
-/* ncomp numbers at idx: a number (one component) or a table of ncomp numbers */
-static void read_value(lua_State *L, int idx, int ncomp, const char *where, const char *name, double *v) {
+/* component k of field f takes what particle_field{init} takes */
+static void check_component(lua_State *L, const char *where, const mrn_user_field *f, int k, double v) {
+  const mrn_spec *init = mrn_spec_find(particle_field_specs, MRN_COUNT(particle_field_specs), "init");
+  char name[MRN_USER_FIELD_NAME + 16];
+  if (f->ncomp == 1) snprintf(name, sizeof name, "%s", f->name);
+  else snprintf(name, sizeof name, "%s[%d]", f->name, k + 1);
+  mrn_lua_check_number(L, where, init, name, v);
+}
+
+/* the ncomp numbers of field f at idx: a number (one component) or a table of ncomp numbers */
+static void read_value(lua_State *L, int idx, const mrn_user_field *f, const char *where, double *v) {
+  const int ncomp = f->ncomp;
   if (ncomp == 1 && lua_type(L, idx) == LUA_TNUMBER) {
     v[0] = lua_tonumber(L, idx);
   } else if (!lua_istable(L, idx) || (int)luaL_len(L, idx) != ncomp || !mrn_lua_read_numbers(L, idx, ncomp, v)) {
-    mrn_lua_error(L, where, "'%s' takes %s%d number%s, got %s", name, ncomp == 1 ? "" : "a table of ", ncomp,
+    mrn_lua_error(L, where, "'%s' takes %s%d number%s, got %s", f->name, ncomp == 1 ? "" : "a table of ", ncomp,
                   ncomp == 1 ? "" : "s", luaL_typename(L, idx));
   }
+  for (int k = 0; k < ncomp; k++) check_component(L, where, f, k, v[k]);
 }
 
 static int l_set_value(lua_State *L) {
@@ -136,7 +146,7 @@ static int l_set_value(lua_State *L) {
   const mrn_user_field *f = check_user(L, sim, luaL_checkstring(L, 2), where);
   size_t p = check_index(L, sim, 3, where);
   double v[9];
-  read_value(L, 4, f->ncomp, where, f->name, v);
+  read_value(L, 4, f, where, v);
   memcpy(sim->particles.user + p * sim->particles.user_stride + f->offset, v, sizeof(double) * f->ncomp);
   return 0;
 }
@@ -145,18 +155,18 @@ static int l_set_value(lua_State *L) {
 
 /* sim:set_field(name, values): values is a number (every component of every
  * particle), a flat table of n * ncomp numbers (as sim:field gives), or a
- * function(x, y, z, i) returning the particle's value */
+ * function(x, y, z, i) returning the particle's value. The values are all
+ * read and checked before any is stored: a refused call changes nothing. */
 static int l_set_field(lua_State *L) {
   mrn_sim *sim = mrn_lua_check_sim(L, 1);
   const char *where = "set_field()";
   const mrn_user_field *f = check_user(L, sim, luaL_checkstring(L, 2), where);
-  mrn_particles *ps = &sim->particles;
-  const size_t n = ps->n, nc = (size_t)f->ncomp;
-  double *base = ps->user + f->offset;
+  const size_t n = sim->particles.n, nc = (size_t)f->ncomp;
+  double *values = lua_newuserdatauv(L, (n ? n : 1) * nc * sizeof(double), 0); /* freed by the GC, even on error */
   if (lua_type(L, 3) == LUA_TNUMBER) {
     double v = lua_tonumber(L, 3);
-    for (size_t p = 0; p < n; p++)
-      for (size_t k = 0; k < nc; k++) base[p * ps->user_stride + k] = v;
+    for (size_t k = 0; k < nc; k++) check_component(L, where, f, (int)k, v);
+    for (size_t i = 0; i < n * nc; i++) values[i] = v;
   } else if (lua_istable(L, 3)) {
     if ((size_t)luaL_len(L, 3) != n * nc)
       mrn_lua_error(L, where, "'%s' needs %zu values (%zu particles x %zu), the table has %lld", f->name, n * nc, n,
@@ -164,27 +174,34 @@ static int l_set_field(lua_State *L) {
     for (size_t i = 0; i < n * nc; i++) {
       if (lua_geti(L, 3, (lua_Integer)i + 1) != LUA_TNUMBER)
         mrn_lua_error(L, where, "value %zu is %s, expected a number", i + 1, luaL_typename(L, -1));
-      base[(i / nc) * ps->user_stride + i % nc] = lua_tonumber(L, -1);
+      values[i] = lua_tonumber(L, -1);
+      check_component(L, where, f, (int)(i % nc), values[i]);
       lua_pop(L, 1);
     }
   } else if (lua_isfunction(L, 3)) {
     for (size_t p = 0; p < n; p++) {
       lua_pushvalue(L, 3);
-      for (int d = 0; d < 3; d++) lua_pushnumber(L, ps->x[3 * p + d]);
+      for (int d = 0; d < 3; d++) lua_pushnumber(L, sim->particles.x[3 * p + d]);
       lua_pushinteger(L, (lua_Integer)p + 1);
       lua_call(L, 4, (int)nc);
-      double v[9];
+      double *v = values + p * nc;
       if (nc == 1 && lua_type(L, -1) == LUA_TNUMBER) v[0] = lua_tonumber(L, -1);
-      else if (lua_istable(L, -1)) read_value(L, -1, (int)nc, where, f->name, v);
+      else if (lua_istable(L, -1)) read_value(L, -1, f, where, v);
       else if (!mrn_lua_read_numbers(L, -(int)nc, (int)nc, v))
         mrn_lua_error(L, where, "the function gave no %zu number%s for particle %zu", nc, nc == 1 ? "" : "s", p + 1);
+      for (size_t k = 0; k < nc; k++) check_component(L, where, f, (int)k, v[k]);
       lua_pop(L, (int)nc);
-      memcpy(base + p * ps->user_stride, v, sizeof(double) * nc);
     }
+    /* the function may have freed the simulation or changed its particles */
+    sim = mrn_lua_check_sim(L, 1);
+    if (sim->particles.n != n)
+      mrn_lua_error(L, where, "the particles changed (%zu, now %zu) while the function ran", n, sim->particles.n);
   } else {
     mrn_lua_error(L, where, "values must be a number, a table of %zu numbers or a function(x, y, z, i), got %s",
                   n * nc, luaL_typename(L, 3));
   }
+  const mrn_particles *ps = &sim->particles;
+  for (size_t p = 0; p < n; p++) memcpy(ps->user + p * ps->user_stride + f->offset, values + p * nc, sizeof(double) * nc);
   return 0;
 }
 

@@ -271,9 +271,7 @@ static int l_point_force(lua_State *L) {
 
 static int l_load_factor(lua_State *L) {
   mrn_implicit *im = check_implicit(L, 1);
-  double f = luaL_checknumber(L, 2);
-  if (!isfinite(f)) return luaL_error(L, "load_factor(): expected a finite number, got %f", f);
-  mrn_implicit_set_load_factor(im, f);
+  mrn_implicit_set_load_factor(im, mrn_lua_check_load_factor(L, 2));
   return 0;
 }
 
@@ -293,6 +291,7 @@ void mrn_lua_open_implicit(lua_State *L, int module) {
                                      {NULL, NULL}};
   lua_newtable(L);
   luaL_setfuncs(L, methods, 0);
+  mrn_lua_strict(L, -1, "implicit integrator", "method");
   lua_setfield(L, -2, "__index");
   lua_pop(L, 1);
   /* sim:implicit{...} joins the simulation's methods */

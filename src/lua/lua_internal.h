@@ -29,8 +29,19 @@ void mrn_lua_callback_release(void *cb);
 /* push the function onto the active thread's stack */
 void mrn_lua_callback_push(lua_State *L, const mrn_lua_callback *cb);
 /* protected call with nargs arguments already pushed after the function;
- * on error the engine error message is set to the Lua message and MRN_ERR_HOOK returned */
+ * on error the engine error message is set to the Lua message and
+ * MRN_ERR_HOOK returned, or MRN_ERR_INTERRUPTED when a signal stopped it */
 int mrn_lua_callback_pcall(lua_State *L, int nargs, int nresults);
+
+/* SIGINT and SIGTERM stop the Lua code of L too (lua_interrupt.c): the first
+ * signal arms a count hook that raises "interrupted by signal N" at the deck
+ * line running. NULL before L is closed: no thread to stop. */
+void mrn_lua_watch_interrupts(lua_State *L);
+/* After such a signal stopped the deck: writes <name>_interrupted.h5 for each
+ * simulation the deck still holds (with particles, not inside a call of its
+ * own, not already written by its run) and appends what was written to the
+ * message at the top of the stack (lua_sim.c) */
+void mrn_lua_save_interrupted(lua_State *L);
 
 void mrn_lua_open_regions(lua_State *L, int module);
 void mrn_lua_open_materials(lua_State *L, int module);
@@ -63,6 +74,8 @@ void mrn_lua_read_watchdog(lua_State *L, int idx, const char *where, struct mrn_
 struct mrn_sim;
 long mrn_lua_point_force_args(lua_State *L, int idx, const struct mrn_sim *sim, const char *where,
                               int (*set)(void *ctx, size_t p, const double f[3]), void *ctx);
+/* the load factor at idx of sim:load_factor(f) and imp:load_factor(f): a finite number */
+double mrn_lua_check_load_factor(lua_State *L, int idx);
 mrn_material *mrn_lua_check_material(lua_State *L, int idx, const char *where);
 
 /* read a vector of the simulation's dimension from a function's results or a table at idx */

@@ -29,8 +29,9 @@ long mrn_lua_point_force_args(lua_State *L, int idx, const mrn_sim *sim, const c
   mrn_region *r = mrn_lua_check_region(L, -1, where);
   lua_pop(L, 1);
   double f[3] = {0, 0, 0};
-  int has_force = mrn_lua_get_vector(L, idx, where, "force", sim->dim, f, 0);
-  int has_traction = mrn_lua_get_vector(L, idx, where, "traction", sim->dim, f, 0);
+  const int n = MRN_COUNT(force_specs);
+  int has_force = mrn_lua_get_vector(L, idx, where, force_specs, n, "force", sim->dim, f, 0);
+  int has_traction = mrn_lua_get_vector(L, idx, where, force_specs, n, "traction", sim->dim, f, 0);
   if (has_force == has_traction) mrn_lua_error(L, where, "give exactly one of force and traction");
   const mrn_particles *ps = &sim->particles;
   long count = 0;
@@ -54,11 +55,19 @@ static int l_point_force(lua_State *L) {
   return 1;
 }
 
+/* any finite factor: a negative one reverses the loads */
+static const mrn_spec factor_spec = {"factor", MRN_SPEC_NUMBER, 1, 1, -HUGE_VAL, HUGE_VAL, 0, 0, "",
+                                     "multiplies every point force from the next step", NULL};
+
+double mrn_lua_check_load_factor(lua_State *L, int idx) {
+  double f = luaL_checknumber(L, idx);
+  mrn_lua_check_number(L, "load_factor()", &factor_spec, NULL, f);
+  return f;
+}
+
 static int l_load_factor(lua_State *L) {
   mrn_sim *sim = mrn_lua_check_sim(L, 1);
-  double f = luaL_checknumber(L, 2);
-  if (!isfinite(f)) return luaL_error(L, "load_factor(): expected a finite number, got %f", f);
-  mrn_sim_set_load_factor(sim, f);
+  mrn_sim_set_load_factor(sim, mrn_lua_check_load_factor(L, 2));
   return 0;
 }
 

@@ -85,7 +85,13 @@ static int l_material_index(lua_State *L) {
     return 1;
   }
   const mrn_spec *s = mrn_spec_find(m->type->params, m->type->nparams, key);
-  if (!s) return luaL_error(L, "material %s has no parameter '%s'", m->type->name, key);
+  if (!s) {
+    const char *names[MRN_MATERIAL_MAX_PARAMS + 3] = {"name", "model"};
+    for (int i = 0; i < m->type->nparams && i < MRN_MATERIAL_MAX_PARAMS; i++) names[i + 2] = m->type->params[i].key;
+    char what[96];
+    snprintf(what, sizeof what, "material %s", m->type->name);
+    return mrn_lua_no_such(L, what, "parameter", key, names);
+  }
   lua_pushnumber(L, m->param[s - m->type->params]);
   return 1;
 }
@@ -109,5 +115,6 @@ void mrn_lua_open_materials(lua_State *L, int module) {
       mrn_spec_register_group(groups[i], t->params, t->nparams);
     }
   }
+  mrn_lua_strict(L, -1, "mpm.material", "model");
   lua_setfield(L, module, "material");
 }

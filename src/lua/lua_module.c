@@ -10,6 +10,7 @@
 #include <unistd.h>
 
 #include "core/error.h"
+#include "core/interrupt.h"
 #include "core/spec.h"
 #include "io/output.h"
 #include "io/provenance.h"
@@ -127,6 +128,7 @@ int luaopen_moraine(lua_State *L) {
   } else {
     lua_pop(L, 1);
   }
+  mrn_lua_strict(L, module, "mpm", "function"); /* once complete: mpm.boxx names mpm.box */
   return 1;
 }
 
@@ -165,6 +167,8 @@ static int traceback_handler(lua_State *L) {
   const char *msg = lua_tostring(L, 1);
   if (!msg) msg = luaL_tolstring(L, 1, NULL);
   lua_pushstring(L, msg);
+  /* here, before the stack unwinds, the deck still holds its simulations */
+  if (mrn_interrupt_pending()) mrn_lua_save_interrupted(L);
   return 1;
 }
 
@@ -182,6 +186,7 @@ int mrn_lua_run_deck(const char *path, const mrn_deck_options *opt) {
     return 1;
   }
   luaL_openlibs(L);
+  mrn_lua_watch_interrupts(L);
   lua_pushcfunction(L, traceback_handler);
   int handler = lua_gettop(L);
   lua_pushcfunction(L, open_protected);
@@ -213,6 +218,7 @@ int mrn_lua_run_deck(const char *path, const mrn_deck_options *opt) {
     fprintf(stderr, "moraine: %s\n", lua_tostring(L, -1));
     rc = mrn_lua_exit_status(L);
   }
+  mrn_lua_watch_interrupts(NULL);
   lua_close(L); /* closes the simulations still open: their last outputs */
   if (mrn_lua_take_late_output_failure()) rc = MRN_EXIT_OUTPUT;
   mrn_output_forget_files();

@@ -26,18 +26,16 @@ mrn_region *mrn_lua_check_region(lua_State *L, int idx, const char *where) {
 }
 
 /* read a point of 2 or 3 numbers; z = 0 when absent */
-static void get_point(lua_State *L, int idx, const char *where, const char *key, double out[3], int required) {
+static void get_point(lua_State *L, int idx, const char *where, const mrn_spec *specs, int count, const char *key,
+                      double out[3]) {
   out[0] = out[1] = out[2] = 0.0;
   lua_getfield(L, idx, key);
   int present = !lua_isnil(L, -1);
   int n = present && lua_istable(L, -1) ? (int)luaL_len(L, -1) : 0;
   lua_pop(L, 1);
-  if (!present) {
-    if (required) mrn_lua_error(L, where, "missing required key '%s' (a point {x, y} or {x, y, z})", key);
-    return;
-  }
+  if (!present) mrn_lua_error(L, where, "missing required key '%s' (a point {x, y} or {x, y, z})", key);
   if (n != 2 && n != 3) mrn_lua_error(L, where, "%s must be a point {x, y} or {x, y, z}", key);
-  mrn_lua_get_vector(L, idx, where, key, n, out, 1);
+  mrn_lua_get_vector(L, idx, where, specs, count, key, n, out, 1);
 }
 
 static const mrn_spec box_specs[] = {
@@ -49,8 +47,8 @@ static int l_box(lua_State *L) {
   const char *where = "box{}";
   mrn_lua_check_table(L, 1, where, box_specs, MRN_COUNT(box_specs));
   double lo[3], hi[3];
-  get_point(L, 1, where, "min", lo, 1);
-  get_point(L, 1, where, "max", hi, 1);
+  get_point(L, 1, where, box_specs, MRN_COUNT(box_specs), "min", lo);
+  get_point(L, 1, where, box_specs, MRN_COUNT(box_specs), "max", hi);
   push_region(L, mrn_region_box(lo, hi), where);
   return 1;
 }
@@ -64,7 +62,7 @@ static int l_sphere(lua_State *L) {
   const char *where = lua_tostring(L, lua_upvalueindex(1));
   mrn_lua_check_table(L, 1, where, sphere_specs, MRN_COUNT(sphere_specs));
   double c[3];
-  get_point(L, 1, where, "center", c, 1);
+  get_point(L, 1, where, sphere_specs, MRN_COUNT(sphere_specs), "center", c);
   double r = mrn_lua_get_number(L, 1, where, sphere_specs, MRN_COUNT(sphere_specs), "radius");
   push_region(L, mrn_region_sphere(c, r), where);
   return 1;
@@ -80,8 +78,8 @@ static int l_cylinder(lua_State *L) {
   const char *where = "cylinder{}";
   mrn_lua_check_table(L, 1, where, cylinder_specs, MRN_COUNT(cylinder_specs));
   double a[3], b[3];
-  get_point(L, 1, where, "from", a, 1);
-  get_point(L, 1, where, "to", b, 1);
+  get_point(L, 1, where, cylinder_specs, MRN_COUNT(cylinder_specs), "from", a);
+  get_point(L, 1, where, cylinder_specs, MRN_COUNT(cylinder_specs), "to", b);
   double r = mrn_lua_get_number(L, 1, where, cylinder_specs, MRN_COUNT(cylinder_specs), "radius");
   push_region(L, mrn_region_cylinder(a, b, r), where);
   return 1;
@@ -130,22 +128,40 @@ static int l_region(lua_State *L) {
   return 1;
 }
 
+/* The regions at stack indices lo..hi combined as a balanced tree, so that
+ * n regions nest about log2(n) deep instead of n (MRN_REGION_MAX_DEPTH);
+ * union and intersection are associative, and their operands are still
+ * tested from the first. A new reference, or NULL with the message set. */
+static mrn_region *combine_range(lua_State *L, mrn_region_kind kind, int lo, int hi) {
+  if (lo == hi) {
+    mrn_region *r = ((region_box *)lua_touserdata(L, lo))->r;
+    mrn_region_ref(r);
+    return r;
+  }
+  int mid = lo + (hi - lo) / 2;
+  mrn_region *a = combine_range(L, kind, lo, mid);
+  mrn_region *b = a ? combine_range(L, kind, mid + 1, hi) : NULL;
+  mrn_region *c = b ? mrn_region_combine(kind, a, b) : NULL;
+  mrn_region_unref(a);
+  mrn_region_unref(b);
+  return c;
+}
+
 static int combine(lua_State *L, mrn_region_kind kind, const char *where) {
   int n = lua_gettop(L);
   if (n < 2) mrn_lua_error(L, where, "expected at least two regions, got %d", n);
   /* every argument is checked before any reference is taken: an error
    * raised half-way through would leak the partial combination */
   for (int i = 1; i <= n; i++) mrn_lua_check_region(L, i, where);
-  mrn_region *acc = mrn_lua_check_region(L, 1, where);
-  mrn_region_ref(acc);
-  for (int i = 2; i <= n; i++) {
-    mrn_region *next = mrn_lua_check_region(L, i, where);
-    mrn_region *c = mrn_region_combine(kind, acc, next);
-    mrn_region_unref(acc);
-    if (!c) mrn_lua_error(L, where, "%s", mrn_error_message());
-    acc = c;
+  mrn_region *r;
+  if (kind == MRN_REGION_DIFFERENCE) { /* a - b - c ... is a - (b + c + ...) */
+    mrn_region *rest = combine_range(L, MRN_REGION_UNION, 2, n);
+    r = rest ? mrn_region_combine(kind, mrn_lua_check_region(L, 1, where), rest) : NULL;
+    mrn_region_unref(rest);
+  } else {
+    r = combine_range(L, kind, 1, n);
   }
-  push_region(L, acc, where);
+  push_region(L, r, where); /* raises the message when r is NULL */
   return 1;
 }
 
@@ -185,6 +201,7 @@ void mrn_lua_open_regions(lua_State *L, int module) {
   lua_newtable(L);
   lua_pushcfunction(L, l_contains);
   lua_setfield(L, -2, "contains");
+  mrn_lua_strict(L, -1, "region", "method");
   lua_setfield(L, -2, "__index");
   lua_pop(L, 1);
 

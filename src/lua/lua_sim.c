@@ -35,6 +35,7 @@ typedef struct sim_box {
   char name[64];
   const char *busy; /* "run{}" or "add_particles()" while deck callbacks can run inside it */
   long invalid_step; /* > 0: a run stopped keeping an invalid state (a particle outside the grid) at this step */
+  int interrupted;   /* a run stopped on a signal and wrote <name>_interrupted.h5 */
 } sim_box;
 
 static sim_box *check_sim(lua_State *L, int idx) {
@@ -222,9 +223,7 @@ static void read_face(lua_State *L, int value_idx, const char *where, const char
         const char *k = lua_tostring(L, -1);
         if (!mrn_spec_find(face_specs, MRN_COUNT(face_specs), k)) {
           const char *hint = mrn_spec_suggest(face_specs, MRN_COUNT(face_specs), k);
-          lua_pop(L, 1);
-          mrn_lua_error(L, where, "%s: unknown key '%s'%s%s%s", key, k, hint ? " (did you mean '" : "",
-                        hint ? hint : "", hint ? "'?)" : "");
+          mrn_lua_error(L, where, "%s: unknown key '%s'%s", key, k, mrn_hint(hint).s);
         }
       }
     }
@@ -250,7 +249,7 @@ static void read_face(lua_State *L, int value_idx, const char *where, const char
       mrn_lua_error(L, where, "%s: a velocity face needs v, e.g. {\"velocity\", v = {0.001, 0}}", key);
     char sub[96];
     snprintf(sub, sizeof sub, "%s %s", where, key);
-    mrn_lua_get_vector(L, value_idx, sub, "v", dim, f->velocity, 1);
+    mrn_lua_get_vector(L, value_idx, sub, face_specs, MRN_COUNT(face_specs), "v", dim, f->velocity, 1);
   }
 }
 
@@ -348,7 +347,8 @@ static int call_dt_function(void *ctx, mrn_sim *sim, double *dt) {
   (void)sim;
   mrn_lua_callback_push(L, ctx);
   lua_pushvalue(L, 1); /* the simulation userdata is argument 1 of sim:run */
-  if (mrn_lua_callback_pcall(L, 1, 1) != MRN_OK) return MRN_ERR_HOOK;
+  int rc = mrn_lua_callback_pcall(L, 1, 1);
+  if (rc != MRN_OK) return rc;
   int isnum = 0;
   *dt = lua_tonumberx(L, -1, &isnum);
   lua_pop(L, 1);
@@ -360,9 +360,9 @@ static void read_dt(lua_State *L, int idx, const char *where, mrn_sim *sim) {
   idx = lua_absindex(L, idx);
   mrn_dt_policy *p = &sim->dt_policy;
   double min = p->min, max = p->max;
-  if (lua_type(L, idx) == LUA_TNUMBER) {
+  if (lua_type(L, idx) == LUA_TNUMBER) { /* dt = 0.001 is short for dt = {fixed = 0.001} */
     double dt = lua_tonumber(L, idx);
-    if (!(dt > 0) || !isfinite(dt)) mrn_lua_error(L, where, "dt = %g is out of range (expected a value > 0, in s)", dt);
+    mrn_lua_check_number(L, where, mrn_spec_find(dt_specs, MRN_COUNT(dt_specs), "fixed"), "dt", dt);
     mrn_dt_policy_fixed(p, dt);
   } else if (lua_type(L, idx) == LUA_TFUNCTION) {
     mrn_dt_policy_release(p);
@@ -454,11 +454,34 @@ static const char *output_dir(lua_State *L) {
 
 /* ------------------------------------------------------- constructor */
 
+/* Every simulation userdata is a key of this registry table, whose weak keys
+ * do not keep one alive: the simulations a signal finds (save_interrupted). */
+#define SIMULATIONS "moraine.simulations"
+
+static void remember_sim(lua_State *L, int idx) {
+  idx = lua_absindex(L, idx);
+  if (lua_getfield(L, LUA_REGISTRYINDEX, SIMULATIONS) != LUA_TTABLE) {
+    lua_pop(L, 1);
+    lua_newtable(L);
+    lua_createtable(L, 0, 1);
+    lua_pushstring(L, "k");
+    lua_setfield(L, -2, "__mode");
+    lua_setmetatable(L, -2);
+    lua_pushvalue(L, -1);
+    lua_setfield(L, LUA_REGISTRYINDEX, SIMULATIONS);
+  }
+  lua_pushvalue(L, idx);
+  lua_pushboolean(L, 1);
+  lua_rawset(L, -3);
+  lua_pop(L, 1);
+}
+
 /* a new simulation userdata with its outputs ready and no engine simulation yet */
 static sim_box *push_sim_box(lua_State *L) {
   sim_box *b = lua_newuserdatauv(L, sizeof *b, 0);
   memset(b, 0, sizeof *b);
   luaL_setmetatable(L, MRN_LUA_SIM);
+  remember_sim(L, -1);
   mrn_output_init(&b->out, output_dir(L));
   b->out_ready = 1;
   b->thermo_every = 100;
@@ -487,11 +510,9 @@ static int l_simulation(lua_State *L) {
   lua_getfield(L, 1, "grid");
   char gwhere[] = "simulation{} grid";
   mrn_lua_check_table(L, -1, gwhere, grid_specs, MRN_COUNT(grid_specs));
-  mrn_lua_get_vector(L, -1, gwhere, "origin", dim, cfg.origin, 0);
-  mrn_lua_get_vector(L, -1, gwhere, "size", dim, cfg.size, 1);
+  mrn_lua_get_vector(L, -1, gwhere, grid_specs, MRN_COUNT(grid_specs), "origin", dim, cfg.origin, 0);
+  mrn_lua_get_vector(L, -1, gwhere, grid_specs, MRN_COUNT(grid_specs), "size", dim, cfg.size, 1);
   cfg.cell = mrn_lua_get_number(L, -1, gwhere, grid_specs, MRN_COUNT(grid_specs), "cell");
-  for (int d = 0; d < dim; d++)
-    if (!(cfg.size[d] > 0)) mrn_lua_error(L, gwhere, "size[%d] = %g must be > 0", d + 1, cfg.size[d]);
   lua_pop(L, 1);
 
   cfg.shape = MRN_SHAPE_QUADRATIC_BSPLINE;
@@ -500,7 +521,7 @@ static int l_simulation(lua_State *L) {
     mrn_lua_check_choice(L, where, "shape", shape, mrn_shape_names());
     mrn_shape_from_name(shape, &cfg.shape);
   }
-  mrn_lua_get_vector(L, 1, where, "gravity", dim, cfg.gravity, 0);
+  mrn_lua_get_vector(L, 1, where, sim_specs, MRN_COUNT(sim_specs), "gravity", dim, cfg.gravity, 0);
   const char *sb = mrn_lua_get_string(L, 1, where, sim_specs, MRN_COUNT(sim_specs), "shape_boundary");
   cfg.kernel_boundary = MRN_KERNEL_EXTENDED;
   if (sb) {
@@ -664,6 +685,10 @@ static int l_add_particles(lua_State *L) {
   mrn_seed_placement pl = placement && strcmp(placement, "regular") == 0 ? MRN_SEED_REGULAR : MRN_SEED_GAUSS;
   if (region->dim && region->dim != dim)
     mrn_lua_error(L, where, "this region is %dD only, the simulation is %dD", region->dim, dim);
+  /* mpm.box{min = {x, y}, max = {x, y}} is flat at z = 0: it holds no seeding point of a 3D grid */
+  if (dim == 3 && !(region->hi[2] > region->lo[2]))
+    mrn_lua_error(L, where, "the region has no extent along z (z from %g to %g), so it seeds nothing in a 3D "
+                  "simulation (a box needs min and max of 3 components)", region->lo[2], region->hi[2]);
 
   int mat_index = mrn_sim_add_material(b->sim, mat);
   if (mat_index < 0) mrn_lua_error(L, where, "%s", mrn_error_message());
@@ -779,6 +804,7 @@ static int raise_engine_error(lua_State *L, int rc, const char *where, sim_box *
   if (rc == MRN_ERR_STATE || rc == MRN_ERR_INTERRUPTED) {
     char note[1536];
     int written = write_final_state(b, rc == MRN_ERR_STATE ? "failed" : "interrupted", note, sizeof note);
+    b->interrupted = rc == MRN_ERR_INTERRUPTED;
     char message[2048];
     snprintf(message, sizeof message, "%s%s", mrn_error_message(), note);
     /* a state the grid cannot hold (a particle outside it) may not be stepped
@@ -861,12 +887,11 @@ static int l_hook(lua_State *L) {
 
 /* ------------------------------------------------------- changing a simulation */
 
+/* the checks of simulation{gravity}, on the value given alone */
 static int l_set_gravity(lua_State *L) {
   sim_box *b = check_sim(L, 1);
-  luaL_checktype(L, 2, LUA_TTABLE);
   double g[3] = {0, 0, 0};
-  if ((int)luaL_len(L, 2) != b->sim->dim || !mrn_lua_read_numbers(L, 2, b->sim->dim, g))
-    mrn_lua_error(L, "set_gravity()", "expected a table of %d numbers", b->sim->dim);
+  mrn_lua_to_vector(L, 2, "set_gravity()", mrn_spec_find(sim_specs, MRN_COUNT(sim_specs), "gravity"), b->sim->dim, g);
   memcpy(b->sim->gravity, g, sizeof g);
   return 0;
 }
@@ -1068,7 +1093,7 @@ static int l_import(lua_State *L) {
       override = mrn_lua_check_material(L, -1, where);
       lua_pop(L, 1);
     }
-    mrn_lua_get_vector(L, 3, where, "offset", b->sim->dim, offset, 0);
+    mrn_lua_get_vector(L, 3, where, import_specs, MRN_COUNT(import_specs), "offset", b->sim->dim, offset, 0);
   }
   if (path[0] != '/' && access(path, F_OK) != 0) path = output_path(L, b, path);
   long count = 0;
@@ -1231,8 +1256,7 @@ static int l_reduce(lua_State *L) {
     if (!mrn_field_lookup(b->sim, field, &f)) {
       const char *hint = mrn_suggest_from(mrn_output_field_names(), field);
       if (!hint) hint = mrn_suggest_from(extra, field);
-      mrn_lua_error(L, where, "unknown field '%s'%s%s%s (fields: x, y, z and those of sim:field)", field,
-                    hint ? " (did you mean '" : "", hint ? hint : "", hint ? "'?)" : "");
+      mrn_lua_error(L, where, "unknown field '%s'%s (fields: x, y, z and those of sim:field)", field, mrn_hint(hint).s);
     }
     ncomp = f.ncomp;
     double *buf = lua_newuserdatauv(L, (n ? n : 1) * ncomp * sizeof(double), 0);
@@ -1408,6 +1432,63 @@ static int l_tostring(lua_State *L) {
   return 1;
 }
 
+/* A simulation worth a checkpoint when a signal stops the deck: it holds
+ * particles, no call of its own is under way (its state is whole), its run
+ * did not write one already and it is not left on a state its grid cannot
+ * hold (which has <name>_failed.h5). */
+static int wants_checkpoint(const sim_box *b) {
+  return b->sim && b->sim->particles.n > 0 && !b->busy && !b->interrupted && !b->invalid_step;
+}
+
+/* pushes the table name -> true of the names in use by checkpoints already
+ * written, so that a second simulation of the same name does not overwrite one */
+static void push_names_written(lua_State *L, int sims) {
+  lua_newtable(L);
+  lua_pushnil(L);
+  while (lua_next(L, sims)) {
+    lua_pop(L, 1);
+    const sim_box *b = lua_touserdata(L, -1);
+    if (b->sim && b->interrupted) {
+      lua_pushboolean(L, 1);
+      lua_setfield(L, -3, b->name);
+    }
+  }
+}
+
+void mrn_lua_save_interrupted(lua_State *L) {
+  lua_gc(L, LUA_GCCOLLECT, 0); /* the simulations the deck no longer holds go first */
+  if (lua_getfield(L, LUA_REGISTRYINDEX, SIMULATIONS) != LUA_TTABLE) {
+    lua_pop(L, 1);
+    return;
+  }
+  int sims = lua_gettop(L), message = sims - 1;
+  /* an output error stays one when notes are added; a checkpoint that
+   * cannot be written makes it one (exit status 3) */
+  int output = mrn_lua_is_output_error(L, message);
+  push_names_written(L, sims);
+  int written = lua_gettop(L);
+  lua_pushnil(L);
+  while (lua_next(L, sims)) {
+    lua_pop(L, 1);
+    sim_box *b = lua_touserdata(L, -1);
+    if (!wants_checkpoint(b)) continue;
+    int taken = lua_getfield(L, written, b->name) != LUA_TNIL;
+    lua_pop(L, 1);
+    if (taken) continue;
+    char note[1536];
+    if (write_final_state(b, "interrupted", note, sizeof note) != MRN_OK) output = 1;
+    b->interrupted = 1;
+    lua_pushboolean(L, 1);
+    lua_setfield(L, written, b->name);
+    lua_pushvalue(L, message);
+    lua_pushstring(L, note);
+    lua_concat(L, 2);
+    lua_replace(L, message);
+  }
+  lua_pop(L, 2);
+  if (output) mrn_lua_mark_output_error(L, message);
+}
+
 void mrn_lua_open_simulation(lua_State *L, int module) {
   luaL_newmetatable(L, MRN_LUA_SIM);
   static const luaL_Reg meta[] = {{"__gc", l_gc}, {"__close", l_free}, {"__tostring", l_tostring}, {NULL, NULL}};
@@ -1423,6 +1504,7 @@ void mrn_lua_open_simulation(lua_State *L, int module) {
   mrn_lua_add_field_methods(L, lua_gettop(L));
   mrn_lua_add_load_methods(L, lua_gettop(L));
   mrn_lua_add_watchdog_methods(L, lua_gettop(L));
+  mrn_lua_strict(L, -1, "simulation", "method");
   lua_setfield(L, -2, "__index");
   lua_pop(L, 1);
   lua_pushcfunction(L, l_simulation);

@@ -46,12 +46,12 @@ int mrn_material_set(mrn_material *m, const char *key, double value) {
   const mrn_spec *s = mrn_spec_find(m->type->params, m->type->nparams, key);
   if (!s) {
     const char *hint = mrn_spec_suggest(m->type->params, m->type->nparams, key);
-    return mrn_error("material %s: unknown parameter '%s'%s%s%s", m->type->name, key,
-                     hint ? " (did you mean '" : "", hint ? hint : "", hint ? "'?)" : "");
+    return mrn_error("material %s: unknown parameter '%s'%s", m->type->name, key, mrn_hint(hint).s);
   }
   char expected[128];
   if (mrn_spec_check_range(s, value, expected, sizeof expected))
-    return mrn_error("material %s: %s = %g is out of range (expected %s)", m->type->name, key, value, expected);
+    return mrn_error("material %s: %s = %s is out of range (expected %s)", m->type->name, key, mrn_num(value).s,
+                     expected);
   m->param[s - m->type->params] = value;
   return MRN_OK;
 }

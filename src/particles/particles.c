@@ -83,6 +83,12 @@ static int grow(void **ptr, size_t count, size_t elem) {
   return 1;
 }
 
+size_t mrn_particles_record_bytes(const mrn_particles *p) {
+  size_t values = (size_t)p->state_stride + (size_t)p->user_stride;
+  for (int i = 0; i < FIELD_COUNT; i++) values += stride_of(p, i);
+  return values * sizeof(double) + sizeof *p->material + sizeof *p->id;
+}
+
 int mrn_particles_reserve(mrn_particles *p, size_t cap) {
   if (cap <= p->cap) return MRN_OK;
   for (int i = 0; i < FIELD_COUNT; i++)

@@ -79,6 +79,10 @@ long mrn_particles_add(mrn_particles *p, const double x[3], double mass, double 
 int mrn_particles_add_user_field(mrn_particles *p, const char *name, int ncomp, double init, const char *unit);
 /* the registered field `name`, or NULL */
 const mrn_user_field *mrn_particles_user_field(const mrn_particles *p, const char *name);
+/* bytes one particle takes in p's arrays: every field of
+ * MRN_PARTICLE_FIELDS in p's dimension, material and id, history variables
+ * and registered fields */
+size_t mrn_particles_record_bytes(const mrn_particles *p);
 /* remove particles whose keep[i] == 0, preserving order */
 void mrn_particles_compact(mrn_particles *p, const unsigned char *keep);
 

@@ -14,13 +14,14 @@ static mrn_region *region_new(mrn_region_kind kind, const char *what) {
   }
   r->kind = kind;
   r->refcount = 1;
+  r->depth = 1;
   return r;
 }
 
 static int finite3(const double x[3]) { return isfinite(x[0]) && isfinite(x[1]) && isfinite(x[2]); }
 
 static int check_radius(const char *what, double radius) {
-  if (!(radius > 0) || !isfinite(radius)) return mrn_error("%s: radius must be a finite number > 0, got %g", what, radius);
+  if (!(radius > 0) || !isfinite(radius)) return mrn_error("%s: radius must be a finite number > 0, got %s", what, mrn_num(radius).s);
   return MRN_OK;
 }
 
@@ -52,7 +53,8 @@ mrn_region *mrn_region_box(const double lo[3], const double hi[3]) {
 
 mrn_region *mrn_region_sphere(const double center[3], double radius) {
   if (!finite3(center)) {
-    mrn_error("sphere: the center (%g, %g, %g) must be finite", center[0], center[1], center[2]);
+    mrn_error("sphere: the center (%s, %s, %s) must be finite", mrn_num(center[0]).s, mrn_num(center[1]).s,
+              mrn_num(center[2]).s);
     return NULL;
   }
   if (check_radius("sphere", radius) != MRN_OK) return NULL;
@@ -98,7 +100,7 @@ mrn_region *mrn_region_polygon(const double *xy, int nvert) {
   }
   for (int i = 0; i < 2 * nvert; i++)
     if (!isfinite(xy[i])) {
-      mrn_error("polygon: vertex %d has a coordinate that is not finite (%g)", i / 2 + 1, xy[i]);
+      mrn_error("polygon: vertex %d has a coordinate that is not finite (%s)", i / 2 + 1, mrn_num(xy[i]).s);
       return NULL;
     }
   mrn_region *r = region_new(MRN_REGION_POLYGON, "polygon");
@@ -158,9 +160,16 @@ mrn_region *mrn_region_combine(mrn_region_kind kind, mrn_region *a, mrn_region *
     mrn_error("region: cannot combine a %dD region with a %dD region", a->dim, b->dim);
     return NULL;
   }
+  const int depth = 1 + (a->depth > b->depth ? a->depth : b->depth);
+  if (depth > MRN_REGION_MAX_DEPTH) {
+    mrn_error("region: the combination would nest regions %d levels deep, more than the limit of %d (combine many "
+              "regions in one call rather than one at a time)", depth, MRN_REGION_MAX_DEPTH);
+    return NULL;
+  }
   mrn_region *r = region_new(kind, "region");
   if (!r) return NULL;
   r->dim = a->dim ? a->dim : b->dim;
+  r->depth = depth;
   mrn_region_ref(a);
   mrn_region_ref(b);
   r->a = a;

@@ -7,6 +7,14 @@
 #ifndef MRN_PARTICLES_REGION_H
 #define MRN_PARTICLES_REGION_H
 
+/* The deepest nesting of combinations a region may have. Point tests and
+ * the release of a region recurse once per level, a C stack frame each (a
+ * few dozen bytes, a few hundred under the sanitizers): 1000 levels stay far
+ * inside any thread's stack, while a chain of a million overflowed it. A
+ * region that deep already costs 1000 tests per seeded point; combining n
+ * regions in one call nests them about log2(n) deep (lua_region.c). */
+#define MRN_REGION_MAX_DEPTH 1000
+
 typedef enum {
   MRN_REGION_BOX,          /* axis-aligned box min..max */
   MRN_REGION_SPHERE,       /* disk in 2D, sphere in 3D: center, radius */
@@ -26,6 +34,7 @@ typedef struct mrn_region {
   mrn_region_kind kind;
   int refcount;
   int dim;             /* 2, 3, or 0 when valid in both */
+  int depth;           /* 1 for a shape or predicate; 1 + the deeper operand's for a combination */
   double lo[3], hi[3]; /* bounding box; +-HUGE_VAL when unbounded (predicates) */
   double p0[3], p1[3]; /* box: min, max; sphere: center; cylinder: axis end points */
   double radius;
@@ -42,7 +51,8 @@ mrn_region *mrn_region_box(const double lo[3], const double hi[3]);
 mrn_region *mrn_region_sphere(const double center[3], double radius);
 mrn_region *mrn_region_cylinder(const double p0[3], const double p1[3], double radius);
 mrn_region *mrn_region_polygon(const double *xy, int nvert);
-/* composites take new references to a and b */
+/* composites take new references to a and b; refused (NULL, message set)
+ * when they would nest deeper than MRN_REGION_MAX_DEPTH */
 mrn_region *mrn_region_combine(mrn_region_kind kind, mrn_region *a, mrn_region *b);
 mrn_region *mrn_region_predicate_new(mrn_region_predicate fn, void *ctx, void (*release)(void *));
 

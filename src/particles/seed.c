@@ -5,9 +5,6 @@
 
 #include "core/error.h"
 
-/* more candidate points than this means a bounding box far larger than any
- * sensible grid; refuse rather than loop for hours */
-#define SEED_MAX_CANDIDATES 1e9
 /* cell indices beyond this cannot be held exactly in a double */
 #define SEED_MAX_CELL_INDEX 1e15
 
@@ -107,22 +104,21 @@ static int axis_range(seeder *s, int d, int *empty) {
   return MRN_OK;
 }
 
-/* Fills first/last for every axis; *empty when nothing can be seeded. */
-static int cell_ranges(seeder *s, int *empty) {
-  int dim = s->g->dim;
-  double candidates = 1.0;
-  *empty = 0;
+/* Fills first/last for every axis and the number of candidate points in
+ * them (0 when nothing can be seeded). */
+static int cell_ranges(seeder *s, double *candidates) {
+  int dim = s->g->dim, empty = 0;
+  *candidates = 1.0;
   for (int d = 0; d < 3; d++) {
     s->first[d] = s->last[d] = 0;
     if (d >= dim) continue;
-    if (axis_range(s, d, empty) != MRN_OK) return MRN_ERR;
-    if (*empty) return MRN_OK;
-    candidates *= (double)(s->last[d] - s->first[d] + 1) * s->n;
+    if (axis_range(s, d, &empty) != MRN_OK) return MRN_ERR;
+    if (empty) {
+      *candidates = 0.0;
+      return MRN_OK;
+    }
+    *candidates *= (double)(s->last[d] - s->first[d] + 1) * s->n;
   }
-  if (candidates > SEED_MAX_CANDIDATES)
-    return mrn_error("region: its bounding box covers %.3g candidate points (more than %.0e); "
-                     "is the region much larger than the grid?",
-                     candidates, SEED_MAX_CANDIDATES);
   return MRN_OK;
 }
 
@@ -200,24 +196,40 @@ static int seed_cells(seeder *s) {
   return MRN_OK;
 }
 
+static int check_arguments(const mrn_grid *g, const mrn_region *r, int per_axis) {
+  if (per_axis < 1 || per_axis > MRN_SEED_MAX_PER_AXIS)
+    return mrn_error("particles per cell axis must be in 1..%d, got %d", MRN_SEED_MAX_PER_AXIS, per_axis);
+  if (!g || !r) return mrn_error("seed: needs a grid and a region");
+  if (r->dim == 3 && g->dim == 2) return mrn_error("seed: cannot seed a 3D region on a 2D grid");
+  return MRN_OK;
+}
+
+int mrn_seed_candidates(const mrn_grid *g, const mrn_region *r, int per_axis, double *candidates) {
+  *candidates = 0.0;
+  if (check_arguments(g, r, per_axis) != MRN_OK) return MRN_ERR;
+  seeder s = {.g = g, .r = r, .n = per_axis};
+  return cell_ranges(&s, candidates);
+}
+
 /* *count is the number of points the callback accepted (returned 0 for),
  * also when seeding stops early. A NULL callback only counts. */
 int mrn_seed(const mrn_grid *g, const mrn_region *r, int per_axis, mrn_seed_placement placement,
              mrn_seed_callback cb, void *user, long *count) {
   if (count) *count = 0;
-  if (per_axis < 1 || per_axis > MRN_SEED_MAX_PER_AXIS)
-    return mrn_error("particles per cell axis must be in 1..%d, got %d", MRN_SEED_MAX_PER_AXIS, per_axis);
+  if (check_arguments(g, r, per_axis) != MRN_OK) return MRN_ERR;
   if (placement != MRN_SEED_GAUSS && placement != MRN_SEED_REGULAR)
     return mrn_error("seed: unknown placement %d", (int)placement);
-  if (!g || !r) return mrn_error("seed: needs a grid and a region");
-  if (r->dim == 3 && g->dim == 2) return mrn_error("seed: cannot seed a 3D region on a 2D grid");
 
   seeder s = {.g = g, .r = r, .n = per_axis, .cb = cb, .user = user};
   s.cell_volume = g->dim == 3 ? g->cell * g->cell * g->cell : g->cell * g->cell;
   sub_points(&s, placement);
-  int empty;
-  if (cell_ranges(&s, &empty) != MRN_OK) return MRN_ERR;
-  if (empty) return MRN_OK;
+  double candidates;
+  if (cell_ranges(&s, &candidates) != MRN_OK) return MRN_ERR;
+  if (candidates == 0.0) return MRN_OK;
+  if (candidates > MRN_SEED_MAX_CANDIDATES)
+    return mrn_error("region: its bounding box holds %.3g candidate points at %d per cell axis, more than the %.0e "
+                     "one seeding tests (seed the region in parts)",
+                     candidates, per_axis, MRN_SEED_MAX_CANDIDATES);
 
   mrn_error_clear(); /* so a predicate failure without a message can be told apart */
   int rc = seed_cells(&s);

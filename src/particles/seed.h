@@ -16,6 +16,9 @@
 typedef enum { MRN_SEED_GAUSS = 0, MRN_SEED_REGULAR } mrn_seed_placement;
 
 #define MRN_SEED_MAX_PER_AXIS 8
+/* more candidate points than this in one seeding are refused rather than
+ * tested for many minutes (their particles would need hundreds of GB) */
+#define MRN_SEED_MAX_CANDIDATES 1e9
 
 /* called for each seeded point with its volume; return 0 to go on, non-zero
  * to stop seeding (that value is returned by mrn_seed) */
@@ -27,6 +30,12 @@ typedef int (*mrn_seed_callback)(void *user, const double x[3], double volume);
  * *count receives the number of particles seeded. */
 int mrn_seed(const mrn_grid *g, const mrn_region *r, int per_axis, mrn_seed_placement placement,
              mrn_seed_callback cb, void *user, long *count);
+
+/* The candidate points mrn_seed would test: those of the grid cells the
+ * region's bounding box overlaps (0 when none), an upper bound of the
+ * particles it seeds. MRN_ERR for bad arguments or a bounding box far beyond
+ * the grid (message set). */
+int mrn_seed_candidates(const mrn_grid *g, const mrn_region *r, int per_axis, double *candidates);
 
 /* Gauss-Legendre abscissae on [-1, 1] and weights for order n (1..8) */
 void mrn_gauss_legendre(int n, double *points, double *weights);

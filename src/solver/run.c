@@ -112,11 +112,7 @@ int mrn_run(mrn_sim *sim, mrn_output *out, mrn_run_options *opt) {
     }
     if ((rc = mrn_watchdog_check(&sim->watch, sim, sim->step == step_start + 1)) != MRN_OK) break;
     rc = after_step(sim, out, opt, 0);
-    if (rc == MRN_OK && mrn_interrupt_pending()) {
-      rc = mrn_error_code(MRN_ERR_INTERRUPTED, "interrupted by signal %d after step %ld (t = %g s)",
-                          mrn_interrupt_pending(), sim->step, sim->time);
-      break;
-    }
+    if (rc == MRN_OK && mrn_interrupt_pending()) rc = MRN_ERR_INTERRUPTED;
     if (opt->progress) {
       double now = wall_seconds();
       if (now - last_draw > 0.25) {
@@ -127,6 +123,11 @@ int mrn_run(mrn_sim *sim, mrn_output *out, mrn_run_options *opt) {
       }
     }
   }
+  /* seen between steps, or by a hook or dt function the signal stopped:
+   * the state is that of the last whole step */
+  if (rc == MRN_ERR_INTERRUPTED)
+    rc = mrn_error_code(MRN_ERR_INTERRUPTED, "interrupted by signal %d after step %ld (t = %g s)",
+                        mrn_interrupt_pending(), sim->step, sim->time);
   if (opt->progress) {
     draw_progress(1.0, wall_seconds() - wall_start);
     fputc('\n', stderr);

@@ -1,10 +1,14 @@
 #include "solver/simulation.h"
 
 #include <math.h>
+#include <stdint.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "core/error.h"
+#include "core/log.h"
+#include "core/memory.h"
 #include "core/parallel.h"
 
 mrn_sim *mrn_sim_new(const mrn_sim_config *cfg) {
@@ -183,9 +187,10 @@ int mrn_sim_particle_error(const mrn_sim *sim, size_t p) {
   if (!mrn_sim_particle_finite(sim, p))
     return mrn_error_code(MRN_ERR_STATE,
                           "step %ld (t = %g s): particle %lld has a non-finite position, velocity or stress "
-                          "(x = (%g, %g, %g), v = (%g, %g, %g)); the time step %g s is probably above the "
+                          "(x = (%s, %s, %s), v = (%s, %s, %s)); the time step %g s is probably above the "
                           "stability limit",
-                          sim->step, sim->time, (long long)ps->id[p], x[0], x[1], x[2], v[0], v[1], v[2], sim->dt);
+                          sim->step, sim->time, (long long)ps->id[p], mrn_num(x[0]).s, mrn_num(x[1]).s,
+                          mrn_num(x[2]).s, mrn_num(v[0]).s, mrn_num(v[1]).s, mrn_num(v[2]).s, sim->dt);
   return mrn_error_code(MRN_ERR_STATE,
                         "step %ld (t = %g s): particle %lld left the grid at (%g, %g, %g) with velocity "
                         "(%g, %g, %g); the domain is [%g, %g] x [%g, %g]%s",
@@ -223,10 +228,58 @@ static int seed_one(void *user, const double x[3], double volume) {
   return mrn_particles_add(&c->sim->particles, x, c->density * volume, volume, c->material) < 0 ? MRN_ERR : 0;
 }
 
+/* a step sets aside 3 doubles of scratch per particle (step.c), one for the
+ * time-step estimate (timestep.c) and the block ordering, a uint32_t with an
+ * eighth of margin (blocks.c) */
+#define STEP_BYTES_PER_PARTICLE (4 * sizeof(double) + 2 * sizeof(uint32_t))
+
+size_t mrn_sim_particle_bytes(const mrn_sim *sim) {
+  return mrn_particles_record_bytes(&sim->particles) + STEP_BYTES_PER_PARTICLE;
+}
+
+int mrn_sim_seed_estimate(const mrn_sim *sim, const mrn_region *region, int per_axis, mrn_seed_placement placement,
+                          mrn_seed_estimate *e) {
+  const double per_particle = (double)mrn_sim_particle_bytes(sim), there = (double)sim->particles.n;
+  double bound;
+  if (mrn_seed_candidates(&sim->grid, region, per_axis, &bound) != MRN_OK) return MRN_ERR;
+  *e = (mrn_seed_estimate){bound, 0, (there + bound) * per_particle};
+  if (e->bytes <= MRN_SEED_REPORT_BYTES || bound > MRN_SEED_MAX_CANDIDATES) return MRN_OK;
+  long count;
+  if (mrn_seed(&sim->grid, region, per_axis, placement, NULL, NULL, &count) != MRN_OK) return MRN_ERR;
+  *e = (mrn_seed_estimate){(double)count, 1, (there + (double)count) * per_particle};
+  return MRN_OK;
+}
+
+/* the message and the print of a large seeding: refused when it cannot fit */
+static int report_seed(const mrn_sim *sim, const mrn_seed_estimate *e) {
+  char what[160], there[64] = "";
+  if (sim->particles.n) snprintf(there, sizeof there, " and the %zu already there", sim->particles.n);
+  if (e->exact) snprintf(what, sizeof what, "%.0f particles%s", e->count, there);
+  else snprintf(what, sizeof what, "up to %.3g particles (the seeding points of the region's bounding box)%s", e->count,
+                there);
+  if (mrn_memory_check(what, e->bytes, " (fewer particles per cell, a coarser grid or a smaller region?)") != MRN_OK)
+    return MRN_ERR;
+  char machine[64] = "";
+  if (mrn_memory_total() > 0) snprintf(machine, sizeof machine, " (this machine has %.1f GB)", mrn_memory_total() / 1e9);
+  mrn_info("moraine: seeding %s: about %.1f GB of memory%s", what, e->bytes / 1e9, machine);
+  return MRN_OK;
+}
+
+/* a large seeding is refused when it cannot fit, else said; once counted,
+ * the room is reserved (the arrays grow by doubling otherwise, up to twice
+ * what they hold) */
+static int plan_seed(mrn_sim *sim, const mrn_region *region, int per_axis, mrn_seed_placement placement) {
+  mrn_seed_estimate e;
+  if (mrn_sim_seed_estimate(sim, region, per_axis, placement, &e) != MRN_OK) return MRN_ERR;
+  if (e.bytes > MRN_SEED_REPORT_BYTES && report_seed(sim, &e) != MRN_OK) return MRN_ERR;
+  return e.exact ? mrn_particles_reserve(&sim->particles, sim->particles.n + (size_t)e.count) : MRN_OK;
+}
+
 int mrn_sim_seed(mrn_sim *sim, const mrn_region *region, int material_index, int per_axis,
                  mrn_seed_placement placement, size_t *first, long *count) {
   if (material_index < 0 || material_index >= sim->nmaterials)
     return mrn_error("seed: material index %d is not registered", material_index);
+  if (plan_seed(sim, region, per_axis, placement) != MRN_OK) return MRN_ERR;
   seed_ctx c = {sim, material_index, mrn_material_density(sim->materials[material_index])};
   size_t start = sim->particles.n;
   long seeded = 0;

@@ -116,9 +116,30 @@ int mrn_sim_add_material(mrn_sim *sim, mrn_material *m);
 
 /* Seed particles of material `material_index` (from mrn_sim_add_material)
  * from a region; mass = density * volume. On success the new particles are
- * first .. first + count - 1; on failure none is added (message set). */
+ * first .. first + count - 1; on failure none is added (message set).
+ * Before it starts, a seeding whose particles would need more than
+ * MRN_SEED_REPORT_BYTES is estimated (mrn_sim_seed_estimate): refused when
+ * the particles, with those already there, would not fit in the machine's
+ * memory, else the estimate is printed (mrn_info) and the room reserved. */
 int mrn_sim_seed(mrn_sim *sim, const mrn_region *region, int material_index, int per_axis,
                  mrn_seed_placement placement, size_t *first, long *count);
+#define MRN_SEED_REPORT_BYTES 1e9
+
+/* the memory a seeding would take */
+typedef struct mrn_seed_estimate {
+  double count; /* particles it adds: exact, or an upper bound when not `exact` */
+  int exact;
+  double bytes; /* the particles' memory, those already there included */
+} mrn_seed_estimate;
+/* The bound is the candidate points of the region's bounding box
+ * (mrn_seed_candidates); when its particles would need more than
+ * MRN_SEED_REPORT_BYTES and there are at most MRN_SEED_MAX_CANDIDATES of
+ * them, the region is tested at each of them, as the seeding will, for the
+ * exact count (a sphere fills half its box, a slanted cylinder far less). */
+int mrn_sim_seed_estimate(const mrn_sim *sim, const mrn_region *region, int per_axis, mrn_seed_placement placement,
+                          mrn_seed_estimate *e);
+/* bytes per particle: its arrays and what a step sets aside for it */
+size_t mrn_sim_particle_bytes(const mrn_sim *sim);
 /* call after particles were added or removed by other means */
 void mrn_sim_particles_changed(mrn_sim *sim);
 
@@ -129,13 +150,6 @@ int mrn_sim_add_constraint(mrn_sim *sim, const mrn_region *region, unsigned mask
 /* One explicit step with the dt the policy gives. 0, or an error code with a
  * message naming what went wrong (particle, position, step). */
 int mrn_sim_step(mrn_sim *sim);
-/* Seed particles of material `material_index` (from mrn_sim_add_material)
- * from a region; mass = density * volume. On success the new particles are
- * first .. first + count - 1; on failure none is added (message set). */
-int mrn_sim_seed(mrn_sim *sim, const mrn_region *region, int material_index, int per_axis,
-                 mrn_seed_placement placement, size_t *first, long *count);
-/* call after particles were added or removed by other means */
-void mrn_sim_particles_changed(mrn_sim *sim);
 
 /* One explicit step with a given dt (the policy is not asked) */
 int mrn_sim_step_dt(mrn_sim *sim, double dt);

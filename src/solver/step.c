@@ -286,7 +286,7 @@ static int grid_velocity_stage(mrn_sim *sim) {
 }
 
 int mrn_sim_step_dt(mrn_sim *sim, double dt) {
-  if (!(dt > 0.0) || !isfinite(dt)) return mrn_error("step %ld: invalid time step %g", sim->step + 1, dt);
+  if (!(dt > 0.0) || !isfinite(dt)) return mrn_error("step %ld: invalid time step %s", sim->step + 1, mrn_num(dt).s);
   const int dim = sim->dim;
   int rc = MRN_OK;
   sim->dt = dt;

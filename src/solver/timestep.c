@@ -108,8 +108,8 @@ int mrn_dt_compute(mrn_sim *sim, double *out) {
   }
   }
   if (!(dt > 0.0) || !isfinite(dt))
-    return mrn_error_code(MRN_ERR_STATE, "step %ld: the %s time-step policy gave dt = %g (must be > 0)", sim->step + 1,
-                          mrn_dt_kind_name(p->kind), dt);
+    return mrn_error_code(MRN_ERR_STATE, "step %ld: the %s time-step policy gave dt = %s (must be > 0)", sim->step + 1,
+                          mrn_dt_kind_name(p->kind), mrn_num(dt).s);
   if (p->max > 0.0 && dt > p->max) dt = p->max;
   if (p->min > 0.0 && dt < p->min)
     return mrn_error_code(MRN_ERR_STATE,

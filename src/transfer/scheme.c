@@ -116,7 +116,7 @@ int mrn_scheme_validate(const mrn_scheme *s) {
   if (s->velocity_update == MRN_VUPDATE_XPIC && (s->xpic_order < 1 || s->xpic_order > MRN_XPIC_MAX_ORDER))
     return mrn_error("xpic_order = %d is outside 1..%d", s->xpic_order, MRN_XPIC_MAX_ORDER);
   if (!(s->flip_fraction >= 0.0 && s->flip_fraction <= 1.0))
-    return mrn_error("flip_fraction = %g is outside [0, 1]", s->flip_fraction);
+    return mrn_error("flip_fraction = %s is outside [0, 1]", mrn_num(s->flip_fraction).s);
   return MRN_OK;
 }
 

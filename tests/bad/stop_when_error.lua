@@ -1,4 +1,4 @@
--- expect: stop_when_error\.lua:8: attempt to index a nil value \(field 'nothing'\)
+-- expect: stop_when_error\.lua:8: simulation has no method 'nothing'
 -- case: runtime | an error inside stop_when
 local mpm = require "moraine"
 local mat = mpm.material.linear_elastic{ density = 1000, E = 1e6, nu = 0.3 }

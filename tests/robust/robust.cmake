@@ -6,6 +6,8 @@ add_test(NAME robust.disk_full
 add_test(NAME robust.permission COMMAND ${MORAINE_ROBUST_DIR}/permission.sh $<TARGET_FILE:moraine> ${MORAINE_TEST_OUT}/robust_permission)
 set_tests_properties(robust.permission PROPERTIES SKIP_RETURN_CODE 77)
 add_test(NAME robust.sigterm_twice COMMAND ${MORAINE_ROBUST_DIR}/sigterm_twice.sh $<TARGET_FILE:moraine> ${MORAINE_TEST_OUT}/robust_sigterm_twice)
+add_test(NAME robust.sigint_lua COMMAND ${MORAINE_ROBUST_DIR}/sigint_lua.sh $<TARGET_FILE:moraine> ${MORAINE_TEST_OUT}/robust_sigint_lua)
+set_tests_properties(robust.sigint_lua PROPERTIES LABELS robust ENVIRONMENT OMP_WAIT_POLICY=PASSIVE)
 add_test(NAME robust.warnings COMMAND ${MORAINE_ROBUST_DIR}/warnings.sh $<TARGET_FILE:moraine> ${MORAINE_TEST_OUT}/robust_warnings)
 add_test(NAME robust.unstable_cfl
          COMMAND $<TARGET_FILE:moraine> ${MORAINE_ROBUST_DIR}/unstable_cfl.lua -q -o ${MORAINE_TEST_OUT}/robust_unstable_cfl)
