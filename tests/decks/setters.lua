@@ -65,6 +65,15 @@ local cases = {
       call = function(s, v) s:set_damping{ viscous = v } end,
       ctor = function(v) new_sim{ damping = { viscous = v } } end, ctor_where = "simulation{} damping" },
   },
+  set_watchdog = {
+    { where = "set_watchdog() watchdog", key = "energy", finite = "a finite value >= 0", bad = -1, range = "a value >= 0",
+      call = function(s, v) s:set_watchdog{ energy = v } end,
+      ctor = function(v) new_sim{ watchdog = { energy = v } } end, ctor_where = "simulation{} watchdog" },
+    { where = "set_watchdog() watchdog", key = "speed", finite = "a finite value >= 0, in cells", bad = -1,
+      range = "a value >= 0, in cells",
+      call = function(s, v) s:set_watchdog{ speed = v } end,
+      ctor = function(v) new_sim{ watchdog = { speed = v } } end, ctor_where = "simulation{} watchdog" },
+  },
   set_constraint = {
     { where = "set_constraint()", key = "vx", finite = "a finite value, in m/s",
       call = function(s, v) s:set_constraint(1, { vx = v }) end },
