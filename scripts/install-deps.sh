@@ -7,6 +7,7 @@ packages=(
   build-essential cmake pkg-config git
   liblua5.4-dev lua5.4            # the embedded Lua 5.4 (C API) and a stand-alone interpreter
   libhdf5-dev hdf5-tools          # HDF5 (checkpoints, time series) and h5dump
+  zlib1g-dev                      # CRC-32 of the checkpoint checksums
   libsuitesparse-dev              # UMFPACK sparse LU for the implicit integrator
   python3 python3-numpy python3-vtk9 python3-h5py   # the tests read outputs with the real VTK reader
   python3-matplotlib gnuplot-nox  # plots (scripts/moraine-plot uses matplotlib, else gnuplot)

@@ -1,6 +1,6 @@
 /* moraine: CRC-32, the checksum of zlib, gzip and PNG (reflected polynomial
- * 0xEDB88320), so a value moraine stores can be checked with Python's
- * zlib.crc32 or any other implementation of it. It detects every error
+ * 0xEDB88320), computed by zlib: a value moraine stores can be checked with
+ * Python's zlib.crc32 or any other implementation of it. It detects every error
  * confined to 32 consecutive bits, so every damaged byte. */
 #ifndef MRN_CORE_CRC32_H
 #define MRN_CORE_CRC32_H
