@@ -2,6 +2,7 @@
  *
  *   moraine DECK.lua [-o OUTDIR] [--set NAME=VALUE ...] [--threads N] [--quiet] [--safe]
  *   moraine --help | --version | --list-options
+ *   moraine --sign-checkpoint FILE...
  */
 #include <stdio.h>
 #include <stdlib.h>
@@ -15,6 +16,7 @@
 #include "core/log.h"
 #include "core/warn.h"
 #include "io/atomic_file.h"
+#include "io/checkpoint.h"
 #include "io/h5util.h"
 #include "core/spec.h"
 #include "lua/moraine_lua.h"
@@ -39,6 +41,8 @@ static void usage(FILE *f) {
           "                       binary chunks or debug library, and writes only inside\n"
           "                       the output directory (what it does not stop: doc/security.md)\n"
           "  --list-options       print every deck option with its type, default and unit\n"
+          "  --sign-checkpoint FILE...  write the checksum table of checkpoints changed on\n"
+          "                       purpose with another program (h5py) anew (doc/checkpoint-format.md)\n"
           "  -h, --help           this text\n"
           "  -v, --version        the version\n"
           "\n"
@@ -71,6 +75,26 @@ static void list_options(void) {
   }
 }
 
+/* --sign-checkpoint FILE...: 0, or 1 when a file could not be signed */
+static int sign_checkpoints(int count, char **files) {
+  if (count == 0) {
+    fprintf(stderr, "moraine: option '--sign-checkpoint' needs a file\n");
+    return 2;
+  }
+  mrn_h5_quiet hdf5;
+  mrn_h5_silence(&hdf5);
+  int rc = 0;
+  for (int i = 0; i < count; i++) {
+    if (mrn_checkpoint_sign(files[i]) == MRN_OK) {
+      printf("signed '%s'\n", files[i]);
+    } else {
+      fprintf(stderr, "moraine: %s\n", mrn_error_message());
+      rc = 1;
+    }
+  }
+  return rc;
+}
+
 int main(int argc, char **argv) {
   const char *deck = NULL;
   mrn_deck_options opt = {0};
@@ -91,6 +115,9 @@ int main(int argc, char **argv) {
       list_options();
       free(sets);
       return 0;
+    } else if (!strcmp(a, "--sign-checkpoint")) {
+      free(sets);
+      return sign_checkpoints(argc - i - 1, argv + i + 1);
     } else if (!strcmp(a, "--safe")) {
       opt.safe = 1;
     } else if (!strcmp(a, "-q") || !strcmp(a, "--quiet")) {

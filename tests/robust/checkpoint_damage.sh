@@ -9,6 +9,9 @@
 #  - the committed checkpoint of format version 1 (no checksums) loads and
 #    runs, with one warning naming the file;
 #  - the same older file with a damaged byte in its metadata is refused;
+#  - a checkpoint whose vol0 was changed with h5py is refused until
+#    `moraine --sign-checkpoint` writes its table anew, and then loads with
+#    the new values; signing a file without a table is refused;
 #  - nothing of HDF5's own printing reaches the terminal in any of them
 #    (no error stack, no "infinite loop closing library" at exit).
 # usage: checkpoint_damage.sh MORAINE OUTDIR PYTHON
@@ -59,6 +62,18 @@ load "$older" 0 "warning \[checkpoint_no_checksums\]: '.*valid_2d\.h5' has no ch
 [ "$(grep -c 'warning' <<<"$last")" -eq 1 ] || { echo "FAIL: the older file gave $(grep -c warning <<<"$last") warnings"; fail=1; }
 damage "$older" "$out/older_meta.h5" 74
 load "$out/older_meta.h5" 1 "'.*/older_meta\.h5': cannot read the attributes of / \(truncated or corrupted file\)"
+# an edit made on purpose with h5py, then signed
+cp "$out/ck.h5" "$out/ck_edited.h5"
+"$python" -c "import h5py,sys; f=h5py.File(sys.argv[1],'r+'); f['/particles/vol0'][0]*=2; f.close()" "$out/ck_edited.h5"
+load "$out/ck_edited.h5" 1 "'.*/ck_edited\.h5': /particles/vol0 fails its checksum"
+signed=$("$moraine" --sign-checkpoint "$out/ck_edited.h5" 2>&1) ||
+  { echo "FAIL: --sign-checkpoint: $signed"; fail=1; }
+load "$out/ck_edited.h5" 0 "^$"
+"$python" -c "import h5py,sys; f=h5py.File(sys.argv[1],'r'); v=f['/particles/vol0']; sys.exit(0 if v[0]==2*v[1] else 1)" \
+  "$out/ck_edited.h5" || { echo "FAIL: the signed file lost the edit"; fail=1; }
+unsigned=$("$moraine" --sign-checkpoint "$older" 2>&1)
+[ $? -eq 1 ] && grep -q "valid_2d.h5" <<<"$unsigned" ||
+  { echo "FAIL: signing a file without a table: $unsigned"; fail=1; }
 echo "message: $(sed 's/^moraine: //' <<<"$message")"
 if [ $fail -eq 0 ]; then echo "1 passed, 0 failed"; else echo "0 passed, 1 failed"; fi
 exit $fail
