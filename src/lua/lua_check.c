@@ -263,3 +263,15 @@ void mrn_lua_strict(lua_State *L, int idx, const char *what, const char *kind) {
   lua_setfield(L, -2, "__index");
   lua_setmetatable(L, idx);
 }
+
+void mrn_lua_push_weak_table(lua_State *L, const char *name) {
+  if (lua_getfield(L, LUA_REGISTRYINDEX, name) == LUA_TTABLE) return;
+  lua_pop(L, 1);
+  lua_newtable(L);
+  lua_createtable(L, 0, 1);
+  lua_pushstring(L, "k");
+  lua_setfield(L, -2, "__mode");
+  lua_setmetatable(L, -2);
+  lua_pushvalue(L, -1);
+  lua_setfield(L, LUA_REGISTRYINDEX, name);
+}

@@ -28,6 +28,9 @@ int mrn_lua_exit_status(lua_State *L);
 /* whether the message at idx is the last output error raised; mark the
  * message at idx as one (a message extended after it was raised) */
 int mrn_lua_is_output_error(lua_State *L, int idx);
+/* push the registry table `name`, made with weak keys the first time (its
+ * entries go with the objects they describe) */
+void mrn_lua_push_weak_table(lua_State *L, const char *name);
 void mrn_lua_mark_output_error(lua_State *L, int idx);
 /* An output that fails where no error can be raised (the last rewrite of a
  * series when the garbage collector closes a simulation, at the latest when

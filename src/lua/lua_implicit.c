@@ -71,22 +71,11 @@ static mrn_implicit *check_implicit(lua_State *L, int idx) {
 static const char *const INTEGRATORS = "moraine.integrators";
 static const char *const PENDING = "moraine.pending_integrators";
 
-static void push_weak_table(lua_State *L, const char *name) {
-  if (lua_getfield(L, LUA_REGISTRYINDEX, name) == LUA_TTABLE) return;
-  lua_pop(L, 1);
-  lua_newtable(L);
-  lua_createtable(L, 0, 1);
-  lua_pushstring(L, "k");
-  lua_setfield(L, -2, "__mode");
-  lua_setmetatable(L, -2);
-  lua_pushvalue(L, -1);
-  lua_setfield(L, LUA_REGISTRYINDEX, name);
-}
 
 /* table[key at key_idx] = value on top of the stack (popped) */
 static void set_weak(lua_State *L, const char *name, int key_idx) {
   key_idx = lua_absindex(L, key_idx);
-  push_weak_table(L, name);
+  mrn_lua_push_weak_table(L, name);
   lua_pushvalue(L, key_idx);
   lua_pushvalue(L, -3);
   lua_rawset(L, -3);
@@ -96,7 +85,7 @@ static void set_weak(lua_State *L, const char *name, int key_idx) {
 /* pushes table[key at key_idx] (nil when absent) */
 static int get_weak(lua_State *L, const char *name, int key_idx) {
   key_idx = lua_absindex(L, key_idx);
-  push_weak_table(L, name);
+  mrn_lua_push_weak_table(L, name);
   lua_pushvalue(L, key_idx);
   int type = lua_rawget(L, -2);
   lua_remove(L, -2);
