@@ -4,6 +4,7 @@
 #include <stdint.h>
 
 #include "core/error.h"
+#include "core/interrupt.h"
 
 /* cell indices beyond this cannot be held exactly in a double */
 #define SEED_MAX_CELL_INDEX 1e15
@@ -188,11 +189,17 @@ static int seed_cell(seeder *s, const int64_t c[3]) {
 static int seed_cells(seeder *s) {
   int64_t c[3];
   for (c[2] = s->first[2]; c[2] <= s->last[2]; c[2]++)
-    for (c[1] = s->first[1]; c[1] <= s->last[1]; c[1]++)
+    for (c[1] = s->first[1]; c[1] <= s->last[1]; c[1]++) {
+      /* a seeding of up to 1e9 points takes minutes: a signal stops it
+       * between rows of cells (the caller drops what was added) */
+      if (mrn_interrupt_pending())
+        return mrn_error_code(MRN_ERR_INTERRUPTED, "interrupted by signal %d while seeding",
+                              mrn_interrupt_pending());
       for (c[0] = s->first[0]; c[0] <= s->last[0]; c[0]++) {
         int rc = seed_cell(s, c);
         if (rc) return rc;
       }
+    }
   return MRN_OK;
 }
 

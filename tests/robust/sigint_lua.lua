@@ -4,6 +4,8 @@
 --   hook    a hook that loops for ever from step 10 of a run
 --   c_hook  a hook that spends about a second inside one C function from
 --           step 10: the signal waits for it, then stops the run
+--   seed    a seeding of 6.4e7 points (a thin ring in a wide box, counted
+--           before it is seeded): the signal stops it between rows of cells
 local mode = mpm.param("mode", "loop")
 local mat = mpm.material.linear_elastic{ density = 1000, E = 1e6, nu = 0.3 }
 local sim = mpm.simulation{ dim = 2, grid = { size = { 1, 1 }, cell = 0.1 }, thermo = 0, name = mode,
@@ -25,6 +27,12 @@ elseif mode == "hook" then
     while true do end
   end }
   sim:run{ steps = 1000000 }
+elseif mode == "seed" then
+  local wide = mpm.simulation{ dim = 2, grid = { size = { 100, 100 }, cell = 0.1 }, thermo = 0, name = "wide",
+    diagnostics = false, series = false }
+  local ring = mpm.difference(mpm.disk{ center = { 50, 50 }, radius = 49.99 }, mpm.disk{ center = { 50, 50 }, radius = 49.9 })
+  started()
+  wide:add_particles(ring, { material = mat, per_axis = 8 })
 else
   sim:hook{ every_steps = 5, fn = function(s)
     if s:step() < 10 then return end

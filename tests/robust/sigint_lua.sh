@@ -6,7 +6,9 @@
 #  - hook:   a hook looping for ever inside a run: the run's own message and
 #            checkpoint, after step 10;
 #  - c_hook: a hook inside a slow C function: the signal waits for the C
-#            function to return, then stops the run as above.
+#            function to return, then stops the run as above;
+#  - seed:   a seeding of 6.4e7 points stops between rows of cells, adding no
+#            particle, and the deck's other simulation is saved.
 # Each deck must end within 10 s of the signal (it never ends by itself).
 # case: signals | SIGINT while a deck runs an endless Lua loop: stopped at its line, checkpoint, exit 130
 # expect: sigint_lua\.lua:[0-9]+: interrupted by signal 2; the state at step 3 is in .*/loop_interrupted\.h5$
@@ -44,6 +46,7 @@ interrupt() {
 expect=$(sed -n 's/^# expect: //p' "$0")
 interrupt loop "$expect"
 interrupt hook "run\{\}: interrupted by signal 2 after step 10 \(t = [0-9.e-]+ s\); the state at step 10 is in .*/hook_interrupted\.h5"
+interrupt seed "add_particles\(\): interrupted by signal 2 while seeding; the state at step 0 is in .*/seed_interrupted\.h5"
 interrupt c_hook "run\{\}: interrupted by signal 2 after step 10 \(t = [0-9.e-]+ s\); the state at step 10 is in .*/c_hook_interrupted\.h5"
 
 # the checkpoints hold the states named, and a run goes on from the first
