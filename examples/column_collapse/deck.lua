@@ -75,23 +75,24 @@ end
 local rows = {}
 for _, r in ipairs(results) do
   local l = collapse.lube(r.aspect_ratio)
-  rows[#rows + 1] = { r.aspect_ratio, r.strategy, r.runout, r.L_x, r.height, r.t_rest or "", r.t_rest_tilde or "",
+  rows[#rows + 1] = { r.aspect_ratio, r.strategy, r.runout, r.runout_mass, r.runout_connected, r.L_x, r.height, r.t_rest or "", r.t_rest_tilde or "",
                       r.t_final_Lx or "", r.ek_peak, r.ek_final, r.dEp_stable, r.W_MPM, r.W_MPM_ratio, r.eps_D_max,
                       r.at_wall and 1 or 0, l.runout_low, l.runout_high, l.height }
 end
-local summary = collapse.write_csv("summary.csv", { "aspect_ratio", "strategy", "L_tilde", "L_x", "H_f_over_L",
+local summary = collapse.write_csv("summary.csv", { "aspect_ratio", "strategy", "L_tilde", "L_tilde_mass",
+  "L_tilde_connected", "L_x", "H_f_over_L",
   "t_rest", "t_rest_tilde", "t_final_Lx", "E_k_peak", "E_k_final", "dEp_stable", "W_MPM", "W_MPM_ratio",
   "eps_D_max", "at_wall", "lube_L_tilde_low", "lube_L_tilde_high", "lube_H_f_over_L" }, rows)
 
 print("")
-print(string.format("%-5s %-9s %7s %14s %9s %9s %11s", "AR", "strategy", "L~", "Lube 2005", "t_rest", "t~_rest",
-                    "|W_MPM|/dEp"))
+print(string.format("%-5s %-9s %7s %7s %7s %14s %9s %9s %11s", "AR", "strategy", "L~", "bulk", "conn.", "Lube 2005",
+                    "t_rest", "t~_rest", "|W_MPM|/dEp"))
 for _, r in ipairs(results) do
   local l = collapse.lube(r.aspect_ratio)
   local lube = l.runout_low == l.runout_high and string.format("%.2f", l.runout_low)
                or string.format("%.2f-%.2f", l.runout_low, l.runout_high)
-  print(string.format("%-5g %-9s %6.2f%s %14s %9s %9s %11.2e", r.aspect_ratio, r.strategy, r.runout,
-                      r.at_wall and "*" or " ", lube, r.t_rest and string.format("%.2f s", r.t_rest) or "-",
+  print(string.format("%-5g %-9s %6.2f%s %7.2f %7.2f %14s %9s %9s %11.2e", r.aspect_ratio, r.strategy, r.runout,
+                      r.at_wall and "*" or " ", r.runout_mass, r.runout_connected, lube, r.t_rest and string.format("%.2f s", r.t_rest) or "-",
                       r.t_rest_tilde and string.format("%.2f", r.t_rest_tilde) or "-", r.W_MPM_ratio or 0))
 end
 -- one machine-readable line per run (lua/moraine/results.lua): the final L~
@@ -105,6 +106,13 @@ for _, r in ipairs(results) do
                       value = r.runout, reference = l.runout, rtol = 0.2 + 0.5 * (l.runout_high - l.runout_low) / l.runout,
                       asserted = false, aspect_ratio = r.aspect_ratio, strategy = r.strategy,
                       lube_low = l.runout_low, lube_high = l.runout_high, t_rest = r.t_rest, at_wall = r.at_wall }
+  -- the bulk of the deposit, behind the tail along the floor that Eq. 70 counts
+  results_out.record{ id = string.format("column_collapse_lube.%s_AR%g_bulk", r.strategy, r.aspect_ratio),
+                      what = string.format("%s AR = %g: L~ of 95 %% of the mass (collapse.bulk_fronts)", r.strategy,
+                                           r.aspect_ratio),
+                      value = r.runout_mass, reference = l.runout,
+                      rtol = 0.2 + 0.5 * (l.runout_high - l.runout_low) / l.runout, asserted = false,
+                      connected = r.runout_connected }
 end
 local capped = false
 for _, r in ipairs(results) do capped = capped or r.at_wall end

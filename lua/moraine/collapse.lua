@@ -68,6 +68,7 @@ local DEFAULTS = {
   stop_at_rest = false,        -- end the collapse once at rest for rest_hold seconds
   rest_fraction = 0.05,        -- "at rest": E_k below this fraction of its peak
   rest_hold = 0.25,            -- s
+  bulk_fraction = 0.95,        -- the mass fraction behind the bulk front (runout_mass)
   sample_every = 0.01,         -- s, the series sampling interval
   name = false,                -- prefix of the files; default AR<ar>_<strategy>
   csv = true,                  -- write <name>_series.csv
@@ -98,6 +99,9 @@ local function check_options(opts)
   if type(ar) ~= "number" or not (ar > 0) then
     error("collapse.run: aspect_ratio (initial height / width) must be a number > 0", 3)
   end
+  if type(o.bulk_fraction) ~= "number" or not (o.bulk_fraction > 0 and o.bulk_fraction <= 1) then
+    error("collapse.run: bulk_fraction must be a number in (0, 1]", 3)
+  end
   for _, k in ipairs{ "width", "cell", "a_tau", "g", "sample_every", "width_factor" } do
     if type(o[k]) ~= "number" or not (o[k] > 0) then error("collapse.run: " .. k .. " must be a number > 0", 3) end
   end
@@ -116,6 +120,29 @@ end
 -- counting every cell that holds a particle; the left wall is at x = 0.
 function M.Lx(max_x, cell)
   return math.floor(max_x / cell + 1) * cell
+end
+
+--- Two fronts of the bulk of a deposit, beside Eq. 70's furthest particle,
+-- which a tail of single particles sliding along the floor sets: the x below
+-- which `fraction` of the mass lies, and the end of the material connected to
+-- the left wall at x = 0, the left side of the first cell column without a
+-- particle. xs and ms: the particles' x and masses (arrays of one length).
+function M.bulk_fronts(xs, ms, cell, fraction)
+  local order, total, occupied = {}, 0, {}
+  for i = 1, #xs do
+    order[i] = i
+    total = total + ms[i]
+    occupied[math.floor(xs[i] / cell)] = true
+  end
+  table.sort(order, function(a, b) return xs[a] < xs[b] end)
+  local x_mass, sum = xs[order[#order]], 0
+  for _, i in ipairs(order) do
+    sum = sum + ms[i]
+    if sum >= fraction * total * (1 - 1e-12) then x_mass = xs[i]; break end
+  end
+  local c = 0
+  while occupied[c] do c = c + 1 end
+  return x_mass, c * cell
 end
 
 --- t~ = t / sqrt(AR L_x^init / g) (000, Eq. 73).
@@ -260,6 +287,10 @@ local SERIES_HEADER = { "time", "t_tilde", "max_x", "L_x", "d_r", "L_tilde", "he
 --   runout       final L~ (000, Eq. 72)
 --   L_x, d_r     final column width and runout, m (000, Eqs. 70-71)
 --   L_x_init     initial column width by Eq. 70, m
+--   runout_mass  L~ of the bulk: Eq. 70 applied to the x below which
+--                bulk_fraction of the mass lies instead of the furthest particle
+--   runout_connected  L~ of the deposit connected to the left wall (up to the
+--                first cell column without a particle); see M.bulk_fronts
 --   height       final height of the column / width
 --   at_wall      true when the front reached the last cell before the right
 --                wall: the runout is then capped by the grid
@@ -402,6 +433,13 @@ function M.run(opts)
     if cols.L_x[j] ~= result.L_x then break end
     result.t_final_Lx = cols.time[j]
   end
+  do
+    local u, mass, xs = sim:field("displacement"), sim:field("mass"), {}
+    for i = 1, n do xs[i] = base[2 * i - 1] + u[3 * i - 2] end
+    local x_mass, x_conn = M.bulk_fronts(xs, mass, l, o.bulk_fraction)
+    result.runout_mass = (M.Lx(x_mass, l) - Lx0) / Lx0
+    result.runout_connected = (x_conn - Lx0) / Lx0
+  end
   result.dEp_stable = math.abs((e1.gravity + e1.elastic) - (e0.gravity + e0.elastic))
   result.W_MPM = e1.mpm_error
   result.W_MPM_ratio = result.dEp_stable > 0 and math.abs(e1.mpm_error) / result.dEp_stable or nil
@@ -447,9 +485,9 @@ end
 
 --- A one-line summary of a result.
 function M.summary(r)
-  return string.format("AR %-4g %-8s L~ = %.2f (L_x = %.2f m)  t_rest = %s s (t~ %s)  |W_MPM|/|dEp| = %.2e  " ..
-                       "dEp = %.4g J/m  H_f/L = %.2f",
-                       r.aspect_ratio, r.strategy, r.runout, r.L_x,
+  return string.format("AR %-4g %-8s L~ = %.2f (L_x = %.2f m; bulk %.2f, connected %.2f)  t_rest = %s s (t~ %s)  " ..
+                       "|W_MPM|/|dEp| = %.2e  dEp = %.4g J/m  H_f/L = %.2f",
+                       r.aspect_ratio, r.strategy, r.runout, r.L_x, r.runout_mass, r.runout_connected,
                        r.t_rest and string.format("%.2f", r.t_rest) or "-",
                        r.t_rest_tilde and string.format("%.2f", r.t_rest_tilde) or "-",
                        r.W_MPM_ratio or 0, r.dEp_stable, r.height)

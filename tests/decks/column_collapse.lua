@@ -19,6 +19,11 @@
 --     PIC's front at t~ = 15 has advanced less than FLIP's at t~ = 1.5;
 --  5. the final normalised runout L~ (000, Eq. 72) is above Lube et al.'s
 --     experimental 1.2 and the front stays off the right wall.
+--     The bulk of the deposit (collapse.bulk_fronts: 95 % of the mass, and
+--     the material connected to the left wall) ends far behind the furthest
+--     particle, which a one-particle-thick tail along the floor sets: both
+--     within 20 % of Lube et al.'s 1.2 a (doc/validation.md,
+--     column_collapse_lube); bulk_fronts itself on a hand-made deposit;
 --  6. settling without damping (000 §5.2, Fig. 11): FLIP reaches the same
 --     peak E_k at a_tau and a_tau / 4 (1 %) and keeps oscillating; PIC damps
 --     it, more strongly with the smaller step (peak E_k halved at least).
@@ -27,8 +32,9 @@
 -- spreading length only relative to other results: at AR = 1 "approximately
 -- 38% higher" than Crosta et al.'s (2009) FEM, and the glass-bead experiments
 -- of Lajeunesse et al. (2005) "less wide than the MPM ones, more precisely by
--- 34% for AR = 3", about 5 % at AR = 0.6. moraine's runout is longer than
--- that implies (doc/validation.md, column_collapse_lube); the deck prints L~.
+-- 34% for AR = 3", about 5 % at AR = 0.6. By Eq. 70 moraine's runout is
+-- longer than that implies at AR = 0.6 (doc/validation.md,
+-- column_collapse_lube); the deck prints L~.
 --
 -- --set full=true adds (about a minute of CPU): AR = 0.6, 2.4 and 3 with FLIP
 -- and AFLIP (at rest, FLIP's |W_MPM| < 1 %, AFLIP not wider than FLIP), FLIP at
@@ -59,6 +65,24 @@ T.expect{ id = "column_collapse.W_MPM", what = "FLIP AR = 1: |W_MPM| against |dE
 local lube = collapse.lube(1)
 T.check(flip.runout > lube.runout, "FLIP: L~ = %.2f is not above Lube et al.'s %.2f", flip.runout, lube.runout)
 T.check(not flip.at_wall, "FLIP: the front reached the right wall (max x = %.3f m)", flip.max_x)
+-- the bulk fronts: first on a hand-made deposit (cells of 0.1 m: particles
+-- in columns 0, 1, 2 and 5, the last one 10 % of the mass), then the collapse
+do
+  local x_mass, x_conn = collapse.bulk_fronts({ 0.05, 0.25, 0.15, 0.55, 0.12 }, { 3, 3, 2, 1, 1 }, 0.1, 0.9)
+  T.close(x_mass, 0.25, 1e-12, "bulk_fronts: x below which 90 % of the mass lies")
+  T.close(x_conn, 0.3, 1e-12, "bulk_fronts: end of the material connected to x = 0")
+  x_mass = collapse.bulk_fronts({ 0.05, 0.55 }, { 1, 1 }, 0.1, 1)
+  T.close(x_mass, 0.55, 1e-12, "bulk_fronts: fraction 1 gives the furthest particle")
+end
+print(string.format("FLIP AR = 1 bulk: L~ = %.2f (95 %% of the mass), %.2f (connected); furthest particle %.2f",
+                    flip.runout_mass, flip.runout_connected, flip.runout))
+T.check(flip.runout_mass <= flip.runout and flip.runout_connected <= flip.runout,
+        "FLIP: a bulk front (%.2f, %.2f) beyond the furthest particle's L~ %.2f", flip.runout_mass,
+        flip.runout_connected, flip.runout)
+T.expect{ id = "column_collapse.bulk_mass", what = "FLIP AR = 1: L~ of 95 % of the mass against Lube et al.'s 1.2 a",
+          value = flip.runout_mass, reference = lube.runout, rtol = 0.2 }
+T.expect{ id = "column_collapse.bulk_connected", what = "FLIP AR = 1: L~ of the deposit connected to the wall",
+          value = flip.runout_connected, reference = lube.runout, rtol = 0.2 }
 print(string.format("FLIP AR = 1: L~ = %.2f (L_x = %.2f m); Lube et al. 2005: %.2f; " ..
                     "rest at %.2f s (t~ = %.2f; Lube: ~3), final L_x reached at %.2f s",
                     flip.runout, flip.L_x, lube.runout, flip.t_rest, flip.t_rest_tilde, flip.t_final_Lx))
