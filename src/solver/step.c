@@ -21,7 +21,7 @@
 #include "solver/point_force.h"
 #include "solver/simulation.h"
 #include "solver/update.h"
-#include "transfer/blocks.h"
+#include "grid/active.h"
 #include "transfer/kernels.h"
 #include "transfer/profile.h"
 #include "transfer/xpic.h"
@@ -275,20 +275,68 @@ static void delete_leaving(mrn_sim *sim, const unsigned char *keep) {
 }
 
 /* grid velocity from the particles, and XPIC's smoothed velocity when needed */
-static int grid_velocity_stage(mrn_sim *sim) {
+static int grid_velocity_stage(mrn_sim *sim, mrn_transfer *tr) {
   grid_velocity(sim);
   if (sim->scheme.velocity_update == MRN_VUPDATE_XPIC) {
     double *ps = scratch(sim, 3 * sim->particles.n);
     if (!ps && sim->particles.n) return mrn_error("step: out of memory");
-    mrn_xpic_smooth(sim, ps);
+    mrn_xpic_smooth(tr, ps);
+  }
+  return MRN_OK;
+}
+
+/* The stages of the step by stress update scheme, on the step's transfer
+ * context; *after is the end-of-step pass G2P ran on each chunk, or NULL when
+ * the end of the step is still to do (end_bad: what it rejected first). */
+static int step_stages(mrn_sim *sim, mrn_transfer *tr, double dt, const mrn_particle_pass **after, long *end_bad) {
+  int rc = MRN_OK;
+  switch (sim->scheme.stress_update) {
+  case MRN_STRESS_USF:
+    mrn_p2g(tr, 1, 0);
+    if ((rc = grid_velocity_stage(sim, tr))) return rc;
+    if ((rc = mrn_update_then_force(sim, tr, sim->grid.vel, dt))) return rc;
+    grid_update(sim, dt);
+    mrn_g2p_then(tr, dt, NULL, NULL, *after, end_bad);
+    break;
+  case MRN_STRESS_USL:
+    mrn_p2g(tr, 1, 1);
+    if ((rc = grid_velocity_stage(sim, tr))) return rc;
+    grid_update(sim, dt);
+    if ((rc = mrn_update_with_g2p(sim, tr, dt, dt, *after, end_bad))) return rc; /* G2P, grad v from V~ */
+    break;
+  case MRN_STRESS_USAVG:
+    /* half the strain increment from V^i before the forces, half from V~^i
+     * after the motion: two constitutive calls per step (000 §3.4) */
+    mrn_p2g(tr, 1, 0);
+    if ((rc = grid_velocity_stage(sim, tr))) return rc;
+    if ((rc = mrn_update_then_force(sim, tr, sim->grid.vel, 0.5 * dt))) return rc;
+    grid_update(sim, dt);
+    if ((rc = mrn_update_with_g2p(sim, tr, dt, 0.5 * dt, *after, end_bad))) return rc; /* G2P, grad v from V~ */
+    break;
+  case MRN_STRESS_MUSL: {
+    mrn_p2g(tr, 1, 1);
+    if ((rc = grid_velocity_stage(sim, tr))) return rc;
+    grid_update(sim, dt);
+    /* the XPIC smoothing used the scratch; the position increments take it now */
+    double *dx = scratch(sim, 3 * sim->particles.n);
+    if (!dx && sim->particles.n) return mrn_error("step: out of memory");
+    mrn_g2p(tr, dt, dx);
+    /* re-map the updated particle momenta (start-of-step positions) */
+    mrn_blocks_reuse(tr->blocks);
+    mrn_p2g(tr, 1, 0);
+    grid_velocity(sim);
+    if ((rc = mrn_update_from_grid(sim, tr, sim->grid.vel, dt))) return rc;
+    mrn_particles *ps = &sim->particles;
+    for (size_t i = 0; i < 3 * ps->n; i++) ps->x[i] += dx[i];
+    *after = NULL; /* the particles moved after G2P */
+    break;
+  }
   }
   return MRN_OK;
 }
 
 int mrn_sim_step_dt(mrn_sim *sim, double dt) {
   if (!(dt > 0.0) || !isfinite(dt)) return mrn_error("step %ld: invalid time step %s", sim->step + 1, mrn_num(dt).s);
-  const int dim = sim->dim;
-  int rc = MRN_OK;
   sim->dt = dt;
   /* the end of the step inside G2P, chunk by chunk (see end_ctx) */
   end_ctx e = end_setup(sim);
@@ -297,48 +345,10 @@ int mrn_sim_step_dt(mrn_sim *sim, double dt) {
   long end_bad = -1;
   mrn_boundary_touch(&sim->boundary, &sim->grid, 0.5 * mrn_shape_support(sim->shape), sim->particles.x,
                      sim->particles.vol0, sim->particles.n);
-  switch (sim->scheme.stress_update) {
-  case MRN_STRESS_USF:
-    mrn_p2g(sim, dim, 1, 0);
-    if ((rc = grid_velocity_stage(sim))) return rc;
-    if ((rc = mrn_update_then_force(sim, sim->grid.vel, dt))) return rc;
-    grid_update(sim, dt);
-    mrn_g2p_then(sim, dim, dt, NULL, NULL, after, &end_bad);
-    break;
-  case MRN_STRESS_USL:
-    mrn_p2g(sim, dim, 1, 1);
-    if ((rc = grid_velocity_stage(sim))) return rc;
-    grid_update(sim, dt);
-    if ((rc = mrn_update_with_g2p(sim, dt, dt, after, &end_bad))) return rc; /* G2P, grad v from V~ */
-    break;
-  case MRN_STRESS_USAVG:
-    /* half the strain increment from V^i before the forces, half from V~^i
-     * after the motion: two constitutive calls per step (000 §3.4) */
-    mrn_p2g(sim, dim, 1, 0);
-    if ((rc = grid_velocity_stage(sim))) return rc;
-    if ((rc = mrn_update_then_force(sim, sim->grid.vel, 0.5 * dt))) return rc;
-    grid_update(sim, dt);
-    if ((rc = mrn_update_with_g2p(sim, dt, 0.5 * dt, after, &end_bad))) return rc; /* G2P, grad v from V~ */
-    break;
-  case MRN_STRESS_MUSL: {
-    mrn_p2g(sim, dim, 1, 1);
-    if ((rc = grid_velocity_stage(sim))) return rc;
-    grid_update(sim, dt);
-    /* the XPIC smoothing used the scratch; the position increments take it now */
-    double *dx = scratch(sim, 3 * sim->particles.n);
-    if (!dx && sim->particles.n) return mrn_error("step: out of memory");
-    mrn_g2p(sim, dim, dt, dx);
-    /* re-map the updated particle momenta (start-of-step positions) */
-    mrn_blocks_reuse(&sim->grid);
-    mrn_p2g(sim, dim, 1, 0);
-    grid_velocity(sim);
-    if ((rc = mrn_update_from_grid(sim, sim->grid.vel, dt))) return rc;
-    mrn_particles *ps = &sim->particles;
-    for (size_t i = 0; i < 3 * ps->n; i++) ps->x[i] += dx[i];
-    after = NULL; /* the particles moved after G2P */
-    break;
-  }
-  }
+  mrn_transfer tr = mrn_sim_transfer(sim);
+  const int rc = step_stages(sim, &tr, dt, &after, &end_bad);
+  mrn_sim_transfer_end(sim, &tr);
+  if (rc) return rc;
   sim->time += dt;
   sim->step++;
   if (!after) return end_of_step(sim);

@@ -20,7 +20,6 @@
 
 #include "core/parallel.h"
 #include "core/tensor.h"
-#include "solver/simulation.h"
 #include "transfer/blocks.h"
 #include "transfer/kernels.h"
 #include "transfer/profile.h"
@@ -30,8 +29,6 @@
 
 /* values stored per particle for F and the affine matrix (particles.h) */
 #define TSTRIDE ((size_t)(DIM * DIM))
-
-static inline mrn_kernel_options KNAME(kernel_options)(const mrn_sim *sim) { return mrn_sim_kernel_options(sim); }
 
 /* support of the fast path for these options, or 0 for the general stencil */
 static inline int KNAME(fast_support)(const mrn_kernel_options *o) {
@@ -490,18 +487,18 @@ static KNAME(p2g_range_fn) KNAME(p2g_pick)(int sup, int momentum, int force, int
 /* time spent sorting inside a P2G, which the profile books apart */
 static inline double KNAME(sort_seconds)(void) { return mrn_profile_seconds ? mrn_profile_seconds[MRN_PHASE_SORT] : 0.0; }
 
-void KNAME(mrn_p2g)(mrn_sim *sim, int momentum, int force) {
+void KNAME(mrn_p2g)(mrn_transfer *tr, int momentum, int force) {
   const double t0 = mrn_phase_begin(), sort0 = KNAME(sort_seconds)();
   if (!momentum && !force) return;
   const unsigned clear = (momentum ? MRN_CLEAR_MASS_MOM : 0u) | (force ? MRN_CLEAR_FORCE : 0u);
-  mrn_blocks *b = mrn_blocks_prepare(sim, clear); /* may reorder the particles */
-  KNAME(p2g_args) ar = {&sim->grid, &sim->particles, KNAME(kernel_options)(sim)};
-  const int affine = sim->scheme.grid_velocity != MRN_VGRID_PLAIN;
+  mrn_blocks *b = mrn_blocks_prepare(tr, clear); /* may reorder the particles */
+  KNAME(p2g_args) ar = {tr->grid, tr->particles, tr->kernel};
+  const int affine = tr->scheme->grid_velocity != MRN_VGRID_PLAIN;
   const KNAME(p2g_range_fn) run = KNAME(p2g_pick)(KNAME(fast_support)(&ar.ko), momentum, force, affine);
   if (!b) {
-    run(&ar, NULL, 0, sim->particles.n);
+    run(&ar, NULL, 0, tr->particles->n);
   } else {
-    const int threads __attribute__((unused)) = !b->dense && sim->particles.n > MRN_OMP_MIN_ITEMS; /* unused without OpenMP */
+    const int threads __attribute__((unused)) = !b->dense && tr->particles->n > MRN_OMP_MIN_ITEMS; /* unused without OpenMP */
 #pragma omp parallel if (threads)
     MRN_FOR_OWN_BLOCKS(b, blk, run(&ar, b->order, b->start[blk], b->start[blk + 1]));
   }
@@ -752,10 +749,10 @@ MRN_INLINE void KNAME(gradient_particle)(const mrn_grid *g, const mrn_particles 
  * outlined loop body sees the constants. Chunks of particles: the gradients
  * of one chunk go to the sink together (see mrn_gradient_sink). */
 #define MRN_GRADIENT_VARIANT(SUP)                                                                     \
-  static long KNAME(gradient_##SUP)(mrn_sim * sim, const mrn_kernel_options *ko, const double *gvel,  \
+  static long KNAME(gradient_##SUP)(const mrn_transfer *tr, const mrn_kernel_options *ko, const double *gvel,  \
                                     const mrn_gradient_sink *sink, double *sink_seconds) {            \
-    const mrn_grid *g = &sim->grid;                                                                   \
-    const mrn_particles *ps = &sim->particles;                                                        \
+    const mrn_grid *g = tr->grid;                                                                   \
+    const mrn_particles *ps = tr->particles;                                                        \
     const mrn_particle_pass *after = NULL;                                                            \
     long *after_bad = NULL;                                                                           \
     (void)after_bad;                                                                                  \
@@ -767,17 +764,17 @@ MRN_GRADIENT_VARIANT(3)
 MRN_GRADIENT_VARIANT(4)
 #undef MRN_GRADIENT_VARIANT
 
-long KNAME(mrn_gradient)(mrn_sim *sim, const double *gvel, const mrn_gradient_sink *sink) {
+long KNAME(mrn_gradient)(mrn_transfer *tr, const double *gvel, const mrn_gradient_sink *sink) {
   const double t0 = mrn_phase_begin();
-  const mrn_kernel_options ko = KNAME(kernel_options)(sim);
+  const mrn_kernel_options ko = tr->kernel;
   double spent = 0.0;
   long bad;
   switch (KNAME(fast_support)(&ko)) {
-  case 3: bad = KNAME(gradient_3)(sim, &ko, gvel, sink, &spent); break;
-  case 4: bad = KNAME(gradient_4)(sim, &ko, gvel, sink, &spent); break;
-  default: bad = KNAME(gradient_0)(sim, &ko, gvel, sink, &spent); break;
+  case 3: bad = KNAME(gradient_3)(tr, &ko, gvel, sink, &spent); break;
+  case 4: bad = KNAME(gradient_4)(tr, &ko, gvel, sink, &spent); break;
+  default: bad = KNAME(gradient_0)(tr, &ko, gvel, sink, &spent); break;
   }
-  mrn_phase_end_split(MRN_PHASE_G2P, sink->phase, t0, spent, sim->particles.n > MRN_OMP_MIN_ITEMS);
+  mrn_phase_end_split(MRN_PHASE_G2P, sink->phase, t0, spent, tr->particles->n > MRN_OMP_MIN_ITEMS);
   return bad;
 }
 
@@ -864,27 +861,27 @@ MRN_UPDATE_FORCE_VARIANT(3)
 MRN_UPDATE_FORCE_VARIANT(4)
 #undef MRN_UPDATE_FORCE_VARIANT
 
-int KNAME(mrn_update_force_fused)(const mrn_sim *sim) {
-  const mrn_kernel_options ko = KNAME(kernel_options)(sim);
+int KNAME(mrn_update_force_fused)(const mrn_transfer *tr) {
+  const mrn_kernel_options ko = tr->kernel;
   if (!KNAME(fast_support)(&ko)) return 0;
   /* In block order the material update reaches F, stress and strain run by
    * run: worth it when the runs are long (particles as seeded, or sorted),
    * not when they are scattered (after a long flow, unsorted: runs of one
    * or two, where the separate passes, in index order, are twice as fast) */
-  const mrn_blocks *b = sim->grid.blocks;
-  return b->np != sim->particles.n || !b->runs || b->np >= MRN_FUSED_MIN_RUN * b->runs;
+  const mrn_blocks *b = tr->blocks;
+  return b->np != tr->particles->n || !b->runs || b->np >= MRN_FUSED_MIN_RUN * b->runs;
 }
 
-long KNAME(mrn_update_force)(mrn_sim *sim, const double *gvel, const mrn_gradient_sink *sink) {
+long KNAME(mrn_update_force)(mrn_transfer *tr, const double *gvel, const mrn_gradient_sink *sink) {
   const double t0 = mrn_phase_begin(), sort0 = KNAME(sort_seconds)();
-  mrn_blocks_reuse(&sim->grid); /* the particles have not moved since the first P2G */
-  const mrn_blocks *b = mrn_blocks_prepare(sim, MRN_CLEAR_FORCE);
-  KNAME(p2g_args) ar = {&sim->grid, &sim->particles, KNAME(kernel_options)(sim)};
+  mrn_blocks_reuse(tr->blocks); /* the particles have not moved since the first P2G */
+  const mrn_blocks *b = mrn_blocks_prepare(tr, MRN_CLEAR_FORCE);
+  KNAME(p2g_args) ar = {tr->grid, tr->particles, tr->kernel};
   double spent = 0.0;
   const long bad = KNAME(fast_support)(&ar.ko) == 3 ? KNAME(update_force_3)(&ar, b, gvel, sink, &spent)
                                                     : KNAME(update_force_4)(&ar, b, gvel, sink, &spent);
   mrn_phase_end_split(MRN_PHASE_P2G, sink->phase, t0 + (KNAME(sort_seconds)() - sort0), spent,
-                      b && !b->dense && sim->particles.n > MRN_OMP_MIN_ITEMS);
+                      b && !b->dense && tr->particles->n > MRN_OMP_MIN_ITEMS);
   return bad;
 }
 
@@ -1049,39 +1046,39 @@ static KNAME(g2p_fn) KNAME(g2p_pick)(int sup, mrn_grid_velocity_kind gv, int fus
   return NULL;
 }
 
-static long KNAME(g2p_any)(mrn_sim *sim, double dt, double *dx, const mrn_gradient_sink *sink,
+static long KNAME(g2p_any)(mrn_transfer *tr, double dt, double *dx, const mrn_gradient_sink *sink,
                            const mrn_particle_pass *after, long *after_bad) {
   const double t0 = mrn_phase_begin();
-  const mrn_kernel_options ko = KNAME(kernel_options)(sim);
+  const mrn_kernel_options ko = tr->kernel;
   /* XPIC's smoothed velocity is gathered by the general form only */
-  const int sup = sim->scheme.velocity_update == MRN_VUPDATE_XPIC ? 0 : KNAME(fast_support)(&ko);
-  const mrn_scheme *sc = &sim->scheme;
+  const int sup = tr->scheme->velocity_update == MRN_VUPDATE_XPIC ? 0 : KNAME(fast_support)(&ko);
+  const mrn_scheme *sc = tr->scheme;
   const mrn_velocity_update_kind vu = sc->velocity_update;
-  KNAME(g2p_args) ar = {&sim->grid, &sim->particles, &ko, dt,
+  KNAME(g2p_args) ar = {tr->grid, tr->particles, &ko, dt,
                         vu == MRN_VUPDATE_FLIP ? 1.0 : vu == MRN_VUPDATE_BLEND ? sc->flip_fraction : 0.0, dx,
-                        vu == MRN_VUPDATE_XPIC ? sim->grid.vel_star : NULL, vu, sc->position_update};
+                        vu == MRN_VUPDATE_XPIC ? tr->grid->vel_star : NULL, vu, sc->position_update};
   /* the change of the grid velocity, only where the update uses it */
   const int dv = ar.X > 0.0 || vu == MRN_VUPDATE_XPIC || sc->position_update == MRN_XUPDATE_XPIC;
   double spent = 0.0;
   const long bad = KNAME(g2p_pick)(sup, sc->grid_velocity, sink != NULL, dv)(&ar, sink, &spent, after, after_bad);
   mrn_phase_end_split(MRN_PHASE_G2P, sink ? sink->phase : MRN_PHASE_G2P, t0, spent,
-                      sim->particles.n > MRN_OMP_MIN_ITEMS);
+                      tr->particles->n > MRN_OMP_MIN_ITEMS);
   return bad;
 }
 
-void KNAME(mrn_g2p)(mrn_sim *sim, double dt, double *dx) { KNAME(g2p_any)(sim, dt, dx, NULL, NULL, NULL); }
+void KNAME(mrn_g2p)(mrn_transfer *tr, double dt, double *dx) { KNAME(g2p_any)(tr, dt, dx, NULL, NULL, NULL); }
 
-long KNAME(mrn_g2p_then)(mrn_sim *sim, double dt, double *dx, const mrn_gradient_sink *sink,
+long KNAME(mrn_g2p_then)(mrn_transfer *tr, double dt, double *dx, const mrn_gradient_sink *sink,
                          const mrn_particle_pass *after, long *after_bad) {
-  return KNAME(g2p_any)(sim, dt, dx, sink, after, after_bad);
+  return KNAME(g2p_any)(tr, dt, dx, sink, after, after_bad);
 }
 
 /* ---- XPIC's projections -------------------------------------------------------------- */
 
-void KNAME(mrn_grid_to_particles)(mrn_sim *sim, const double *gvel, double *pvel) {
-  const mrn_grid *g = &sim->grid;
-  const mrn_particles *ps = &sim->particles;
-  const mrn_kernel_options ko = KNAME(kernel_options)(sim);
+void KNAME(mrn_grid_to_particles)(mrn_transfer *tr, const double *gvel, double *pvel) {
+  const mrn_grid *g = tr->grid;
+  const mrn_particles *ps = tr->particles;
+  const mrn_kernel_options ko = tr->kernel;
   const long n = (long)ps->n;
 #pragma omp parallel for schedule(static) if (n > MRN_OMP_MIN_ITEMS)
   for (long p = 0; p < n; p++) {
@@ -1094,10 +1091,10 @@ void KNAME(mrn_grid_to_particles)(mrn_sim *sim, const double *gvel, double *pvel
   }
 }
 
-void KNAME(mrn_particles_to_grid)(mrn_sim *sim, const double *pvel, double *gvel) {
-  const mrn_grid *g = &sim->grid;
-  const mrn_particles *ps = &sim->particles;
-  const mrn_kernel_options ko = KNAME(kernel_options)(sim);
+void KNAME(mrn_particles_to_grid)(mrn_transfer *tr, const double *pvel, double *gvel) {
+  const mrn_grid *g = tr->grid;
+  const mrn_particles *ps = tr->particles;
+  const mrn_kernel_options ko = tr->kernel;
   memset(gvel, 0, 3 * g->n * sizeof(double));
   KNAME(stencil) s;
   for (size_t p = 0; p < ps->n; p++) {
@@ -1109,7 +1106,7 @@ void KNAME(mrn_particles_to_grid)(mrn_sim *sim, const double *pvel, double *gvel
   }
   for (size_t i = 0; i < g->n; i++) {
     double m = g->mass[i];
-    for (int d = 0; d < 3; d++) gvel[3 * i + d] = m > sim->mass_floor ? gvel[3 * i + d] / m : 0.0;
+    for (int d = 0; d < 3; d++) gvel[3 * i + d] = m > tr->mass_floor ? gvel[3 * i + d] / m : 0.0;
   }
 }
 
