@@ -351,9 +351,12 @@ void mrn_sim_energy_balance_start(mrn_sim *sim) {
   sim->energy_ref_set = 1;
 }
 
+/* a region as the grid's point test (grid/constraint.h) */
+static int region_test(void *region, const double x[3]) { return mrn_region_contains(region, x); }
+
 int mrn_sim_add_constraint(mrn_sim *sim, const mrn_region *region, unsigned mask, const double velocity[3]) {
   mrn_constraint c;
-  if (mrn_constraint_init(&c, &sim->grid, region, mask, velocity) != MRN_OK) return -1;
+  if (mrn_constraint_init(&c, &sim->grid, region_test, (void *)region, mask, velocity) != MRN_OK) return -1;
   mrn_constraint *grown = realloc(sim->constraints, (size_t)(sim->nconstraints + 1) * sizeof *grown);
   if (!grown) {
     mrn_constraint_free(&c);
