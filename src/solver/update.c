@@ -70,3 +70,22 @@ int mrn_update_with_g2p(mrn_sim *sim, mrn_transfer *tr, double dt_move, double d
   const long bad = mrn_g2p_then(tr, dt_move, NULL, &sink, after, after_bad);
   return bad >= 0 ? inverted_error(sim, bad, dt_stress) : MRN_OK;
 }
+
+int mrn_particle_stages_run(mrn_sim *sim, mrn_transfer *tr, mrn_particle_stages *s) {
+  const unsigned st = s->stages, update = MRN_STAGE_GRADIENT | MRN_STAGE_MATERIAL;
+  const mrn_particle_pass *end = (st & MRN_STAGE_END) ? s->end : NULL;
+  s->end_bad = -1;
+  if (st & MRN_STAGE_MOVE) {
+    if (!(st & (update | MRN_STAGE_FORCE))) {
+      mrn_g2p_then(tr, s->move_dt, s->dx, NULL, end, &s->end_bad);
+      return MRN_OK;
+    }
+    /* G2P gathers the gradient from the updated grid velocity */
+    if ((st & update) == update && !(st & MRN_STAGE_FORCE) && !s->dx && s->gvel == tr->grid->vel_new)
+      return mrn_update_with_g2p(sim, tr, s->move_dt, s->material_dt, end, &s->end_bad);
+  } else if ((st & update) == update && !(st & MRN_STAGE_END)) {
+    return (st & MRN_STAGE_FORCE) ? mrn_update_then_force(sim, tr, s->gvel, s->material_dt)
+                                  : mrn_update_from_grid(sim, tr, s->gvel, s->material_dt);
+  }
+  return mrn_error("step: no pass over the particles chains the stages %#x", st);
+}
