@@ -8,7 +8,7 @@
  * forms form the same products in the same order.
  *
  * Instances: the work on one block's particles (P2G, USF's fused pass) or on
- * one chunk of particles (the velocity gradient, G2P) is an always-inline
+ * one particle (the velocity gradient, G2P) is an always-inline
  * function whose choices (support, scheme, what to form) are constant
  * arguments; each kernel has one X-macro list of the combinations it is
  * specialised for (MRN_P2G_VARIANTS, ...), from which follow one small
