@@ -57,6 +57,7 @@
 #include "particles/region.h"
 #include "particles/sort.h"
 #include "solver/simulation.h"
+#include "grid/active.h"
 #include "transfer/blocks.h"
 #include "transfer/profile.h"
 
@@ -239,7 +240,7 @@ static mrn_sim *make_sim(const problem *p, char *label, size_t len) {
     free(order);
     if (rc) goto fail;
   }
-  if (opt.sort_every > 0) mrn_blocks_set_sort_every(&sim->grid, opt.sort_every);
+  if (opt.sort_every > 0) mrn_sim_set_sort_every(sim, opt.sort_every);
   return sim;
 fail:
   mrn_sim_free(sim);
@@ -352,7 +353,8 @@ static void run_child(const problem *p, int threads, result *res) {
     for (int f = 0; f < mrn_particle_field_count(); f++)
       per += 8.0 * mrn_particle_field_stride(ps, mrn_particle_field_at(f));
     per += sizeof(int32_t) + sizeof(int64_t) + 8.0 * ps->state_stride;
-    double total = per * (double)ps->cap + 8.0 * 19.0 * (double)sim->grid.n + (double)mrn_blocks_bytes(&sim->grid);
+    double total = per * (double)ps->cap + 8.0 * 19.0 * (double)sim->grid.n + (double)mrn_blocks_bytes(sim->blocks) +
+                   (double)mrn_grid_active_bytes(&sim->grid);
     res->engine_bytes_per_particle = total / (double)res->particles;
   }
   mrn_sim_free(sim);

@@ -5,7 +5,7 @@
 
 #include "core/error.h"
 
-int mrn_constraint_init(mrn_constraint *c, const mrn_grid *g, const mrn_region *region, unsigned mask,
+int mrn_constraint_init(mrn_constraint *c, const mrn_grid *g, mrn_point_test inside, void *ctx, unsigned mask,
                         const double velocity[3]) {
   memset(c, 0, sizeof *c);
   size_t cap = 64;
@@ -19,7 +19,7 @@ int mrn_constraint_init(mrn_constraint *c, const mrn_grid *g, const mrn_region *
     if (!inside_domain) continue;
     double x[3];
     mrn_grid_node_position(g, i, x);
-    int in = mrn_region_contains(region, x);
+    int in = inside(ctx, x);
     if (in < 0) {
       mrn_constraint_free(c);
       return MRN_ERR;

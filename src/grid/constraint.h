@@ -12,7 +12,11 @@
 #include <stddef.h>
 
 #include "grid/grid.h"
-#include "particles/region.h"
+
+/* Whether point x lies in the constrained region: 1 inside, 0 outside, -1 on
+ * error (message set). The grid asks only this of a region (the regions
+ * themselves are a particles/ notion, a layer above the grid). */
+typedef int (*mrn_point_test)(void *ctx, const double x[3]);
 
 typedef struct mrn_constraint {
   size_t *nodes;
@@ -22,9 +26,9 @@ typedef struct mrn_constraint {
   double reaction[3];  /* force on the material in the last step */
 } mrn_constraint;
 
-/* Fill c with the nodes of g inside region (domain nodes only). Returns 0, or
- * an error when the region holds no node or a predicate fails. */
-int mrn_constraint_init(mrn_constraint *c, const mrn_grid *g, const mrn_region *region, unsigned mask,
+/* Fill c with the nodes of g for which inside(ctx, x) is 1 (domain nodes
+ * only). Returns 0, or an error when no node is inside or the test fails. */
+int mrn_constraint_init(mrn_constraint *c, const mrn_grid *g, mrn_point_test inside, void *ctx, unsigned mask,
                         const double velocity[3]);
 void mrn_constraint_free(mrn_constraint *c);
 

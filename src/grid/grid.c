@@ -7,7 +7,7 @@
 
 #include "core/error.h"
 #include "core/memory.h"
-#include "transfer/blocks.h"
+#include "grid/active.h"
 
 int mrn_grid_init(mrn_grid *g, int dim, const double origin[3], const double size[3], double cell) {
   memset(g, 0, sizeof *g);
@@ -67,8 +67,8 @@ int mrn_grid_init(mrn_grid *g, int dim, const double origin[3], const double siz
     mrn_grid_free(g);
     return mrn_error("grid: out of memory for %zu nodes", (size_t)total);
   }
-  g->blocks = mrn_blocks_new(g);
-  if (!g->blocks) {
+  g->active = mrn_grid_active_new(g);
+  if (!g->active) {
     mrn_grid_free(g);
     return mrn_error("grid: out of memory for %zu nodes", (size_t)total);
   }
@@ -87,8 +87,8 @@ void mrn_grid_free(mrn_grid *g) {
   free(g->touch);
   g->mass = g->mom = g->vel = g->vel_new = g->force = g->vel_star = g->work = NULL;
   g->contact = g->touch = NULL;
-  mrn_blocks_free(g->blocks);
-  g->blocks = NULL;
+  mrn_grid_active_free(g->active);
+  g->active = NULL;
 }
 
 void mrn_grid_clear(mrn_grid *g) {

@@ -39,10 +39,9 @@ typedef struct mrn_grid {
    * material touches the face there (mrn_boundary_touch, each step) */
   unsigned char *touch;
 
-  /* particles binned by block and the node spans that can be nonzero
-   * (transfer/blocks.h): outside them every array above except vel_star and
-   * work is zero */
-  struct mrn_blocks *blocks;
+  /* the node spans that can be nonzero (grid/active.h): outside them every
+   * array above except vel_star and work is zero */
+  struct mrn_grid_active *active;
 } mrn_grid;
 
 /* size[d] is rounded to a whole number of cells (error if the rounding is off

@@ -14,7 +14,6 @@
 #include "io/h5image.h"
 #include "io/checkpoint_internal.h"
 #include "io/h5util.h"
-#include "transfer/blocks.h"
 
 /* ---- units of the particle fields ------------------------------------------ */
 
@@ -100,7 +99,7 @@ static void save_simulation(mrn_h5w *w, const mrn_sim *sim) {
   mrn_h5w_double(w, g, "outflow_mass", sim->outflow_mass);
   mrn_h5w_double(w, g, "energy_outflow", sim->energy_outflow);
   mrn_h5w_double(w, g, "mass_floor", sim->mass_floor);
-  mrn_h5w_int64(w, g, "sort_every", sim->grid.blocks->sort_every);
+  mrn_h5w_int64(w, g, "sort_every", sim->sort_every);
   mrn_h5w_int32(w, g, "affine_pending", sim->affine_pending);
   H5Gclose(g);
 }
@@ -446,7 +445,7 @@ static mrn_sim *build_sim(const ck_data *d, mrn_checkpoint_info *info) {
   sim->outflow_mass = d->outflow_mass;
   sim->energy_outflow = d->energy_outflow;
   sim->affine_pending = d->affine_pending;
-  mrn_blocks_set_sort_every(&sim->grid, (long)d->sort_every);
+  mrn_sim_set_sort_every(sim, (long)d->sort_every);
   for (int64_t k = 0; k < d->ncontact; k++) sim->grid.contact[d->contact[2 * k]] = (unsigned char)d->contact[2 * k + 1];
   for (int i = 0; i < d->nmaterials; i++)
     if (mrn_sim_add_material(sim, d->materials[i]) < 0) goto fail;

@@ -238,13 +238,14 @@ static int l_probe(lua_State *L) {
   while (strcmp(grid_field_names[which], field) != 0) which++;
   const int ncomp = which == 0 ? 1 : 3;
   double v[3], before[3];
-  if (mrn_probe_grid(sim, arrays[which], ncomp, x, v) != 0) {
+  const mrn_transfer tr = mrn_sim_transfer(sim);
+  if (mrn_probe_grid(&tr, arrays[which], ncomp, x, v) != 0) {
     lua_pushnil(L);
     return 1;
   }
   if (strcmp(field, "acceleration") == 0) {
     /* not stored: (V~ - V) / dt of the last step, interpolated */
-    mrn_probe_grid(sim, g->vel, ncomp, x, before);
+    mrn_probe_grid(&tr, g->vel, ncomp, x, before);
     for (int d = 0; d < 3; d++) v[d] = sim->dt > 0.0 ? (v[d] - before[d]) / sim->dt : 0.0;
   }
   if (ncomp == 1) {

@@ -19,7 +19,6 @@
 #include "solver/run.h"
 #include "solver/simulation.h"
 #include "solver/suspicious.h"
-#include "transfer/blocks.h"
 
 #define MAX_HOOKS 32
 
@@ -525,7 +524,7 @@ static int l_simulation(lua_State *L) {
   b->sim = mrn_sim_new(&cfg);
   if (!b->sim) mrn_lua_error(L, where, "%s", mrn_error_message());
   read_on_leave(L, 1, where, sim_specs, MRN_COUNT(sim_specs), b->sim);
-  mrn_blocks_set_sort_every(&b->sim->grid, mrn_lua_get_integer(L, 1, where, sim_specs, MRN_COUNT(sim_specs), "sort_every"));
+  mrn_sim_set_sort_every(b->sim, mrn_lua_get_integer(L, 1, where, sim_specs, MRN_COUNT(sim_specs), "sort_every"));
   for (int i = 0; i < MRN_FACE_COUNT; i++) b->sim->boundary.face[i].kind = MRN_BC_SLIP;
   mrn_output_set_csv(&b->out, "diagnostics.csv", 10);
   const char *name = mrn_lua_get_string(L, 1, where, sim_specs, MRN_COUNT(sim_specs), "name");
@@ -1057,8 +1056,7 @@ static int l_load(lua_State *L) {
     }
     read_on_leave(L, 2, where, load_specs, MRN_COUNT(load_specs), b->sim);
     if (mrn_lua_has(L, 2, "sort_every"))
-      mrn_blocks_set_sort_every(&b->sim->grid,
-                                mrn_lua_get_integer(L, 2, where, load_specs, MRN_COUNT(load_specs), "sort_every"));
+      mrn_sim_set_sort_every(b->sim, mrn_lua_get_integer(L, 2, where, load_specs, MRN_COUNT(load_specs), "sort_every"));
   }
   mrn_lua_check_outputs(L, where, &b->out, b->name);
   lua_pushvalue(L, self);
@@ -1374,7 +1372,7 @@ static int l_info(lua_State *L) {
   push_vec(L, s->grid.origin, s->dim); lua_setfield(L, -2, "origin");
   push_vec(L, s->grid.size, s->dim); lua_setfield(L, -2, "size");
   push_vec(L, s->gravity, s->dim); lua_setfield(L, -2, "gravity");
-  lua_pushinteger(L, s->grid.blocks->sort_every); lua_setfield(L, -2, "sort_every");
+  lua_pushinteger(L, s->sort_every); lua_setfield(L, -2, "sort_every");
   lua_pushstring(L, b->out.dir); lua_setfield(L, -2, "output_dir");
   return 1;
 }

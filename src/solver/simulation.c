@@ -10,6 +10,7 @@
 #include "core/log.h"
 #include "core/memory.h"
 #include "core/parallel.h"
+#include "transfer/kernels.h"
 
 mrn_sim *mrn_sim_new(const mrn_sim_config *cfg) {
   mrn_sim *sim = calloc(1, sizeof *sim);
@@ -30,6 +31,12 @@ mrn_sim *mrn_sim_new(const mrn_sim_config *cfg) {
   mrn_dt_policy_a_tau(&sim->dt_policy, 0.05);
   sim->load_factor = 1.0;
   mrn_watchdog_default(&sim->watchdog);
+  sim->sorted_step = -1;
+  sim->blocks = mrn_blocks_new(&sim->grid);
+  if (!sim->blocks) {
+    mrn_sim_free(sim);
+    return NULL;
+  }
   return sim;
 }
 
@@ -40,10 +47,43 @@ mrn_kernel_options mrn_sim_kernel_options(const mrn_sim *sim) {
   return o;
 }
 
+/* a reordering is due at this step and none was done yet */
+static int sort_due(const mrn_sim *sim) {
+  return sim->sort_every > 0 && sim->step % sim->sort_every == 0 && sim->sorted_step != sim->step;
+}
+
+mrn_transfer mrn_sim_transfer(mrn_sim *sim) {
+  mrn_transfer tr = {.dim = sim->dim,
+                     .grid = &sim->grid,
+                     .particles = &sim->particles,
+                     .scheme = &sim->scheme,
+                     .boundary = &sim->boundary,
+                     .kernel = mrn_sim_kernel_options(sim),
+                     .mass_floor = sim->mass_floor,
+                     .blocks = sim->blocks,
+                     .sort_now = sort_due(sim)};
+  return tr;
+}
+
+void mrn_sim_transfer_end(mrn_sim *sim, const mrn_transfer *tr) {
+  if (sort_due(sim) && !tr->sort_now) sim->sorted_step = sim->step;
+}
+
+void mrn_sim_set_sort_every(mrn_sim *sim, long every) { sim->sort_every = every > 0 ? every : 0; }
+
+int mrn_sim_init_affine(mrn_sim *sim) {
+  mrn_transfer tr = mrn_sim_transfer(sim);
+  const int it = mrn_transfer_init_affine(&tr);
+  mrn_sim_transfer_end(sim, &tr);
+  sim->affine_pending = 0;
+  return it;
+}
+
 void mrn_sim_free(mrn_sim *sim) {
   if (!sim) return;
   if (sim->integrator.release) sim->integrator.release(sim->integrator.ctx);
   mrn_grid_free(&sim->grid);
+  mrn_blocks_free(sim->blocks);
   mrn_particles_free(&sim->particles);
   for (int i = 0; i < sim->nmaterials; i++) mrn_material_unref(sim->materials[i]);
   mrn_dt_policy_release(&sim->dt_policy);
@@ -311,9 +351,12 @@ void mrn_sim_energy_balance_start(mrn_sim *sim) {
   sim->energy_ref_set = 1;
 }
 
+/* a region as the grid's point test (grid/constraint.h) */
+static int region_test(void *region, const double x[3]) { return mrn_region_contains(region, x); }
+
 int mrn_sim_add_constraint(mrn_sim *sim, const mrn_region *region, unsigned mask, const double velocity[3]) {
   mrn_constraint c;
-  if (mrn_constraint_init(&c, &sim->grid, region, mask, velocity) != MRN_OK) return -1;
+  if (mrn_constraint_init(&c, &sim->grid, region_test, (void *)region, mask, velocity) != MRN_OK) return -1;
   mrn_constraint *grown = realloc(sim->constraints, (size_t)(sim->nconstraints + 1) * sizeof *grown);
   if (!grown) {
     mrn_constraint_free(&c);

@@ -19,6 +19,7 @@
 #include "solver/diagnostics.h"
 #include "solver/timestep.h"
 #include "solver/watchdog.h"
+#include "transfer/context.h"
 #include "transfer/scheme.h"
 
 #define MRN_MAX_MATERIALS 64
@@ -93,6 +94,14 @@ typedef struct mrn_sim {
   mrn_watchdog watchdog;        /* the bounds of the physical-sanity checks of mrn_run */
   mrn_watchdog_state watch;     /* what those checks saw */
 
+  /* the particles binned by block for the transfers (transfer/blocks.h), and
+   * the sort policy: reorder the particles by block at the first P2G of
+   * every step that is a multiple of sort_every (> 0; 0: never). Off unless
+   * asked for: the Lua API documents particle indices in order of creation. */
+  mrn_blocks *blocks;
+  long sort_every;
+  long sorted_step; /* the step of the last reordering, -1 before any */
+
   /* scratch, sized to the particle count */
   double *scratch;
   size_t scratch_cap;
@@ -153,6 +162,16 @@ int mrn_sim_step(mrn_sim *sim);
 
 /* One explicit step with a given dt (the policy is not asked) */
 int mrn_sim_step_dt(mrn_sim *sim, double dt);
+
+/* The transfer context of the current step (transfer/context.h): the
+ * simulation's grid, particles, scheme, kernel and blocks, with sort_now set
+ * when the sort policy asks for a reordering at this step and none was done
+ * yet. Hand it back to mrn_sim_transfer_end after the transfers. */
+mrn_transfer mrn_sim_transfer(mrn_sim *sim);
+/* notes the reordering the transfers of tr did (if any) */
+void mrn_sim_transfer_end(mrn_sim *sim, const mrn_transfer *tr);
+/* reorder the particles by block every `every` steps (<= 0: never) */
+void mrn_sim_set_sort_every(mrn_sim *sim, long every);
 
 /* Initialise the Taylor grad v (and APIC C, to the same value) of particles
  * given initial velocities by repeating 000 Eqs. 19-22 until grad v

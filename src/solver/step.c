@@ -21,7 +21,7 @@
 #include "solver/point_force.h"
 #include "solver/simulation.h"
 #include "solver/update.h"
-#include "transfer/blocks.h"
+#include "grid/active.h"
 #include "transfer/kernels.h"
 #include "transfer/profile.h"
 #include "transfer/xpic.h"
@@ -275,74 +275,122 @@ static void delete_leaving(mrn_sim *sim, const unsigned char *keep) {
 }
 
 /* grid velocity from the particles, and XPIC's smoothed velocity when needed */
-static int grid_velocity_stage(mrn_sim *sim) {
+static int grid_velocity_stage(mrn_sim *sim, mrn_transfer *tr) {
   grid_velocity(sim);
   if (sim->scheme.velocity_update == MRN_VUPDATE_XPIC) {
     double *ps = scratch(sim, 3 * sim->particles.n);
     if (!ps && sim->particles.n) return mrn_error("step: out of memory");
-    mrn_xpic_smooth(sim, ps);
+    mrn_xpic_smooth(tr, ps);
   }
+  return MRN_OK;
+}
+
+/* The stages of a step by stress update scheme, on the step's transfer
+ * context. Each pass over the particles names the stages it chains
+ * (mrn_particle_stages, solver/update.h), in the order they run on each
+ * chunk of particles. `end` is the end-of-step check the last G2P runs on
+ * each chunk it moved (end->bad: what it rejected first); a scheme that
+ * moves the particles after G2P sets end->pass to NULL, and the step then
+ * ends with a pass of its own. */
+typedef struct step_end {
+  const mrn_particle_pass *pass;
+  long bad;
+} step_end;
+
+enum {
+  UPDATE_FORCE = MRN_STAGE_GRADIENT | MRN_STAGE_MATERIAL | MRN_STAGE_FORCE,
+  MOVE_END = MRN_STAGE_MOVE | MRN_STAGE_END,
+  MOVE_UPDATE_END = MRN_STAGE_MOVE | MRN_STAGE_GRADIENT | MRN_STAGE_MATERIAL | MRN_STAGE_END
+};
+
+/* the last pass of a step: G2P -> [gradient from V~ -> material update over
+ * material_dt ->] end-of-step check */
+static int move_pass(mrn_sim *sim, mrn_transfer *tr, unsigned stages, double dt, double material_dt, step_end *end) {
+  mrn_particle_stages move = {stages, .gvel = sim->grid.vel_new, .move_dt = dt, .material_dt = material_dt,
+                              .end = end->pass};
+  const int rc = mrn_particle_stages_run(sim, tr, &move);
+  end->bad = move.end_bad;
+  return rc;
+}
+
+/* USF: the stress from V^i, before the internal force is found from it */
+static int step_usf(mrn_sim *sim, mrn_transfer *tr, double dt, step_end *end) {
+  int rc;
+  mrn_p2g(tr, 1, 0);                                   /* mass, momentum */
+  if ((rc = grid_velocity_stage(sim, tr))) return rc; /* V^i */
+  mrn_particle_stages update = {UPDATE_FORCE, .gvel = sim->grid.vel, .material_dt = dt};
+  if ((rc = mrn_particle_stages_run(sim, tr, &update))) return rc; /* gradient -> material update -> force */
+  grid_update(sim, dt);                                           /* V~^i */
+  return move_pass(sim, tr, MOVE_END, dt, 0.0, end);              /* move -> end-of-step check */
+}
+
+/* USL: the forces from the stress of the last step; the stress from V~^i */
+static int step_usl(mrn_sim *sim, mrn_transfer *tr, double dt, step_end *end) {
+  int rc;
+  mrn_p2g(tr, 1, 1);                                   /* mass, momentum, internal force */
+  if ((rc = grid_velocity_stage(sim, tr))) return rc; /* V^i */
+  grid_update(sim, dt);                                /* V~^i */
+  return move_pass(sim, tr, MOVE_UPDATE_END, dt, dt, end); /* move -> gradient -> material update -> check */
+}
+
+/* USAVG: half the strain increment from V^i before the forces, half from
+ * V~^i after the motion: two constitutive calls per step (000 §3.4) */
+static int step_usavg(mrn_sim *sim, mrn_transfer *tr, double dt, step_end *end) {
+  int rc;
+  mrn_p2g(tr, 1, 0);                                   /* mass, momentum */
+  if ((rc = grid_velocity_stage(sim, tr))) return rc; /* V^i */
+  mrn_particle_stages update = {UPDATE_FORCE, .gvel = sim->grid.vel, .material_dt = 0.5 * dt};
+  if ((rc = mrn_particle_stages_run(sim, tr, &update))) return rc; /* gradient -> material update -> force */
+  grid_update(sim, dt);                                           /* V~^i */
+  return move_pass(sim, tr, MOVE_UPDATE_END, dt, 0.5 * dt, end); /* move -> gradient -> material update -> check */
+}
+
+/* MUSL: as USL, but the stress from the new particle momenta mapped back to
+ * the grid (at the start-of-step positions) before the particles move */
+static int step_musl(mrn_sim *sim, mrn_transfer *tr, double dt, step_end *end) {
+  int rc;
+  mrn_p2g(tr, 1, 1);                                   /* mass, momentum, internal force */
+  if ((rc = grid_velocity_stage(sim, tr))) return rc; /* V^i */
+  grid_update(sim, dt);                                /* V~^i */
+  /* the XPIC smoothing used the scratch; the position increments take it now */
+  double *dx = scratch(sim, 3 * sim->particles.n);
+  if (!dx && sim->particles.n) return mrn_error("step: out of memory");
+  mrn_particle_stages move = {MRN_STAGE_MOVE, .move_dt = dt, .dx = dx};
+  if ((rc = mrn_particle_stages_run(sim, tr, &move))) return rc; /* new velocities; positions held back */
+  mrn_blocks_reuse(tr->blocks);
+  mrn_p2g(tr, 1, 0); /* re-map the new momenta */
+  grid_velocity(sim);
+  mrn_particle_stages update = {MRN_STAGE_GRADIENT | MRN_STAGE_MATERIAL, .gvel = sim->grid.vel, .material_dt = dt};
+  if ((rc = mrn_particle_stages_run(sim, tr, &update))) return rc; /* gradient -> material update */
+  mrn_particles *ps = &sim->particles;
+  for (size_t i = 0; i < 3 * ps->n; i++) ps->x[i] += dx[i];
+  end->pass = NULL; /* the particles moved after G2P: the end of the step is a pass of its own */
   return MRN_OK;
 }
 
 int mrn_sim_step_dt(mrn_sim *sim, double dt) {
   if (!(dt > 0.0) || !isfinite(dt)) return mrn_error("step %ld: invalid time step %s", sim->step + 1, mrn_num(dt).s);
-  const int dim = sim->dim;
-  int rc = MRN_OK;
   sim->dt = dt;
   /* the end of the step inside G2P, chunk by chunk (see end_ctx) */
   end_ctx e = end_setup(sim);
   const mrn_particle_pass end_pass = {end_chunk, &e};
-  const mrn_particle_pass *after = sim->on_leave == MRN_LEAVE_DELETE ? NULL : &end_pass;
-  long end_bad = -1;
+  step_end end = {sim->on_leave == MRN_LEAVE_DELETE ? NULL : &end_pass, -1};
   mrn_boundary_touch(&sim->boundary, &sim->grid, 0.5 * mrn_shape_support(sim->shape), sim->particles.x,
                      sim->particles.vol0, sim->particles.n);
+  mrn_transfer tr = mrn_sim_transfer(sim);
+  int rc = MRN_OK;
   switch (sim->scheme.stress_update) {
-  case MRN_STRESS_USF:
-    mrn_p2g(sim, dim, 1, 0);
-    if ((rc = grid_velocity_stage(sim))) return rc;
-    if ((rc = mrn_update_then_force(sim, sim->grid.vel, dt))) return rc;
-    grid_update(sim, dt);
-    mrn_g2p_then(sim, dim, dt, NULL, NULL, after, &end_bad);
-    break;
-  case MRN_STRESS_USL:
-    mrn_p2g(sim, dim, 1, 1);
-    if ((rc = grid_velocity_stage(sim))) return rc;
-    grid_update(sim, dt);
-    if ((rc = mrn_update_with_g2p(sim, dt, dt, after, &end_bad))) return rc; /* G2P, grad v from V~ */
-    break;
-  case MRN_STRESS_USAVG:
-    /* half the strain increment from V^i before the forces, half from V~^i
-     * after the motion: two constitutive calls per step (000 §3.4) */
-    mrn_p2g(sim, dim, 1, 0);
-    if ((rc = grid_velocity_stage(sim))) return rc;
-    if ((rc = mrn_update_then_force(sim, sim->grid.vel, 0.5 * dt))) return rc;
-    grid_update(sim, dt);
-    if ((rc = mrn_update_with_g2p(sim, dt, 0.5 * dt, after, &end_bad))) return rc; /* G2P, grad v from V~ */
-    break;
-  case MRN_STRESS_MUSL: {
-    mrn_p2g(sim, dim, 1, 1);
-    if ((rc = grid_velocity_stage(sim))) return rc;
-    grid_update(sim, dt);
-    /* the XPIC smoothing used the scratch; the position increments take it now */
-    double *dx = scratch(sim, 3 * sim->particles.n);
-    if (!dx && sim->particles.n) return mrn_error("step: out of memory");
-    mrn_g2p(sim, dim, dt, dx);
-    /* re-map the updated particle momenta (start-of-step positions) */
-    mrn_blocks_reuse(&sim->grid);
-    mrn_p2g(sim, dim, 1, 0);
-    grid_velocity(sim);
-    if ((rc = mrn_update_from_grid(sim, sim->grid.vel, dt))) return rc;
-    mrn_particles *ps = &sim->particles;
-    for (size_t i = 0; i < 3 * ps->n; i++) ps->x[i] += dx[i];
-    after = NULL; /* the particles moved after G2P */
-    break;
+  case MRN_STRESS_USF: rc = step_usf(sim, &tr, dt, &end); break;
+  case MRN_STRESS_USL: rc = step_usl(sim, &tr, dt, &end); break;
+  case MRN_STRESS_USAVG: rc = step_usavg(sim, &tr, dt, &end); break;
+  case MRN_STRESS_MUSL: rc = step_musl(sim, &tr, dt, &end); break;
   }
-  }
+  mrn_sim_transfer_end(sim, &tr);
+  if (rc) return rc;
   sim->time += dt;
   sim->step++;
-  if (!after) return end_of_step(sim);
-  return end_bad >= 0 ? mrn_sim_particle_error(sim, (size_t)end_bad) : MRN_OK;
+  if (!end.pass) return end_of_step(sim);
+  return end.bad >= 0 ? mrn_sim_particle_error(sim, (size_t)end.bad) : MRN_OK;
 }
 
 int mrn_sim_step(mrn_sim *sim) {

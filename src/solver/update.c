@@ -3,7 +3,6 @@
 
 #include "core/error.h"
 #include "material/advance.h"
-#include "transfer/blocks.h"
 #include "transfer/kernels.h"
 
 typedef struct chunk_ctx {
@@ -43,31 +42,50 @@ static int inverted_error(const mrn_sim *sim, long p, double dt) {
                         sim->step + 1, (long long)sim->particles.id[p], x[0], x[1], x[2], dt);
 }
 
-int mrn_update_from_grid(mrn_sim *sim, const double *gvel, double dt) {
+int mrn_update_from_grid(mrn_sim *sim, mrn_transfer *tr, const double *gvel, double dt) {
   chunk_ctx c = {sim, dt};
   const mrn_gradient_sink sink = {update_chunk, &c, MRN_PHASE_STRESS};
-  const long bad = mrn_gradient(sim, sim->dim, gvel, &sink);
+  const long bad = mrn_gradient(tr, gvel, &sink);
   return bad >= 0 ? inverted_error(sim, bad, dt) : MRN_OK;
 }
 
-int mrn_update_then_force(mrn_sim *sim, const double *gvel, double dt) {
-  if (!mrn_update_force_fused(sim, sim->dim)) {
-    int rc = mrn_update_from_grid(sim, gvel, dt);
+int mrn_update_then_force(mrn_sim *sim, mrn_transfer *tr, const double *gvel, double dt) {
+  if (!mrn_update_force_fused(tr)) {
+    int rc = mrn_update_from_grid(sim, tr, gvel, dt);
     if (rc) return rc;
-    mrn_blocks_reuse(&sim->grid); /* the particles have not moved since the first P2G */
-    mrn_p2g(sim, sim->dim, 0, 1);
+    mrn_blocks_reuse(tr->blocks); /* the particles have not moved since the first P2G */
+    mrn_p2g(tr, 0, 1);
     return MRN_OK;
   }
   chunk_ctx c = {sim, dt};
   const mrn_gradient_sink sink = {update_chunk, &c, MRN_PHASE_STRESS};
-  const long bad = mrn_update_force(sim, sim->dim, gvel, &sink);
+  const long bad = mrn_update_force(tr, gvel, &sink);
   return bad >= 0 ? inverted_error(sim, bad, dt) : MRN_OK;
 }
 
-int mrn_update_with_g2p(mrn_sim *sim, double dt_move, double dt_stress, const mrn_particle_pass *after,
+int mrn_update_with_g2p(mrn_sim *sim, mrn_transfer *tr, double dt_move, double dt_stress, const mrn_particle_pass *after,
                         long *after_bad) {
   chunk_ctx c = {sim, dt_stress};
   const mrn_gradient_sink sink = {update_chunk, &c, MRN_PHASE_STRESS};
-  const long bad = mrn_g2p_then(sim, sim->dim, dt_move, NULL, &sink, after, after_bad);
+  const long bad = mrn_g2p_then(tr, dt_move, NULL, &sink, after, after_bad);
   return bad >= 0 ? inverted_error(sim, bad, dt_stress) : MRN_OK;
+}
+
+int mrn_particle_stages_run(mrn_sim *sim, mrn_transfer *tr, mrn_particle_stages *s) {
+  const unsigned st = s->stages, update = MRN_STAGE_GRADIENT | MRN_STAGE_MATERIAL;
+  const mrn_particle_pass *end = (st & MRN_STAGE_END) ? s->end : NULL;
+  s->end_bad = -1;
+  if (st & MRN_STAGE_MOVE) {
+    if (!(st & (update | MRN_STAGE_FORCE))) {
+      mrn_g2p_then(tr, s->move_dt, s->dx, NULL, end, &s->end_bad);
+      return MRN_OK;
+    }
+    /* G2P gathers the gradient from the updated grid velocity */
+    if ((st & update) == update && !(st & MRN_STAGE_FORCE) && !s->dx && s->gvel == tr->grid->vel_new)
+      return mrn_update_with_g2p(sim, tr, s->move_dt, s->material_dt, end, &s->end_bad);
+  } else if ((st & update) == update && !(st & MRN_STAGE_END)) {
+    return (st & MRN_STAGE_FORCE) ? mrn_update_then_force(sim, tr, s->gvel, s->material_dt)
+                                  : mrn_update_from_grid(sim, tr, s->gvel, s->material_dt);
+  }
+  return mrn_error("step: no pass over the particles chains the stages %#x", st);
 }

@@ -5,8 +5,7 @@
 #include <string.h>
 
 #include "core/parallel.h"
-
-#include "solver/simulation.h"
+#include "core/tensor.h"
 #include "transfer/kernels.h"
 
 #define MAX_ITERATIONS 100
@@ -41,24 +40,26 @@ static long take_gradient(void *ctx, size_t lo, size_t hi, const double *L) {
   return -1;
 }
 
-int mrn_sim_init_affine(mrn_sim *sim) {
-  mrn_particles *ps = &sim->particles;
-  mrn_grid *g = &sim->grid;
-  const mrn_grid_velocity_kind saved = sim->scheme.grid_velocity;
-  sim->scheme.grid_velocity = MRN_VGRID_TAYLOR;
-  memset(ps->affine, 0, (size_t)mrn_tensor_stride(sim->dim) * ps->n * sizeof(double));
+int mrn_transfer_init_affine(mrn_transfer *tr) {
+  mrn_particles *ps = tr->particles;
+  mrn_grid *g = tr->grid;
+  /* the same transfer with the Taylor grid velocity (000, Eqs. 19-22) */
+  mrn_scheme taylor = *tr->scheme;
+  taylor.grid_velocity = MRN_VGRID_TAYLOR;
+  mrn_transfer t = *tr;
+  t.scheme = &taylor;
+  memset(ps->affine, 0, (size_t)mrn_tensor_stride(tr->dim) * ps->n * sizeof(double));
   int it;
   for (it = 1; it <= MAX_ITERATIONS; it++) {
-    mrn_p2g(sim, sim->dim, 1, 0); /* (000, Eq. 19) with the current grad v */
+    mrn_p2g(&t, 1, 0); /* (000, Eq. 19) with the current grad v */
     for (size_t i = 0; i < g->n; i++)
       for (int d = 0; d < 3; d++)
-        g->vel[3 * i + d] = g->mass[i] > sim->mass_floor ? g->mom[3 * i + d] / g->mass[i] : 0.0;
-    taylor_ctx t = {ps->affine, sim->dim, 0.0, 0.0};
-    const mrn_gradient_sink sink = {take_gradient, &t, MRN_PHASE_G2P};
-    mrn_gradient(sim, sim->dim, g->vel, &sink); /* (000, Eq. 22) */
-    if (t.change <= 1e-15 * t.scale || t.scale == 0.0) break;
+        g->vel[3 * i + d] = g->mass[i] > tr->mass_floor ? g->mom[3 * i + d] / g->mass[i] : 0.0;
+    taylor_ctx c = {ps->affine, tr->dim, 0.0, 0.0};
+    const mrn_gradient_sink sink = {take_gradient, &c, MRN_PHASE_G2P};
+    mrn_gradient(&t, g->vel, &sink); /* (000, Eq. 22) */
+    if (c.change <= 1e-15 * c.scale || c.scale == 0.0) break;
   }
-  sim->scheme.grid_velocity = saved;
-  sim->affine_pending = 0;
+  tr->sort_now = t.sort_now; /* a sort done here is not done again */
   return it;
 }

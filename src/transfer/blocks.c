@@ -10,7 +10,7 @@
 #include "core/error.h"
 #include "core/parallel.h"
 #include "particles/sort.h"
-#include "solver/simulation.h"
+#include "transfer/context.h"
 #include "transfer/profile.h"
 
 /* Cells per block along an axis, as a power of 2 (at least 3 cells along
@@ -24,31 +24,6 @@
 static int block_shift(int dim, int axis) {
   if (dim == 2) return axis == 0 ? 5 : 2;
   return axis == 0 ? 4 : 2;
-}
-
-static size_t rows_of(const mrn_grid *g) { return (size_t)g->nnode[1] * (size_t)g->nnode[2]; }
-
-/* every row fully active */
-static void spans_full(mrn_blocks *b, const mrn_grid *g) {
-  for (size_t r = 0; r < b->nrows; r++) {
-    b->lo[r] = 0;
-    b->hi[r] = g->nnode[0];
-  }
-}
-
-static void spans_to_ranges(mrn_blocks *b, const mrn_grid *g) {
-  size_t k = 0;
-  long nodes = 0;
-  for (size_t r = 0; r < b->nrows; r++) {
-    if (b->lo[r] >= b->hi[r]) continue;
-    long base = (long)(r % (size_t)g->nnode[1]) * g->stride[1] + (long)(r / (size_t)g->nnode[1]) * g->stride[2];
-    b->range_lo[k] = base + b->lo[r];
-    b->range_hi[k] = base + b->hi[r];
-    nodes += b->hi[r] - b->lo[r];
-    k++;
-  }
-  b->nranges = k;
-  b->active_nodes = nodes;
 }
 
 mrn_blocks *mrn_blocks_new(const mrn_grid *g) {
@@ -66,29 +41,16 @@ mrn_blocks *mrn_blocks_new(const mrn_grid *g) {
     b->nblocks *= (size_t)b->nb[d];
   }
   b->colours = 1 << g->dim;
-  b->nrows = rows_of(g);
   b->start = malloc((b->nblocks + 1) * sizeof *b->start);
   b->list = malloc(b->nblocks * sizeof *b->list);
-  b->lo = malloc(b->nrows * sizeof *b->lo);
-  b->hi = malloc(b->nrows * sizeof *b->hi);
-  b->new_lo = malloc(b->nrows * sizeof *b->new_lo);
-  b->new_hi = malloc(b->nrows * sizeof *b->new_hi);
-  b->range_lo = malloc(b->nrows * sizeof *b->range_lo);
-  b->range_hi = malloc(b->nrows * sizeof *b->range_hi);
-  b->range_sum = malloc(b->nrows * sizeof *b->range_sum);
   b->movers = malloc(MRN_BLOCK_MOVERS_MAX * sizeof *b->movers);
   b->moved_out = malloc(2 * b->nblocks * sizeof *b->moved_out);
   b->moved_in = b->moved_out ? b->moved_out + b->nblocks : NULL;
-  b->sorted_step = -1;
-  if (!b->start || !b->list || !b->lo || !b->hi || !b->new_lo || !b->new_hi || !b->range_lo || !b->range_hi ||
-      !b->range_sum || !b->movers || !b->moved_out) {
+  if (!b->start || !b->list || !b->movers || !b->moved_out) {
     mrn_blocks_free(b);
     mrn_error("grid: out of memory");
     return NULL;
   }
-  /* nothing is known about the nodal arrays yet */
-  spans_full(b, g);
-  spans_to_ranges(b, g);
   return b;
 }
 
@@ -101,38 +63,19 @@ void mrn_blocks_free(mrn_blocks *b) {
   free(b->found);
   free(b->moved_out);
   free(b->list);
-  free(b->lo);
-  free(b->hi);
-  free(b->new_lo);
-  free(b->new_hi);
-  free(b->range_lo);
-  free(b->range_hi);
-  free(b->range_sum);
   free(b);
 }
 
-size_t mrn_blocks_bytes(const mrn_grid *g) {
-  const mrn_blocks *b = g->blocks;
+size_t mrn_blocks_bytes(const mrn_blocks *b) {
   if (!b) return 0;
   return sizeof *b + b->cap * sizeof(uint32_t) + (b->nblocks + 1) * sizeof(size_t) +
          (size_t)b->hist_threads * b->nblocks * sizeof(uint32_t) + b->nblocks * sizeof(uint32_t) +
-         b->nrows * (4 * sizeof(int) + 2 * sizeof(long) + sizeof(double)) +
          MRN_BLOCK_MOVERS_MAX * sizeof(struct mrn_block_mover) + (size_t)b->hist_threads * sizeof(size_t) +
          2 * b->nblocks * sizeof(uint32_t);
 }
 
-void mrn_blocks_set_sort_every(mrn_grid *g, long every) {
-  if (g->blocks) g->blocks->sort_every = every > 0 ? every : 0;
-}
-
-void mrn_blocks_reuse(mrn_grid *g) {
-  if (g->blocks) g->blocks->reuse = 1;
-}
-
-mrn_node_ranges mrn_grid_active_ranges(const mrn_grid *g) {
-  const mrn_blocks *b = g->blocks;
-  mrn_node_ranges r = {(long)b->nranges, b->range_lo, b->range_hi, b->range_sum, b->active_nodes};
-  return r;
+void mrn_blocks_reuse(mrn_blocks *b) {
+  if (b) b->reuse = 1;
 }
 
 static int grow_particles(mrn_blocks *b, size_t n, int threads) {
@@ -153,44 +96,6 @@ static int grow_particles(mrn_blocks *b, size_t n, int threads) {
     b->hist_threads = threads;
   }
   return 1;
-}
-
-/* zero `count` nodes from `first` in every array named */
-static void clear_nodes(mrn_grid *g, long first, long count, unsigned what, int all) {
-  if (count <= 0) return;
-  if (all || (what & MRN_CLEAR_MASS_MOM)) {
-    memset(g->mass + first, 0, (size_t)count * sizeof(double));
-    memset(g->mom + 3 * first, 0, 3 * (size_t)count * sizeof(double));
-  }
-  if (all || (what & MRN_CLEAR_FORCE)) memset(g->force + 3 * first, 0, 3 * (size_t)count * sizeof(double));
-  if (all) {
-    memset(g->vel + 3 * first, 0, 3 * (size_t)count * sizeof(double));
-    memset(g->vel_new + 3 * first, 0, 3 * (size_t)count * sizeof(double));
-  }
-}
-
-/* Replace the spans by new_lo/new_hi: what the old spans covered beyond the
- * new ones is cleared in every array, the new spans in the arrays named. */
-static void switch_spans(mrn_blocks *b, mrn_grid *g, unsigned clear) {
-  const long rows = (long)b->nrows;
-  /* the old spans measure the work (the new ones are alike) */
-#pragma omp parallel for schedule(static) if (b->active_nodes > MRN_OMP_MIN_NODES)
-  for (long r = 0; r < rows; r++) {
-    const long base = (r % g->nnode[1]) * g->stride[1] + (r / g->nnode[1]) * g->stride[2];
-    int ol = b->lo[r], oh = b->hi[r], nl = b->new_lo[r], nh = b->new_hi[r];
-    if (nl >= nh) {
-      nl = nh = 0;
-      clear_nodes(g, base + ol, oh - ol, 0, 1);
-    } else if (ol < oh) {
-      clear_nodes(g, base + ol, (oh < nl ? oh : nl) - ol, 0, 1);
-      int from = ol > nh ? ol : nh;
-      clear_nodes(g, base + from, oh - from, 0, 1);
-    }
-    clear_nodes(g, base + nl, nh - nl, clear, 0);
-    b->lo[r] = nl;
-    b->hi[r] = nh;
-  }
-  spans_to_ranges(b, g);
 }
 
 /* What the block of a particle depends on, copied out of the grid and the
@@ -504,14 +409,13 @@ static void bin(mrn_blocks *b, const mrn_grid *g, const mrn_particles *ps, int t
   b->np = ps->n;
 }
 
-/* non-empty blocks by colour, and the node spans they reach */
-static void colour_and_spans(mrn_blocks *b, const mrn_grid *g) {
+/* non-empty blocks by colour, and the node spans they reach (the grid's
+ * next active spans) */
+static void colour_and_spans(mrn_blocks *b, mrn_grid *g) {
   size_t count[8] = {0};
   const int SX = b->size[0], SY = b->size[1], SZ = b->size[2];
-  for (size_t r = 0; r < b->nrows; r++) {
-    b->new_lo[r] = g->nnode[0];
-    b->new_hi[r] = 0;
-  }
+  mrn_grid_active *active = g->active;
+  mrn_grid_active_begin(g);
   for (int pass = 0; pass < 2; pass++) {
     size_t at[8];
     if (pass == 1) {
@@ -547,9 +451,7 @@ static void colour_and_spans(mrn_blocks *b, const mrn_grid *g) {
           }
           for (int z = z0; z < z1; z++)
             for (int y = y0; y < y1; y++) {
-              size_t r = (size_t)y + (size_t)g->nnode[1] * (size_t)z;
-              if (x0 < b->new_lo[r]) b->new_lo[r] = x0;
-              if (x1 > b->new_hi[r]) b->new_hi[r] = x1;
+              mrn_grid_active_reach(active, (size_t)y + (size_t)g->nnode[1] * (size_t)z, x0, x1);
             }
         }
   }
@@ -564,47 +466,45 @@ static int threads_for(size_t n) {
 #endif
 }
 
-mrn_blocks *mrn_blocks_prepare(mrn_sim *sim, unsigned clear) {
-  mrn_grid *g = &sim->grid;
-  mrn_blocks *b = g->blocks;
-  const mrn_particles *ps = &sim->particles;
+/* reorder the particles by block (the binning just made), and the binning
+ * with them: one run per non-empty block */
+static void sort_particles(mrn_blocks *b, mrn_transfer *tr) {
+  const mrn_particles *ps = tr->particles;
+  double t0 = mrn_phase_begin();
+  if (mrn_particles_permute(tr->particles, b->order) == MRN_OK) {
+    for (size_t i = 0; i < ps->n; i++) b->order[i] = (uint32_t)i;
+    b->runs = 0;
+    for (size_t k = 0; k < b->nblocks; k++) b->runs += b->start[k + 1] > b->start[k];
+    tr->sort_now = 0;
+  }
+  mrn_phase_end(MRN_PHASE_SORT, t0);
+}
+
+mrn_blocks *mrn_blocks_prepare(mrn_transfer *tr, unsigned clear) {
+  mrn_grid *g = tr->grid;
+  mrn_blocks *b = tr->blocks;
+  const mrn_particles *ps = tr->particles;
   const int reuse = b->reuse;
   b->reuse = 0;
   if (reuse && b->np == ps->n) {
-    switch_spans(b, g, clear); /* the spans stay: this clears the arrays named in `clear` on them */
+    mrn_grid_active_switch(g, clear); /* the spans stay: this clears the arrays named in `clear` on them */
     return b;
   }
   int threads = threads_for(ps->n);
   int dense = 0;
-  for (int d = 0; d < g->dim; d++) dense |= mrn_boundary_periodic(&sim->boundary, d);
+  for (int d = 0; d < g->dim; d++) dense |= mrn_boundary_periodic(tr->boundary, d);
   b->dense = dense;
   if (ps->n > UINT32_MAX || !grow_particles(b, ps->n, threads)) {
     /* no room to bin: everything active, the caller scatters in index order */
     b->np = 0; /* no binning to reuse */
-    for (size_t r = 0; r < b->nrows; r++) {
-      b->new_lo[r] = 0;
-      b->new_hi[r] = g->nnode[0];
-    }
-    switch_spans(b, g, clear);
+    mrn_grid_active_all(g);
+    mrn_grid_active_switch(g, clear);
     return NULL;
   }
   bin(b, g, ps, threads);
-  if (b->sort_every > 0 && sim->step % b->sort_every == 0 && b->sorted_step != sim->step) {
-    double t0 = mrn_phase_begin();
-    if (mrn_particles_permute(&sim->particles, b->order) == MRN_OK) {
-      for (size_t i = 0; i < ps->n; i++) b->order[i] = (uint32_t)i;
-      b->runs = 0; /* now one run per non-empty block */
-      for (size_t k = 0; k < b->nblocks; k++) b->runs += b->start[k + 1] > b->start[k];
-      b->sorted_step = sim->step;
-    }
-    mrn_phase_end(MRN_PHASE_SORT, t0);
-  }
+  if (tr->sort_now) sort_particles(b, tr);
   colour_and_spans(b, g);
-  if (dense)
-    for (size_t r = 0; r < b->nrows; r++) {
-      b->new_lo[r] = 0;
-      b->new_hi[r] = g->nnode[0];
-    }
-  switch_spans(b, g, clear);
+  if (dense) mrn_grid_active_all(g);
+  mrn_grid_active_switch(g, clear);
   return b;
 }

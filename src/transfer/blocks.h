@@ -1,4 +1,4 @@
-/* moraine: particles binned by blocks of cells, and the active part of the grid.
+/* moraine: particles binned by blocks of cells.
  *
  * P2G scatters every particle's contributions into the nodes around it. To
  * do that on several threads without races and without per-thread grids,
@@ -13,17 +13,14 @@
  * its contributions in the same order whatever the number of threads: the
  * result is bitwise identical for 1, 2 or more threads.
  *
- * The same binning tells which node rows (x-lines of nodes) can receive
- * anything: each row keeps a span [lo, hi) of x indices outside which every
- * nodal array (mass, momentum, force, velocities) is zero.
- * P2G clears only the spans, and the grid loops of the step visit only them,
- * so an empty part of the grid costs next to nothing.
+ * The same binning tells which node rows can receive anything: P2G sets the
+ * grid's active spans (grid/active.h) from the non-empty blocks, so that it
+ * clears only those and the grid loops of the step visit only them.
  *
- * Optionally the particles themselves are reordered by block every
- * `sort_every` steps (counted from step 0, at the first P2G of the step), so
- * that the particles of a block are contiguous in memory. This changes
- * particle indices (ids are kept); it is off unless asked for, because the
- * Lua API documents particle indices in order of creation. */
+ * When the transfer context asks for it (mrn_transfer.sort_now, set by the
+ * simulation's sort policy), the particles themselves are reordered by block
+ * at the next binning, so that the particles of a block are contiguous in
+ * memory. This changes particle indices (ids are kept). */
 #ifndef MRN_TRANSFER_BLOCKS_H
 #define MRN_TRANSFER_BLOCKS_H
 
@@ -31,12 +28,10 @@
 #include <stdint.h>
 
 #include "core/parallel.h"
+#include "grid/active.h"
 
 struct mrn_grid;
-struct mrn_sim;
-
-/* nodal arrays P2G may accumulate into */
-enum { MRN_CLEAR_MASS_MOM = 1u, MRN_CLEAR_FORCE = 2u };
+struct mrn_transfer;
 
 /* A particle found out of the block it was binned in: at slot `slot` of
  * `order`, particle `p`, from block `from` to block `to`. */
@@ -74,42 +69,28 @@ typedef struct mrn_blocks {
   uint32_t *list;  /* non-empty blocks, by colour */
   size_t colour_first[9];
 
-  /* node rows (j + nnode[1] k): span [lo, hi) of x indices that may be nonzero */
-  size_t nrows;
-  int *lo, *hi;
-  int *new_lo, *new_hi;
-  /* the spans as linear node ranges, non-empty rows only */
-  size_t nranges;
-  long *range_lo, *range_hi;
-  double *range_sum; /* one value per range, for deterministic reductions */
-  long active_nodes;
-
-  long sort_every; /* > 0: reorder the particles by block every this many steps */
-  long sorted_step;
   int reuse;       /* the next mrn_blocks_prepare keeps the binning (mrn_blocks_reuse) */
 } mrn_blocks;
 
-/* allocated with the grid (mrn_grid_init); NULL on failure (message set) */
+/* the blocks of grid g (the grid's shape only: one grid may be shared by
+ * several binnings); NULL on failure (message set) */
 mrn_blocks *mrn_blocks_new(const struct mrn_grid *g);
 void mrn_blocks_free(mrn_blocks *b);
 /* bytes held, for memory reports */
-size_t mrn_blocks_bytes(const struct mrn_grid *g);
-
-/* reorder the particles by block every `every` steps (0: never) */
-void mrn_blocks_set_sort_every(struct mrn_grid *g, long every);
+size_t mrn_blocks_bytes(const mrn_blocks *b);
 
 /* The particles have not moved, nor been added, removed or reordered, since
  * the last P2G: the next one keeps its binning and spans and only clears the
  * arrays it accumulates into (USF's second P2G, for one). */
-void mrn_blocks_reuse(struct mrn_grid *g);
+void mrn_blocks_reuse(mrn_blocks *b);
 
-/* Bin the particles by block, reorder them when a sort is due, work out the
- * new active spans, clear every nodal array where the old spans reach beyond
- * the new ones and the arrays named in `clear` on the new spans. Returns the
- * binning, or NULL when memory ran out: then every nodal array named in
- * `clear` was cleared everywhere, every row is marked active, and the caller
- * must scatter the particles in index order on one thread. */
-mrn_blocks *mrn_blocks_prepare(struct mrn_sim *sim, unsigned clear);
+/* Bin the particles of the transfer by block, reorder them when tr->sort_now
+ * (then clear it), set the grid's new active spans and switch to them
+ * (mrn_grid_active_switch: the arrays named in `clear`, grid/active.h, are
+ * cleared on them). Returns the binning, or NULL when memory ran out: then
+ * every row is active, and the caller must scatter the particles in index
+ * order on one thread. */
+mrn_blocks *mrn_blocks_prepare(struct mrn_transfer *tr, unsigned clear);
 
 /* The thread of a team of `threads` that scatters block blk (non-empty):
  * the owner of the block's first particle among nchunks =
@@ -118,16 +99,5 @@ mrn_blocks *mrn_blocks_prepare(struct mrn_sim *sim, unsigned clear);
 static inline int mrn_block_owner(const mrn_blocks *b, uint32_t blk, size_t nchunks, int threads) {
   return mrn_chunk_owner(b->order[b->start[blk]] / MRN_PARTICLE_CHUNK, nchunks, threads);
 }
-
-/* Node index ranges [lo[k], hi[k]) outside which every nodal array is zero;
- * `sum` has room for one double per range. */
-typedef struct mrn_node_ranges {
-  long count;
-  const long *lo, *hi;
-  double *sum;
-  long nodes; /* total nodes in the ranges */
-} mrn_node_ranges;
-
-mrn_node_ranges mrn_grid_active_ranges(const struct mrn_grid *g);
 
 #endif

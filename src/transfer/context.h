@@ -2,16 +2,19 @@
  *
  * Every entry point of transfer/ takes a mrn_transfer instead of the whole
  * simulation: the grid and the particles it reads and writes, the scheme and
- * the options that choose the kernel, and nothing of the materials, the
- * clock or the outputs. The simulation builds one for each step
- * (mrn_sim_transfer, solver/simulation.h); a C program or a test can build
- * one by hand around its own grid and particles. */
+ * the options that choose the kernel, the binning of the particles by block,
+ * and nothing of the materials, the clock or the outputs. The simulation
+ * builds one for each step (mrn_sim_transfer, solver/simulation.h); a C
+ * program or a test can build one by hand around its own grid and particles
+ * (with blocks from mrn_blocks_new). */
 #ifndef MRN_TRANSFER_CONTEXT_H
 #define MRN_TRANSFER_CONTEXT_H
 
 #include "grid/boundary.h"
 #include "grid/grid.h"
 #include "particles/particles.h"
+#include "shape/shape.h"
+#include "transfer/blocks.h"
 #include "transfer/scheme.h"
 
 typedef struct mrn_transfer {
@@ -20,8 +23,10 @@ typedef struct mrn_transfer {
   mrn_particles *particles;
   const mrn_scheme *scheme;     /* grid velocity, velocity and position update rules (000 Table 1) */
   const mrn_boundary *boundary; /* face kinds: periodic faces change the binning */
+  mrn_kernel_options kernel;    /* shape, face treatment, MLS gradient, periodic axes */
   double mass_floor;            /* nodes lighter than this are treated as empty (kg) */
-  int sort_now;                 /* reorder the particles by block at this step's first P2G */
+  mrn_blocks *blocks;           /* the particles binned by block (transfer/blocks.h), kept between steps */
+  int sort_now;                 /* reorder the particles by block at the next binning; cleared once done */
 } mrn_transfer;
 
 #endif

@@ -4,10 +4,19 @@
  * Each kernel exists in a general form, which builds a particle's full
  * stencil (stencil_build: any shape, face treatment, periodic axes, MLS
  * gradient), and in fast forms for plain quadratic and cubic B-splines away
- * from adjusted faces, which keep the stencil as its per-axis factors and are
- * instantiated for each support size and scheme choice so that every loop
- * bound and branch in the node loops is a compile-time constant. Both forms
- * form the same products in the same order.
+ * from adjusted faces, which keep the stencil as its per-axis factors. Both
+ * forms form the same products in the same order.
+ *
+ * Instances: the work on one block's particles (P2G, USF's fused pass) or on
+ * one particle (the velocity gradient, G2P) is an always-inline
+ * function whose choices (support, scheme, what to form) are constant
+ * arguments; each kernel has one X-macro list of the combinations it is
+ * specialised for (MRN_P2G_VARIANTS, ...), from which follow one small
+ * function per combination, which the compiler specialises (every loop
+ * bound and branch in the node loops a compile-time constant), and the table
+ * the kernel picks from by the options. P2G's parallel region
+ * (for_own_blocks) is shared and calls the instance per block; the chunked
+ * kernels (gradient, G2P) keep theirs in each instance (MRN_CHUNKED_LOOP).
  *
  * P2G runs over the particles binned by blocks of cells (transfer/blocks.h):
  * colour by colour, the blocks of one colour in parallel; in 2D the
@@ -20,7 +29,6 @@
 
 #include "core/parallel.h"
 #include "core/tensor.h"
-#include "solver/simulation.h"
 #include "transfer/blocks.h"
 #include "transfer/kernels.h"
 #include "transfer/profile.h"
@@ -31,8 +39,6 @@
 /* values stored per particle for F and the affine matrix (particles.h) */
 #define TSTRIDE ((size_t)(DIM * DIM))
 
-static inline mrn_kernel_options KNAME(kernel_options)(const mrn_sim *sim) { return mrn_sim_kernel_options(sim); }
-
 /* support of the fast path for these options, or 0 for the general stencil */
 static inline int KNAME(fast_support)(const mrn_kernel_options *o) {
   if (o->periodic || o->mls_gradient) return 0;
@@ -41,29 +47,45 @@ static inline int KNAME(fast_support)(const mrn_kernel_options *o) {
 
 /* ---- P2G -------------------------------------------------------------------- */
 
-/* In a parallel region: BODY for each non-empty block blk of b that the
- * calling thread owns (mrn_block_owner: the thread that moves the block's
- * particles in G2P), colour by colour, all threads meeting after each
- * colour (blocks of one colour touch disjoint nodes). */
-#define MRN_FOR_OWN_BLOCKS(b, blk, BODY)                                           \
-  {                                                                                \
-    int t_, team_;                                                                 \
-    mrn_team(&t_, &team_);                                                         \
-    const size_t nchunks_ = mrn_particle_chunks((b)->np);                          \
-    for (int c_ = 0; c_ < (b)->colours; c_++) {                                    \
-      for (size_t k_ = (b)->colour_first[c_]; k_ < (b)->colour_first[c_ + 1]; k_++) { \
-        const uint32_t blk = (b)->list[k_];                                        \
-        if (mrn_block_owner((b), blk, nchunks_, team_) == t_) BODY;                \
-      }                                                                            \
-      _Pragma("omp barrier")                                                       \
-    }                                                                              \
-  }
-
 typedef struct KNAME(p2g_args) {
   mrn_grid *g;
   const mrn_particles *ps;
   mrn_kernel_options ko;
 } KNAME(p2g_args);
+
+/* Work on the particles order[from .. to) of one block: `args` says what
+ * (P2G, USF's fused pass); keeps the lowest index a gradient sink rejected
+ * in *first_bad and the time spent there in *spent. */
+typedef void (*KNAME(range_fn))(const void *args, const uint32_t *order, size_t from, size_t to, long *first_bad,
+                                double *spent);
+
+/* `run` on each non-empty block of b, in parallel when `parallel`: each
+ * thread the blocks it owns (mrn_block_owner: the thread that moves the
+ * block's particles in G2P), colour by colour, all threads meeting after
+ * each colour (blocks of one colour touch disjoint nodes). Returns the
+ * lowest index any range rejected, or n; *spent sums the ranges' time. */
+static long KNAME(for_own_blocks)(const mrn_blocks *b, int parallel, KNAME(range_fn) run, const void *args, long n,
+                                  double *spent) {
+  long first_bad = n;
+  double sp = 0.0;
+  (void)parallel; /* unused without OpenMP */
+#pragma omp parallel if (parallel) reduction(min : first_bad) reduction(+ : sp)
+  {
+    int t, team;
+    mrn_team(&t, &team);
+    const size_t nchunks = mrn_particle_chunks(b->np);
+    for (int c = 0; c < b->colours; c++) {
+      for (size_t k = b->colour_first[c]; k < b->colour_first[c + 1]; k++) {
+        const uint32_t blk = b->list[k];
+        if (mrn_block_owner(b, blk, nchunks, team) == t)
+          run(args, b->order, b->start[blk], b->start[blk + 1], &first_bad, &sp);
+      }
+#pragma omp barrier
+    }
+  }
+  *spent = sp;
+  return first_bad;
+}
 
 /* one particle, general stencil */
 static void KNAME(p2g_general)(const KNAME(p2g_args) *ar, size_t p, int momentum, int force, int affine) {
@@ -301,16 +323,92 @@ MRN_INLINE size_t KNAME(batch_build)(const KNAME(p2g_args) *ar, const uint32_t *
 typedef double mrn_acc4 __attribute__((vector_size(32)));
 #endif
 
-/* ROW(j) for the rows j = 0 .. sup - 1, with literal indices: the compiler
- * keeps the accumulators in registers only when every index into them is a
- * constant before its loops are unrolled */
-#define MRN_STENCIL_ROWS(ROW) \
-  do {                        \
-    ROW(0);                   \
-    ROW(1);                   \
-    ROW(2);                   \
-    if (sup == 4) ROW(3);     \
-  } while (0)
+/* The sums of a group, row by row of the stencil (lanes i: the nodes along
+ * x). Every index into them is a constant once the row functions below are
+ * inlined with a literal row: the compiler keeps the sums in registers only
+ * then. */
+typedef struct KNAME(group_acc) {
+  mrn_acc4 m[4], px[4], py[4], fx[4], fy[4]; /* mass, momentum, internal force */
+} KNAME(group_acc);
+
+/* A particle's x factors of a group (see group_sum), on the group's lanes */
+typedef struct KNAME(group_x) {
+  mrn_acc4 mw, qx, qy, yx, yy, rx, ry, sx, sy;
+} KNAME(group_x);
+
+MRN_INLINE void KNAME(group_x_factors)(const mrn_particles *ps, const KNAME(axes) *a, size_t p, int shifted,
+                                       const int affine, KNAME(group_x) *f) {
+  const double m = ps->mass[p];
+  double mv[3], MA[3][3], VS[3][3];
+  KNAME(p2g_particle_terms)(ps, p, affine, mv, MA, VS);
+  /* lanes beyond the support hold zeros (axes_build); a quadratic
+   * stencil starting one node further along x takes lanes 1 .. 3 */
+  mrn_acc4 wx = {a->w[0][0], a->w[0][1], a->w[0][2], a->w[0][3]};
+  mrn_acc4 dwx = {a->dw[0][0], a->dw[0][1], a->dw[0][2], a->dw[0][3]};
+  mrn_acc4 ox = {a->off[0][0], a->off[0][1], a->off[0][2], a->off[0][3]};
+  if (shifted) {
+    wx = __builtin_shufflevector(wx, wx, 3, 0, 1, 2);
+    dwx = __builtin_shufflevector(dwx, dwx, 3, 0, 1, 2);
+    ox = __builtin_shufflevector(ox, ox, 3, 0, 1, 2);
+  }
+  f->mw = m * wx;
+  f->qx = affine ? wx * (mv[0] + MA[0][0] * ox) : wx * mv[0];
+  f->qy = affine ? wx * (mv[1] + MA[1][0] * ox) : wx * mv[1];
+  f->yx = wx * MA[0][1], f->yy = wx * MA[1][1];
+  f->rx = dwx * VS[0][0], f->ry = dwx * VS[1][0], f->sx = wx * VS[0][1], f->sy = wx * VS[1][1];
+}
+
+/* a particle's terms added to row J of the sums */
+MRN_INLINE void KNAME(group_add_row)(KNAME(group_acc) *s, const KNAME(axes) *a, const KNAME(group_x) *f, const int J,
+                                     const int momentum, const int force, const int affine) {
+  const double wr = a->w[1][J];
+  if (momentum) {
+    s->m[J] += wr * f->mw;
+    s->px[J] += wr * f->qx;
+    s->py[J] += wr * f->qy;
+    if (affine) {
+      const double wo = wr * a->off[1][J];
+      s->px[J] += wo * f->yx;
+      s->py[J] += wo * f->yy;
+    }
+  }
+  if (force) {
+    const double dwr = a->dw[1][J];
+    s->fx[J] -= wr * f->rx;
+    s->fx[J] -= dwr * f->sx;
+    s->fy[J] -= wr * f->ry;
+    s->fy[J] -= dwr * f->sy;
+  }
+}
+
+/* row J of the sums into the nodes: `width` nodes from the row's first,
+ * never a node beyond the stencils (it may belong to another thread's block) */
+MRN_INLINE void KNAME(group_flush_row)(const KNAME(p2g_args) *ar, size_t node0, const KNAME(group_acc) *s, const int J,
+                                       const int width, const int momentum, const int force) {
+  mrn_grid *g = ar->g;
+  double *restrict mass = g->mass, *restrict mom = g->mom, *restrict frc = g->force;
+  const size_t row = node0 + (size_t)(J * g->stride[1]);
+  for (int i = 0; i < width; i++) {
+    const size_t nd = row + (size_t)i;
+    if (momentum) {
+      mass[nd] += s->m[J][i];
+      const mrn_v2 add = {s->px[J][i], s->py[J][i]};
+      mrn_v2_store(mom + 3 * nd, mrn_v2_load(mom + 3 * nd) + add);
+    }
+    if (force) {
+      const mrn_v2 add = {s->fx[J][i], s->fy[J][i]};
+      mrn_v2_store(frc + 3 * nd, mrn_v2_load(frc + 3 * nd) + add);
+    }
+  }
+}
+
+MRN_INLINE void KNAME(group_flush)(const KNAME(p2g_args) *ar, size_t node0, const KNAME(group_acc) *s, const int sup,
+                                   const int width, const int momentum, const int force) {
+  KNAME(group_flush_row)(ar, node0, s, 0, width, momentum, force);
+  KNAME(group_flush_row)(ar, node0, s, 1, width, momentum, force);
+  KNAME(group_flush_row)(ar, node0, s, 2, width, momentum, force);
+  if (sup == 4) KNAME(group_flush_row)(ar, node0, s, 3, width, momentum, force);
+}
 
 /* The particles p0 .. p0 + n - 1 (n >= 2), whose stencils ax[0 .. n) all
  * start at ax[0].node0 or, when `wide` (quadratic B-spline only: 3 nodes
@@ -323,91 +421,24 @@ typedef double mrn_acc4 __attribute__((vector_size(32)));
  *   m N                      = w_y (m w_x)
  *   m N (v + A (x_i - x_p))  = w_y Q + w_y o_y Y,  Q = w_x m (v + A_x o_x), Y = w_x m A_y
  *   -V sigma grad N          = -(w_y R + dw_y S),  R = dw_x V sigma_x,     S = w_x V sigma_y
- * with the x factors Q, Y, R, S formed once per particle. */
+ * with the x factors Q, Y, R, S formed once per particle (group_x_factors). */
 MRN_INLINE void KNAME(group_sum)(const KNAME(p2g_args) *ar, const KNAME(axes) *ax, size_t p0, size_t n,
                                  const int sup, const int wide, const int momentum, const int force,
                                  const int affine) {
-  const mrn_particles *ps = ar->ps;
-  mrn_acc4 am[4], apx[4], apy[4], afx[4], afy[4]; /* mass, momentum, internal force by row */
-#define MRN_ZERO_ROW(J) am[J] = apx[J] = apy[J] = afx[J] = afy[J] = (mrn_acc4){0, 0, 0, 0}
-  MRN_STENCIL_ROWS(MRN_ZERO_ROW);
-#undef MRN_ZERO_ROW
+  KNAME(group_acc) s = {0};
   for (size_t k = 0; k < n; k++) {
     const KNAME(axes) *a = ax + k;
-    const size_t p = p0 + k;
-    const double m = ps->mass[p];
-    double mv[3], MA[3][3], VS[3][3];
-    KNAME(p2g_particle_terms)(ps, p, affine, mv, MA, VS);
-    /* lanes beyond the support hold zeros (axes_build); a quadratic
-     * stencil starting one node further along x takes lanes 1 .. 3 */
-    mrn_acc4 wx = {a->w[0][0], a->w[0][1], a->w[0][2], a->w[0][3]};
-    mrn_acc4 dwx = {a->dw[0][0], a->dw[0][1], a->dw[0][2], a->dw[0][3]};
-    mrn_acc4 ox = {a->off[0][0], a->off[0][1], a->off[0][2], a->off[0][3]};
-    if (wide && a->node0 != ax->node0) {
-      wx = __builtin_shufflevector(wx, wx, 3, 0, 1, 2);
-      dwx = __builtin_shufflevector(dwx, dwx, 3, 0, 1, 2);
-      ox = __builtin_shufflevector(ox, ox, 3, 0, 1, 2);
-    }
-    const mrn_acc4 mw = m * wx;
-    const mrn_acc4 qx = affine ? wx * (mv[0] + MA[0][0] * ox) : wx * mv[0];
-    const mrn_acc4 qy = affine ? wx * (mv[1] + MA[1][0] * ox) : wx * mv[1];
-    const mrn_acc4 yx = wx * MA[0][1], yy = wx * MA[1][1];
-    const mrn_acc4 rx = dwx * VS[0][0], ry = dwx * VS[1][0], sx = wx * VS[0][1], sy = wx * VS[1][1];
-#define MRN_ADD_ROW(J)                            \
-  do {                                            \
-    const double wr = a->w[1][J];                 \
-    if (momentum) {                               \
-      am[J] += wr * mw;                           \
-      apx[J] += wr * qx;                          \
-      apy[J] += wr * qy;                          \
-      if (affine) {                               \
-        const double wo = wr * a->off[1][J];      \
-        apx[J] += wo * yx;                        \
-        apy[J] += wo * yy;                        \
-      }                                           \
-    }                                             \
-    if (force) {                                  \
-      const double dwr = a->dw[1][J];             \
-      afx[J] -= wr * rx;                          \
-      afx[J] -= dwr * sx;                         \
-      afy[J] -= wr * ry;                          \
-      afy[J] -= dwr * sy;                         \
-    }                                             \
-  } while (0)
-    MRN_STENCIL_ROWS(MRN_ADD_ROW);
-#undef MRN_ADD_ROW
+    KNAME(group_x) f;
+    KNAME(group_x_factors)(ar->ps, a, p0 + k, wide && a->node0 != ax->node0, affine, &f);
+    KNAME(group_add_row)(&s, a, &f, 0, momentum, force, affine);
+    KNAME(group_add_row)(&s, a, &f, 1, momentum, force, affine);
+    KNAME(group_add_row)(&s, a, &f, 2, momentum, force, affine);
+    if (sup == 4) KNAME(group_add_row)(&s, a, &f, 3, momentum, force, affine);
   }
-  /* the sums into the nodes: `sup` per row (4 for a wide group), never a
-   * node beyond the stencils (it may belong to another thread's block) */
-  mrn_grid *g = ar->g;
-  double *restrict mass = g->mass, *restrict mom = g->mom, *restrict frc = g->force;
-  const long s1 = g->stride[1];
-#define MRN_FLUSH_ROW(J)                                                \
-  do {                                                                  \
-    const size_t row = ax->node0 + (size_t)((J) * s1);                  \
-    for (int i = 0; i < width; i++) {                                   \
-      const size_t nd = row + (size_t)i;                                \
-      if (momentum) {                                                   \
-        mass[nd] += am[J][i];                                           \
-        const mrn_v2 add = {apx[J][i], apy[J][i]};                      \
-        mrn_v2_store(mom + 3 * nd, mrn_v2_load(mom + 3 * nd) + add);    \
-      }                                                                 \
-      if (force) {                                                      \
-        const mrn_v2 add = {afx[J][i], afy[J][i]};                      \
-        mrn_v2_store(frc + 3 * nd, mrn_v2_load(frc + 3 * nd) + add);    \
-      }                                                                 \
-    }                                                                   \
-  } while (0)
-  if (wide) {
-    const int width = 4;
-    MRN_STENCIL_ROWS(MRN_FLUSH_ROW);
-  } else {
-    const int width = sup;
-    MRN_STENCIL_ROWS(MRN_FLUSH_ROW);
-  }
-#undef MRN_FLUSH_ROW
+  /* `sup` nodes per row, 4 for a wide group */
+  if (wide) KNAME(group_flush)(ar, ax->node0, &s, sup, 4, momentum, force);
+  else KNAME(group_flush)(ar, ax->node0, &s, sup, sup, momentum, force);
 }
-#undef MRN_STENCIL_ROWS
 #endif
 
 /* A batch's particles p0 .. p0 + n - 1, stencils ax[0 .. n), to the grid */
@@ -456,54 +487,58 @@ MRN_INLINE void KNAME(p2g_range)(const KNAME(p2g_args) *ar, const uint32_t *orde
   }
 }
 
-typedef void (*KNAME(p2g_range_fn))(const KNAME(p2g_args) *, const uint32_t *, size_t, size_t);
+/* Every P2G instance: support (0: the general stencil), mass and momentum,
+ * internal force, affine term; one specialised range function each
+ * (p2g_range with these constants), named and tabled from this list. */
+#define MRN_P2G_VARIANTS(X) \
+  X(0, 1, 0, 0) X(0, 1, 0, 1) X(0, 0, 1, 0) X(0, 1, 1, 0) X(0, 1, 1, 1) \
+  X(3, 1, 0, 0) X(3, 1, 0, 1) X(3, 0, 1, 0) X(3, 1, 1, 0) X(3, 1, 1, 1) \
+  X(4, 1, 0, 0) X(4, 1, 0, 1) X(4, 0, 1, 0) X(4, 1, 1, 0) X(4, 1, 1, 1)
 
-#define MRN_P2G_VARIANT(SUP, MOM, FRC, AFF)                                                                       \
-  static void KNAME(p2g_##SUP##_##MOM##FRC##AFF)(const KNAME(p2g_args) * ar, const uint32_t *order, size_t from, \
-                                                 size_t to) {                                                     \
-    KNAME(p2g_range)(ar, order, from, to, SUP, MOM, FRC, AFF);                                                    \
+#define MRN_P2G_INSTANCE(SUP, MOM, FRC, AFF)                                                                  \
+  static void KNAME(p2g_##SUP##_##MOM##FRC##AFF)(const void *ar, const uint32_t *order, size_t from, size_t to, \
+                                                 long *first_bad, double *spent) {                            \
+    (void)first_bad, (void)spent;                                                                             \
+    KNAME(p2g_range)(ar, order, from, to, SUP, MOM, FRC, AFF);                                                \
   }
-#define MRN_P2G_VARIANTS(SUP)                                                                                      \
-  MRN_P2G_VARIANT(SUP, 1, 0, 0) MRN_P2G_VARIANT(SUP, 1, 0, 1) MRN_P2G_VARIANT(SUP, 0, 1, 0)                        \
-      MRN_P2G_VARIANT(SUP, 1, 1, 0) MRN_P2G_VARIANT(SUP, 1, 1, 1)
-MRN_P2G_VARIANTS(0)
-MRN_P2G_VARIANTS(3)
-MRN_P2G_VARIANTS(4)
-#undef MRN_P2G_VARIANTS
-#undef MRN_P2G_VARIANT
+MRN_P2G_VARIANTS(MRN_P2G_INSTANCE)
+#undef MRN_P2G_INSTANCE
 
-static KNAME(p2g_range_fn) KNAME(p2g_pick)(int sup, int momentum, int force, int affine) {
+typedef struct KNAME(p2g_variant) {
+  int sup, momentum, force, affine;
+  KNAME(range_fn) run;
+} KNAME(p2g_variant);
+
+#define MRN_P2G_ENTRY(SUP, MOM, FRC, AFF) {SUP, MOM, FRC, AFF, KNAME(p2g_##SUP##_##MOM##FRC##AFF)},
+static const KNAME(p2g_variant) KNAME(p2g_variants)[] = {MRN_P2G_VARIANTS(MRN_P2G_ENTRY)};
+#undef MRN_P2G_ENTRY
+
+static KNAME(range_fn) KNAME(p2g_pick)(int sup, int momentum, int force, int affine) {
   affine = affine && momentum;
-#define MRN_PICK(SUP)                                                                                \
-  if (sup == SUP) {                                                                                  \
-    if (!force) return affine ? KNAME(p2g_##SUP##_101) : KNAME(p2g_##SUP##_100);                      \
-    if (!momentum) return KNAME(p2g_##SUP##_010);                                                    \
-    return affine ? KNAME(p2g_##SUP##_111) : KNAME(p2g_##SUP##_110);                                  \
+  const size_t count = sizeof KNAME(p2g_variants) / sizeof KNAME(p2g_variants)[0];
+  for (size_t k = 0; k < count; k++) {
+    const KNAME(p2g_variant) *v = &KNAME(p2g_variants)[k];
+    if (v->sup == sup && v->momentum == momentum && v->force == force && v->affine == affine) return v->run;
   }
-  MRN_PICK(3)
-  MRN_PICK(4)
-  MRN_PICK(0)
-#undef MRN_PICK
-  return KNAME(p2g_0_110);
+  return NULL;
 }
 
 /* time spent sorting inside a P2G, which the profile books apart */
 static inline double KNAME(sort_seconds)(void) { return mrn_profile_seconds ? mrn_profile_seconds[MRN_PHASE_SORT] : 0.0; }
 
-void KNAME(mrn_p2g)(mrn_sim *sim, int momentum, int force) {
+void KNAME(mrn_p2g)(mrn_transfer *tr, int momentum, int force) {
   const double t0 = mrn_phase_begin(), sort0 = KNAME(sort_seconds)();
   if (!momentum && !force) return;
   const unsigned clear = (momentum ? MRN_CLEAR_MASS_MOM : 0u) | (force ? MRN_CLEAR_FORCE : 0u);
-  mrn_blocks *b = mrn_blocks_prepare(sim, clear); /* may reorder the particles */
-  KNAME(p2g_args) ar = {&sim->grid, &sim->particles, KNAME(kernel_options)(sim)};
-  const int affine = sim->scheme.grid_velocity != MRN_VGRID_PLAIN;
-  const KNAME(p2g_range_fn) run = KNAME(p2g_pick)(KNAME(fast_support)(&ar.ko), momentum, force, affine);
+  mrn_blocks *b = mrn_blocks_prepare(tr, clear); /* may reorder the particles */
+  KNAME(p2g_args) ar = {tr->grid, tr->particles, tr->kernel};
+  const int affine = tr->scheme->grid_velocity != MRN_VGRID_PLAIN;
+  const KNAME(range_fn) run = KNAME(p2g_pick)(KNAME(fast_support)(&ar.ko), momentum, force, affine);
+  double unused = 0.0;
   if (!b) {
-    run(&ar, NULL, 0, sim->particles.n);
+    run(&ar, NULL, 0, tr->particles->n, NULL, &unused);
   } else {
-    const int threads __attribute__((unused)) = !b->dense && sim->particles.n > MRN_OMP_MIN_ITEMS; /* unused without OpenMP */
-#pragma omp parallel if (threads)
-    MRN_FOR_OWN_BLOCKS(b, blk, run(&ar, b->order, b->start[blk], b->start[blk + 1]));
+    KNAME(for_own_blocks)(b, !b->dense && tr->particles->n > MRN_OMP_MIN_ITEMS, run, &ar, 0, &unused);
   }
   if (mrn_profile_seconds) mrn_phase_end(MRN_PHASE_P2G, t0 + (KNAME(sort_seconds)() - sort0));
 }
@@ -683,14 +718,28 @@ static inline void KNAME(store_tensor)(const double M[DIM][DIM], double *out) {
     for (int b = 0; b < DIM; b++) out[DIM * a + b] = M[a][b];
 }
 
-/* The body of a kernel instance that may hand gradients on: the particles
- * in chunks of MRN_GRADIENT_CHUNK, each thread its own chunks
+/* Hands the gradients L of particles [lo, hi) to the sink; keeps the lowest
+ * rejected index and, when the phases are timed, the time spent there. */
+MRN_INLINE void KNAME(hand_over)(const mrn_gradient_sink *sink, long lo, long hi, const double *L, long *first_bad,
+                                 double *spent) {
+  const double t0 = mrn_phase_begin();
+  const long bad = sink->chunk(sink->ctx, (size_t)lo, (size_t)hi, L);
+  if (mrn_profile_seconds) *spent += mrn_profile_now() - t0;
+  if (bad >= 0 && bad < *first_bad) *first_bad = bad;
+}
+
+/* The body of a chunked kernel instance (the velocity gradient, G2P): the
+ * particles in chunks of MRN_GRADIENT_CHUNK, each thread its own chunks
  * (mrn_team_chunks: the particles it scattered in P2G); EACH handles
  * particle p of the chunk [lo, hi), writing its gradient to L + 9 (p - lo)
  * when HAND_OVER, and the chunk's gradients then go to `sink`; then, when
  * `after` is not NULL, the chunk goes to it (mrn_particle_pass). Returns the
  * lowest index the sink rejected, or -1, sets *sink_seconds and, with
- * `after`, *after_bad (the lowest index it rejected, or -1). */
+ * `after`, *after_bad (the lowest index it rejected, or -1). The parallel
+ * region sits in each instance, not in a shared function: GCC outlines a
+ * parallel region before it inlines, so only there does the outlined loop
+ * see the instance's constants (and contract and vectorise its sums as the
+ * reference results were formed). */
 #define MRN_CHUNKED_LOOP(N, HAND_OVER, EACH)                                                                  \
   const long n_ = (N), nchunks_ = (n_ + MRN_GRADIENT_CHUNK - 1) / MRN_GRADIENT_CHUNK;                        \
   long first_bad = n_, first_after = n_;                                                                     \
@@ -712,16 +761,6 @@ static inline void KNAME(store_tensor)(const double M[DIM][DIM], double *out) {
   *sink_seconds = spent;                                                                                     \
   if (after) *after_bad = first_after < n_ ? first_after : -1;                                               \
   return first_bad < n_ ? first_bad : -1;
-
-/* Hands the gradients L of particles [lo, hi) to the sink; keeps the lowest
- * rejected index and, when the phases are timed, the time spent there. */
-MRN_INLINE void KNAME(hand_over)(const mrn_gradient_sink *sink, long lo, long hi, const double *L, long *first_bad,
-                                 double *spent) {
-  const double t0 = mrn_phase_begin();
-  const long bad = sink->chunk(sink->ctx, (size_t)lo, (size_t)hi, L);
-  if (mrn_profile_seconds) *spent += mrn_profile_now() - t0;
-  if (bad >= 0 && bad < *first_bad) *first_bad = bad;
-}
 
 /* ---- velocity gradient ---------------------------------------------------------- */
 
@@ -748,36 +787,49 @@ MRN_INLINE void KNAME(gradient_particle)(const mrn_grid *g, const mrn_particles 
   KNAME(store_matrix)(L, out);
 }
 
-/* The parallel loop sits in each instance (not in an inlined helper), so the
- * outlined loop body sees the constants. Chunks of particles: the gradients
- * of one chunk go to the sink together (see mrn_gradient_sink). */
-#define MRN_GRADIENT_VARIANT(SUP)                                                                     \
-  static long KNAME(gradient_##SUP)(mrn_sim * sim, const mrn_kernel_options *ko, const double *gvel,  \
+
+/* every velocity gradient instance, by support (0: the general stencil) */
+#define MRN_GRADIENT_VARIANTS(X) X(0) X(3) X(4)
+
+typedef long (*KNAME(gradient_fn))(const mrn_transfer *, const mrn_kernel_options *, const double *,
+                                   const mrn_gradient_sink *, double *);
+
+#define MRN_GRADIENT_INSTANCE(SUP)                                                                    \
+  static long KNAME(gradient_##SUP)(const mrn_transfer *tr, const mrn_kernel_options *ko, const double *gvel, \
                                     const mrn_gradient_sink *sink, double *sink_seconds) {            \
-    const mrn_grid *g = &sim->grid;                                                                   \
-    const mrn_particles *ps = &sim->particles;                                                        \
+    const mrn_grid *g = tr->grid;                                                                     \
+    const mrn_particles *ps = tr->particles;                                                          \
     const mrn_particle_pass *after = NULL;                                                            \
     long *after_bad = NULL;                                                                           \
     (void)after_bad;                                                                                  \
     MRN_CHUNKED_LOOP((long)ps->n, 1,                                                                  \
                      KNAME(gradient_particle)(g, ps, ko, gvel, (size_t)p, L + 9 * (p - lo), SUP))     \
   }
-MRN_GRADIENT_VARIANT(0)
-MRN_GRADIENT_VARIANT(3)
-MRN_GRADIENT_VARIANT(4)
-#undef MRN_GRADIENT_VARIANT
+MRN_GRADIENT_VARIANTS(MRN_GRADIENT_INSTANCE)
+#undef MRN_GRADIENT_INSTANCE
 
-long KNAME(mrn_gradient)(mrn_sim *sim, const double *gvel, const mrn_gradient_sink *sink) {
+typedef struct KNAME(gradient_variant) {
+  int sup;
+  KNAME(gradient_fn) run;
+} KNAME(gradient_variant);
+
+#define MRN_GRADIENT_ENTRY(SUP) {SUP, KNAME(gradient_##SUP)},
+static const KNAME(gradient_variant) KNAME(gradient_variants)[] = {MRN_GRADIENT_VARIANTS(MRN_GRADIENT_ENTRY)};
+#undef MRN_GRADIENT_ENTRY
+
+static KNAME(gradient_fn) KNAME(gradient_pick)(int sup) {
+  const size_t count = sizeof KNAME(gradient_variants) / sizeof KNAME(gradient_variants)[0];
+  for (size_t k = 0; k < count; k++)
+    if (KNAME(gradient_variants)[k].sup == sup) return KNAME(gradient_variants)[k].run;
+  return KNAME(gradient_0);
+}
+
+long KNAME(mrn_gradient)(mrn_transfer *tr, const double *gvel, const mrn_gradient_sink *sink) {
   const double t0 = mrn_phase_begin();
-  const mrn_kernel_options ko = KNAME(kernel_options)(sim);
+  const mrn_kernel_options ko = tr->kernel;
   double spent = 0.0;
-  long bad;
-  switch (KNAME(fast_support)(&ko)) {
-  case 3: bad = KNAME(gradient_3)(sim, &ko, gvel, sink, &spent); break;
-  case 4: bad = KNAME(gradient_4)(sim, &ko, gvel, sink, &spent); break;
-  default: bad = KNAME(gradient_0)(sim, &ko, gvel, sink, &spent); break;
-  }
-  mrn_phase_end_split(MRN_PHASE_G2P, sink->phase, t0, spent, sim->particles.n > MRN_OMP_MIN_ITEMS);
+  const long bad = KNAME(gradient_pick)(KNAME(fast_support)(&ko))(tr, &ko, gvel, sink, &spent);
+  mrn_phase_end_split(MRN_PHASE_G2P, sink->phase, t0, spent, tr->particles->n > MRN_OMP_MIN_ITEMS);
   return bad;
 }
 
@@ -841,50 +893,67 @@ MRN_INLINE void KNAME(update_force_range)(const KNAME(p2g_args) *ar, const doubl
   }
 }
 
-/* the parallel region sits in each instance (see MRN_GRADIENT_VARIANT) */
-#define MRN_UPDATE_FORCE_VARIANT(SUP)                                                                            \
-  static long KNAME(update_force_##SUP)(const KNAME(p2g_args) * ar, const mrn_blocks *b, const double *gvel,     \
-                                        const mrn_gradient_sink *sink, double *sink_seconds) {                   \
-    const long n_ = (long)ar->ps->n;                                                                             \
-    long first_bad = n_;                                                                                         \
-    double spent = 0.0;                                                                                          \
-    if (!b) {                                                                                                    \
-      KNAME(update_force_range)(ar, gvel, NULL, 0, (size_t)n_, sink, &first_bad, &spent, SUP);                   \
-    } else {                                                                                                     \
-      const int threads __attribute__((unused)) = !b->dense && n_ > MRN_OMP_MIN_ITEMS;                          \
-      _Pragma("omp parallel if (threads) reduction(min : first_bad) reduction(+ : spent)")                       \
-      MRN_FOR_OWN_BLOCKS(b, blk,                                                                                 \
-                         KNAME(update_force_range)(ar, gvel, b->order, b->start[blk], b->start[blk + 1], sink,   \
-                                                   &first_bad, &spent, SUP));                                    \
-    }                                                                                                            \
-    *sink_seconds = spent;                                                                                       \
-    return first_bad < n_ ? first_bad : -1;                                                                      \
-  }
-MRN_UPDATE_FORCE_VARIANT(3)
-MRN_UPDATE_FORCE_VARIANT(4)
-#undef MRN_UPDATE_FORCE_VARIANT
+/* what USF's fused pass needs */
+typedef struct KNAME(update_force_args) {
+  KNAME(p2g_args) p2g;
+  const double *gvel;
+  const mrn_gradient_sink *sink;
+} KNAME(update_force_args);
 
-int KNAME(mrn_update_force_fused)(const mrn_sim *sim) {
-  const mrn_kernel_options ko = KNAME(kernel_options)(sim);
+/* every instance of the fused pass, by support (plain B-splines only) */
+#define MRN_UPDATE_FORCE_VARIANTS(X) X(3) X(4)
+
+#define MRN_UPDATE_FORCE_INSTANCE(SUP)                                                                         \
+  static void KNAME(update_force_##SUP)(const void *args, const uint32_t *order, size_t from, size_t to,       \
+                                        long *first_bad, double *spent) {                                      \
+    const KNAME(update_force_args) *a = args;                                                                  \
+    KNAME(update_force_range)(&a->p2g, a->gvel, order, from, to, a->sink, first_bad, spent, SUP);              \
+  }
+MRN_UPDATE_FORCE_VARIANTS(MRN_UPDATE_FORCE_INSTANCE)
+#undef MRN_UPDATE_FORCE_INSTANCE
+
+typedef struct KNAME(update_force_variant) {
+  int sup;
+  KNAME(range_fn) run;
+} KNAME(update_force_variant);
+
+#define MRN_UPDATE_FORCE_ENTRY(SUP) {SUP, KNAME(update_force_##SUP)},
+static const KNAME(update_force_variant) KNAME(update_force_variants)[] = {
+    MRN_UPDATE_FORCE_VARIANTS(MRN_UPDATE_FORCE_ENTRY)};
+#undef MRN_UPDATE_FORCE_ENTRY
+
+static KNAME(range_fn) KNAME(update_force_pick)(int sup) {
+  const size_t count = sizeof KNAME(update_force_variants) / sizeof KNAME(update_force_variants)[0];
+  for (size_t k = 0; k < count; k++)
+    if (KNAME(update_force_variants)[k].sup == sup) return KNAME(update_force_variants)[k].run;
+  return NULL;
+}
+
+int KNAME(mrn_update_force_fused)(const mrn_transfer *tr) {
+  const mrn_kernel_options ko = tr->kernel;
   if (!KNAME(fast_support)(&ko)) return 0;
   /* In block order the material update reaches F, stress and strain run by
    * run: worth it when the runs are long (particles as seeded, or sorted),
    * not when they are scattered (after a long flow, unsorted: runs of one
    * or two, where the separate passes, in index order, are twice as fast) */
-  const mrn_blocks *b = sim->grid.blocks;
-  return b->np != sim->particles.n || !b->runs || b->np >= MRN_FUSED_MIN_RUN * b->runs;
+  const mrn_blocks *b = tr->blocks;
+  return b->np != tr->particles->n || !b->runs || b->np >= MRN_FUSED_MIN_RUN * b->runs;
 }
 
-long KNAME(mrn_update_force)(mrn_sim *sim, const double *gvel, const mrn_gradient_sink *sink) {
+long KNAME(mrn_update_force)(mrn_transfer *tr, const double *gvel, const mrn_gradient_sink *sink) {
   const double t0 = mrn_phase_begin(), sort0 = KNAME(sort_seconds)();
-  mrn_blocks_reuse(&sim->grid); /* the particles have not moved since the first P2G */
-  const mrn_blocks *b = mrn_blocks_prepare(sim, MRN_CLEAR_FORCE);
-  KNAME(p2g_args) ar = {&sim->grid, &sim->particles, KNAME(kernel_options)(sim)};
+  mrn_blocks_reuse(tr->blocks); /* the particles have not moved since the first P2G */
+  const mrn_blocks *b = mrn_blocks_prepare(tr, MRN_CLEAR_FORCE);
+  const KNAME(update_force_args) ar = {{tr->grid, tr->particles, tr->kernel}, gvel, sink};
+  const KNAME(range_fn) run = KNAME(update_force_pick)(KNAME(fast_support)(&tr->kernel));
+  const long n = (long)tr->particles->n;
   double spent = 0.0;
-  const long bad = KNAME(fast_support)(&ar.ko) == 3 ? KNAME(update_force_3)(&ar, b, gvel, sink, &spent)
-                                                    : KNAME(update_force_4)(&ar, b, gvel, sink, &spent);
+  long first_bad = n;
+  if (!b) run(&ar, NULL, 0, (size_t)n, &first_bad, &spent);
+  else first_bad = KNAME(for_own_blocks)(b, !b->dense && n > MRN_OMP_MIN_ITEMS, run, &ar, n, &spent);
+  const long bad = first_bad < n ? first_bad : -1;
   mrn_phase_end_split(MRN_PHASE_P2G, sink->phase, t0 + (KNAME(sort_seconds)() - sort0), spent,
-                      b && !b->dense && sim->particles.n > MRN_OMP_MIN_ITEMS);
+                      b && !b->dense && tr->particles->n > MRN_OMP_MIN_ITEMS);
   return bad;
 }
 
@@ -1012,76 +1081,83 @@ MRN_INLINE void KNAME(g2p_particle)(const KNAME(g2p_args) *ar, size_t p, double 
   }
 }
 
+/* Every G2P instance: support (0: the general stencil), grid velocity
+ * (mrn_grid_velocity_kind), gradient handed on (fused), change of the grid
+ * velocity gathered (dv); one instance each (g2p_particle with these
+ * constants in a chunked loop), named and tabled from this list. */
+#define MRN_G2P_VARIANTS_OF(X, SUP)                                                                        \
+  X(SUP, PLAIN, 0, 0) X(SUP, AFFINE, 0, 0) X(SUP, TAYLOR, 0, 0) X(SUP, PLAIN, 1, 0) X(SUP, AFFINE, 1, 0) \
+  X(SUP, TAYLOR, 1, 0) X(SUP, PLAIN, 0, 1) X(SUP, AFFINE, 0, 1) X(SUP, TAYLOR, 0, 1) X(SUP, PLAIN, 1, 1) \
+  X(SUP, AFFINE, 1, 1) X(SUP, TAYLOR, 1, 1)
+#define MRN_G2P_VARIANTS(X) MRN_G2P_VARIANTS_OF(X, 0) MRN_G2P_VARIANTS_OF(X, 3) MRN_G2P_VARIANTS_OF(X, 4)
+
 typedef long (*KNAME(g2p_fn))(const KNAME(g2p_args) *, const mrn_gradient_sink *, double *,
                               const mrn_particle_pass *, long *);
-#define MRN_G2P_VARIANT(SUP, GV, FUSED, DV)                                                                   \
-  static long KNAME(g2p_##SUP##_##GV##FUSED##DV)(const KNAME(g2p_args) * ar, const mrn_gradient_sink *sink,    \
-                                                 double *sink_seconds, const mrn_particle_pass *after,        \
-                                                 long *after_bad) {                                           \
-    MRN_CHUNKED_LOOP((long)ar->ps->n, FUSED,                                                                  \
-                     KNAME(g2p_particle)(ar, (size_t)p, L + (FUSED ? 9 * (p - lo) : 0), SUP, GV, FUSED, DV)) \
+
+#define MRN_G2P_INSTANCE(SUP, GV, FUSED, DV)                                                                       \
+  static long KNAME(g2p_##SUP##_##GV##_##FUSED##DV)(const KNAME(g2p_args) * ar, const mrn_gradient_sink *sink,     \
+                                                    double *sink_seconds, const mrn_particle_pass *after,           \
+                                                    long *after_bad) {                                              \
+    MRN_CHUNKED_LOOP((long)ar->ps->n, FUSED,                                                                       \
+                     KNAME(g2p_particle)(ar, (size_t)p, L + (FUSED ? 9 * (p - lo) : 0), SUP, MRN_VGRID_##GV, FUSED, \
+                                         DV))                                                                       \
   }
-#define MRN_G2P_VARIANTS_DV(SUP, DV)                                                                   \
-  MRN_G2P_VARIANT(SUP, 0, 0, DV) MRN_G2P_VARIANT(SUP, 1, 0, DV) MRN_G2P_VARIANT(SUP, 2, 0, DV)          \
-      MRN_G2P_VARIANT(SUP, 0, 1, DV) MRN_G2P_VARIANT(SUP, 1, 1, DV) MRN_G2P_VARIANT(SUP, 2, 1, DV)
-#define MRN_G2P_VARIANTS(SUP) MRN_G2P_VARIANTS_DV(SUP, 0) MRN_G2P_VARIANTS_DV(SUP, 1)
-MRN_G2P_VARIANTS(0)
-MRN_G2P_VARIANTS(3)
-MRN_G2P_VARIANTS(4)
-#undef MRN_G2P_VARIANTS
-#undef MRN_G2P_VARIANTS_DV
-#undef MRN_G2P_VARIANT
+MRN_G2P_VARIANTS(MRN_G2P_INSTANCE)
+#undef MRN_G2P_INSTANCE
+
+typedef struct KNAME(g2p_variant) {
+  int sup;
+  mrn_grid_velocity_kind gv;
+  int fused, dv;
+  KNAME(g2p_fn) run;
+} KNAME(g2p_variant);
+
+#define MRN_G2P_ENTRY(SUP, GV, FUSED, DV) {SUP, MRN_VGRID_##GV, FUSED, DV, KNAME(g2p_##SUP##_##GV##_##FUSED##DV)},
+static const KNAME(g2p_variant) KNAME(g2p_variants)[] = {MRN_G2P_VARIANTS(MRN_G2P_ENTRY)};
+#undef MRN_G2P_ENTRY
 
 static KNAME(g2p_fn) KNAME(g2p_pick)(int sup, mrn_grid_velocity_kind gv, int fused, int dv) {
-  const int k = (gv == MRN_VGRID_AFFINE ? 1 : gv == MRN_VGRID_TAYLOR ? 2 : 0) + 3 * (fused != 0) + 6 * (dv != 0);
-#define MRN_PICK(SUP)                                                                                              \
-  if (sup == SUP) {                                                                                                \
-    static const KNAME(g2p_fn) fns[12] = {                                                                         \
-        KNAME(g2p_##SUP##_000), KNAME(g2p_##SUP##_100), KNAME(g2p_##SUP##_200), KNAME(g2p_##SUP##_010),            \
-        KNAME(g2p_##SUP##_110), KNAME(g2p_##SUP##_210), KNAME(g2p_##SUP##_001), KNAME(g2p_##SUP##_101),            \
-        KNAME(g2p_##SUP##_201), KNAME(g2p_##SUP##_011), KNAME(g2p_##SUP##_111), KNAME(g2p_##SUP##_211)};           \
-    return fns[k];                                                                                                 \
+  const size_t count = sizeof KNAME(g2p_variants) / sizeof KNAME(g2p_variants)[0];
+  for (size_t k = 0; k < count; k++) {
+    const KNAME(g2p_variant) *v = &KNAME(g2p_variants)[k];
+    if (v->sup == sup && v->gv == gv && v->fused == (fused != 0) && v->dv == (dv != 0)) return v->run;
   }
-  MRN_PICK(3)
-  MRN_PICK(4)
-  MRN_PICK(0)
-#undef MRN_PICK
   return NULL;
 }
 
-static long KNAME(g2p_any)(mrn_sim *sim, double dt, double *dx, const mrn_gradient_sink *sink,
+static long KNAME(g2p_any)(mrn_transfer *tr, double dt, double *dx, const mrn_gradient_sink *sink,
                            const mrn_particle_pass *after, long *after_bad) {
   const double t0 = mrn_phase_begin();
-  const mrn_kernel_options ko = KNAME(kernel_options)(sim);
+  const mrn_kernel_options ko = tr->kernel;
   /* XPIC's smoothed velocity is gathered by the general form only */
-  const int sup = sim->scheme.velocity_update == MRN_VUPDATE_XPIC ? 0 : KNAME(fast_support)(&ko);
-  const mrn_scheme *sc = &sim->scheme;
+  const int sup = tr->scheme->velocity_update == MRN_VUPDATE_XPIC ? 0 : KNAME(fast_support)(&ko);
+  const mrn_scheme *sc = tr->scheme;
   const mrn_velocity_update_kind vu = sc->velocity_update;
-  KNAME(g2p_args) ar = {&sim->grid, &sim->particles, &ko, dt,
+  KNAME(g2p_args) ar = {tr->grid, tr->particles, &ko, dt,
                         vu == MRN_VUPDATE_FLIP ? 1.0 : vu == MRN_VUPDATE_BLEND ? sc->flip_fraction : 0.0, dx,
-                        vu == MRN_VUPDATE_XPIC ? sim->grid.vel_star : NULL, vu, sc->position_update};
+                        vu == MRN_VUPDATE_XPIC ? tr->grid->vel_star : NULL, vu, sc->position_update};
   /* the change of the grid velocity, only where the update uses it */
   const int dv = ar.X > 0.0 || vu == MRN_VUPDATE_XPIC || sc->position_update == MRN_XUPDATE_XPIC;
   double spent = 0.0;
   const long bad = KNAME(g2p_pick)(sup, sc->grid_velocity, sink != NULL, dv)(&ar, sink, &spent, after, after_bad);
   mrn_phase_end_split(MRN_PHASE_G2P, sink ? sink->phase : MRN_PHASE_G2P, t0, spent,
-                      sim->particles.n > MRN_OMP_MIN_ITEMS);
+                      tr->particles->n > MRN_OMP_MIN_ITEMS);
   return bad;
 }
 
-void KNAME(mrn_g2p)(mrn_sim *sim, double dt, double *dx) { KNAME(g2p_any)(sim, dt, dx, NULL, NULL, NULL); }
+void KNAME(mrn_g2p)(mrn_transfer *tr, double dt, double *dx) { KNAME(g2p_any)(tr, dt, dx, NULL, NULL, NULL); }
 
-long KNAME(mrn_g2p_then)(mrn_sim *sim, double dt, double *dx, const mrn_gradient_sink *sink,
+long KNAME(mrn_g2p_then)(mrn_transfer *tr, double dt, double *dx, const mrn_gradient_sink *sink,
                          const mrn_particle_pass *after, long *after_bad) {
-  return KNAME(g2p_any)(sim, dt, dx, sink, after, after_bad);
+  return KNAME(g2p_any)(tr, dt, dx, sink, after, after_bad);
 }
 
 /* ---- XPIC's projections -------------------------------------------------------------- */
 
-void KNAME(mrn_grid_to_particles)(mrn_sim *sim, const double *gvel, double *pvel) {
-  const mrn_grid *g = &sim->grid;
-  const mrn_particles *ps = &sim->particles;
-  const mrn_kernel_options ko = KNAME(kernel_options)(sim);
+void KNAME(mrn_grid_to_particles)(mrn_transfer *tr, const double *gvel, double *pvel) {
+  const mrn_grid *g = tr->grid;
+  const mrn_particles *ps = tr->particles;
+  const mrn_kernel_options ko = tr->kernel;
   const long n = (long)ps->n;
 #pragma omp parallel for schedule(static) if (n > MRN_OMP_MIN_ITEMS)
   for (long p = 0; p < n; p++) {
@@ -1094,10 +1170,10 @@ void KNAME(mrn_grid_to_particles)(mrn_sim *sim, const double *gvel, double *pvel
   }
 }
 
-void KNAME(mrn_particles_to_grid)(mrn_sim *sim, const double *pvel, double *gvel) {
-  const mrn_grid *g = &sim->grid;
-  const mrn_particles *ps = &sim->particles;
-  const mrn_kernel_options ko = KNAME(kernel_options)(sim);
+void KNAME(mrn_particles_to_grid)(mrn_transfer *tr, const double *pvel, double *gvel) {
+  const mrn_grid *g = tr->grid;
+  const mrn_particles *ps = tr->particles;
+  const mrn_kernel_options ko = tr->kernel;
   memset(gvel, 0, 3 * g->n * sizeof(double));
   KNAME(stencil) s;
   for (size_t p = 0; p < ps->n; p++) {
@@ -1109,11 +1185,15 @@ void KNAME(mrn_particles_to_grid)(mrn_sim *sim, const double *pvel, double *gvel
   }
   for (size_t i = 0; i < g->n; i++) {
     double m = g->mass[i];
-    for (int d = 0; d < 3; d++) gvel[3 * i + d] = m > sim->mass_floor ? gvel[3 * i + d] / m : 0.0;
+    for (int d = 0; d < 3; d++) gvel[3 * i + d] = m > tr->mass_floor ? gvel[3 * i + d] / m : 0.0;
   }
 }
 
+#undef MRN_P2G_VARIANTS
+#undef MRN_GRADIENT_VARIANTS
+#undef MRN_UPDATE_FORCE_VARIANTS
+#undef MRN_G2P_VARIANTS_OF
+#undef MRN_G2P_VARIANTS
 #undef MRN_CHUNKED_LOOP
-#undef MRN_FOR_OWN_BLOCKS
 #undef MRN_INLINE
 #undef TSTRIDE

@@ -9,10 +9,10 @@
 #ifndef MRN_TRANSFER_XPIC_H
 #define MRN_TRANSFER_XPIC_H
 
-struct mrn_sim;
+#include "transfer/context.h"
 
 /* fill grid.vel_star from grid.vel (already P_m V^P with boundary conditions);
  * `particle_scratch` holds 3 values per particle. */
-void mrn_xpic_smooth(struct mrn_sim *sim, double *particle_scratch);
+void mrn_xpic_smooth(mrn_transfer *tr, double *particle_scratch);
 
 #endif

@@ -29,6 +29,33 @@ static double rnd(unsigned *state) {
   return (*state >> 8) / 16777216.0;
 }
 
+/* the transfers and updates on a simulation's own transfer context */
+static void p2g(mrn_sim *sim, int momentum, int force) {
+  mrn_transfer tr = mrn_sim_transfer(sim);
+  mrn_p2g(&tr, momentum, force);
+  mrn_sim_transfer_end(sim, &tr);
+}
+static long gradient(mrn_sim *sim, const double *gvel, const mrn_gradient_sink *sink) {
+  mrn_transfer tr = mrn_sim_transfer(sim);
+  return mrn_gradient(&tr, gvel, sink);
+}
+static long update_force(mrn_sim *sim, const double *gvel, const mrn_gradient_sink *sink) {
+  mrn_transfer tr = mrn_sim_transfer(sim);
+  return mrn_update_force(&tr, gvel, sink);
+}
+static int update_force_fused(mrn_sim *sim) {
+  const mrn_transfer tr = mrn_sim_transfer(sim);
+  return mrn_update_force_fused(&tr);
+}
+static int update_from_grid(mrn_sim *sim, const double *gvel, double dt) {
+  mrn_transfer tr = mrn_sim_transfer(sim);
+  return mrn_update_from_grid(sim, &tr, gvel, dt);
+}
+static int update_then_force(mrn_sim *sim, const double *gvel, double dt) {
+  mrn_transfer tr = mrn_sim_transfer(sim);
+  return mrn_update_then_force(sim, &tr, gvel, dt);
+}
+
 static void set_threads(int n) {
 #ifdef _OPENMP
   omp_set_num_threads(n);
@@ -93,9 +120,9 @@ static void threads_and_spans(int dim, mrn_shape_kind shape) {
   mrn_sim *one = make(dim, shape, 20000, 7u + (unsigned)dim), *two = make(dim, shape, 20000, 7u + (unsigned)dim);
   CHECK(one && two);
   set_threads(1);
-  mrn_p2g(one, dim, 1, 1);
+  p2g(one, 1, 1);
   set_threads(2);
-  mrn_p2g(two, dim, 1, 1);
+  p2g(two, 1, 1);
   CHECK(same_grid(&one->grid, &two->grid));
   CHECK(ranges_hold(&two->grid));
   /* a full step, then move every particle far to the right: the old spans
@@ -113,9 +140,9 @@ static void threads_and_spans(int dim, mrn_shape_kind shape) {
   memcpy(fresh->particles.affine, two->particles.affine, ts * two->particles.n * sizeof(double));
   memcpy(fresh->particles.stress, two->particles.stress, 6 * two->particles.n * sizeof(double));
   memcpy(fresh->particles.F, two->particles.F, ts * two->particles.n * sizeof(double)); /* the volumes */
-  mrn_p2g(two, dim, 1, 1);
+  p2g(two, 1, 1);
   set_threads(1);
-  mrn_p2g(fresh, dim, 1, 1);
+  p2g(fresh, 1, 1);
   CHECK(same_grid(&fresh->grid, &two->grid));
   CHECK(ranges_hold(&two->grid));
   mrn_sim_free(one);
@@ -130,12 +157,12 @@ static void reused_binning(int dim) {
   mrn_sim *b = make(dim, MRN_SHAPE_QUADRATIC_BSPLINE, 20000, 11u);
   CHECK(a && b);
   set_threads(2);
-  mrn_p2g(a, dim, 1, 0);
-  mrn_blocks_reuse(&a->grid);
-  mrn_p2g(a, dim, 0, 1);
-  mrn_p2g(b, dim, 1, 0);
-  mrn_p2g(b, dim, 0, 1);
-  CHECK(a->grid.blocks->reuse == 0); /* used up */
+  p2g(a, 1, 0);
+  mrn_blocks_reuse(a->blocks);
+  p2g(a, 0, 1);
+  p2g(b, 1, 0);
+  p2g(b, 0, 1);
+  CHECK(a->blocks->reuse == 0); /* used up */
   CHECK(same_grid(&a->grid, &b->grid));
   CHECK(ranges_hold(&a->grid));
   mrn_sim_free(a);
@@ -151,8 +178,8 @@ static void incremental_rebin(int dim, int threads) {
   mrn_sim *b = make(dim, MRN_SHAPE_QUADRATIC_BSPLINE, 20000, 23u);
   CHECK(a && b);
   set_threads(threads);
-  mrn_p2g(a, dim, 1, 1);
-  mrn_p2g(b, dim, 1, 1);
+  p2g(a, 1, 1);
+  p2g(b, 1, 1);
   unsigned seed = 5u;
   for (int round = 0; round < 3; round++) {
     for (size_t p = 0; p < a->particles.n; p++) {
@@ -164,10 +191,10 @@ static void incremental_rebin(int dim, int threads) {
         a->particles.x[3 * p + d] = b->particles.x[3 * p + d] = x;
       }
     }
-    mrn_p2g(a, dim, 1, 1);
-    b->grid.blocks->np = 0; /* no previous binning: b bins from scratch */
-    mrn_p2g(b, dim, 1, 1);
-    const mrn_blocks *ba = a->grid.blocks, *bb = b->grid.blocks;
+    p2g(a, 1, 1);
+    b->blocks->np = 0; /* no previous binning: b bins from scratch */
+    p2g(b, 1, 1);
+    const mrn_blocks *ba = a->blocks, *bb = b->blocks;
     size_t movers = 0;
     for (int t = 0; t < ba->found_threads; t++) movers += ba->found[t];
     CHECK(movers > 100 && movers < MRN_BLOCK_MOVERS_MAX); /* a was patched */
@@ -213,12 +240,12 @@ static void sorted_run(int dim) {
   mrn_sim *a = make(dim, MRN_SHAPE_QUADRATIC_BSPLINE, 5000, 11u), *b = make(dim, MRN_SHAPE_QUADRATIC_BSPLINE, 5000, 11u);
   CHECK(a && b);
   for (int d = 0; d < dim; d++) a->gravity[d] = b->gravity[d] = d == 1 ? -9.81 : 0.0;
-  mrn_blocks_set_sort_every(&b->grid, 3);
+  mrn_sim_set_sort_every(b, 3);
   for (int s = 0; s < 10; s++) {
     CHECK(mrn_sim_step_dt(a, 1e-4) == 0);
     CHECK(mrn_sim_step_dt(b, 1e-4) == 0);
   }
-  CHECK(b->grid.blocks->sorted_step == 9);
+  CHECK(b->sorted_step == 9);
   const size_t n = a->particles.n;
   size_t *at = malloc(n * sizeof *at);
   for (size_t i = 0; i < n; i++) at[b->particles.id[i] - 1] = i;
@@ -276,30 +303,30 @@ static void fused_update_force(int dim, mrn_shape_kind shape, int sorted, int th
   for (int k = 0; k < 4; k++) {
     sim[k] = make(dim, shape, 20000, 5u);
     CHECK(sim[k] != NULL);
-    if (sorted) mrn_blocks_set_sort_every(&sim[k]->grid, 1);
+    if (sorted) mrn_sim_set_sort_every(sim[k], 1);
   }
   set_threads(threads);
-  for (int k = 0; k < 4; k++) mrn_p2g(sim[k], dim, 1, 0);
+  for (int k = 0; k < 4; k++) p2g(sim[k], 1, 0);
   const size_t nodes = sim[0]->grid.n;
   double *gvel = malloc(3 * nodes * sizeof(double));
   unsigned seed = 99u;
   for (size_t i = 0; i < 3 * nodes; i++) gvel[i] = (i % 3 < (size_t)dim) ? 0.02 * (rnd(&seed) - 0.5) : 0.0;
   /* the kernel */
   const mrn_gradient_sink s0 = {advance_sink, sim[0], MRN_PHASE_STRESS}, s1 = {advance_sink, sim[1], MRN_PHASE_STRESS};
-  CHECK(mrn_gradient(sim[0], dim, gvel, &s0) == -1);
-  mrn_blocks_reuse(&sim[0]->grid);
-  mrn_p2g(sim[0], dim, 0, 1);
-  CHECK(mrn_update_force(sim[1], dim, gvel, &s1) == -1);
+  CHECK(gradient(sim[0], gvel, &s0) == -1);
+  mrn_blocks_reuse(sim[0]->blocks);
+  p2g(sim[0], 0, 1);
+  CHECK(update_force(sim[1], gvel, &s1) == -1);
   CHECK(same_state(sim[0], sim[1]));
   CHECK(ranges_hold(&sim[1]->grid));
   /* the step's choice */
-  const mrn_blocks *b = sim[3]->grid.blocks;
-  CHECK(mrn_update_force_fused(sim[3], dim) == (b->np >= MRN_FUSED_MIN_RUN * b->runs));
-  CHECK(mrn_update_force_fused(sim[3], dim) == sorted);
-  CHECK(mrn_update_from_grid(sim[2], gvel, 1e-3) == 0);
-  mrn_blocks_reuse(&sim[2]->grid);
-  mrn_p2g(sim[2], dim, 0, 1);
-  CHECK(mrn_update_then_force(sim[3], gvel, 1e-3) == 0);
+  const mrn_blocks *b = sim[3]->blocks;
+  CHECK(update_force_fused(sim[3]) == (b->np >= MRN_FUSED_MIN_RUN * b->runs));
+  CHECK(update_force_fused(sim[3]) == sorted);
+  CHECK(update_from_grid(sim[2], gvel, 1e-3) == 0);
+  mrn_blocks_reuse(sim[2]->blocks);
+  p2g(sim[2], 0, 1);
+  CHECK(update_then_force(sim[3], gvel, 1e-3) == 0);
   CHECK(same_state(sim[2], sim[3]));
   free(gvel);
   for (int k = 0; k < 4; k++) mrn_sim_free(sim[k]);

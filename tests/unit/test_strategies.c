@@ -41,7 +41,8 @@ static long keep_gradient(void *ctx, size_t lo, size_t hi, const double *L) {
 /* one transfer with no force: P2G, V~ = V, G2P; then grad v from the grid */
 static void transfer_once(mrn_sim *sim) {
   mrn_grid *g = &sim->grid;
-  mrn_p2g(sim, sim->dim, 1, 0);
+  mrn_transfer tr = mrn_sim_transfer(sim);
+  mrn_p2g(&tr, 1, 0);
   for (size_t i = 0; i < g->n; i++)
     for (int d = 0; d < 3; d++) {
       g->vel[3 * i + d] = g->mass[i] > sim->mass_floor ? g->mom[3 * i + d] / g->mass[i] : 0.0;
@@ -49,12 +50,12 @@ static void transfer_once(mrn_sim *sim) {
     }
   if (sim->scheme.velocity_update == MRN_VUPDATE_XPIC) {
     static double scratch[3 * 4096];
-    mrn_xpic_smooth(sim, scratch);
+    mrn_xpic_smooth(&tr, scratch);
   }
   const mrn_gradient_sink sink = {keep_gradient, NULL, MRN_PHASE_G2P};
-  mrn_gradient(sim, sim->dim, g->vel_new, &sink); /* before the particles move, into gradv */
+  mrn_gradient(&tr, g->vel_new, &sink); /* before the particles move, into gradv */
   static double dx[3 * 4096]; /* the particles stay where they are */
-  mrn_g2p(sim, sim->dim, 1e-3, dx);
+  mrn_g2p(&tr, 1e-3, dx);
 }
 
 static void single_particle(const char *preset, int keeps_gradient) {

@@ -46,7 +46,8 @@ static void run_case(int dim, mrn_shape_kind shape) {
     mass += m;
   }
   mrn_sim_particles_changed(sim);
-  mrn_p2g(sim, dim, 1, 1);
+  mrn_transfer tr = mrn_sim_transfer(sim);
+  mrn_p2g(&tr, 1, 1);
   double gm = 0, gp[3] = {0, 0, 0}, gf[3] = {0, 0, 0}, fscale = 0;
   for (size_t n = 0; n < sim->grid.n; n++) {
     gm += sim->grid.mass[n];
@@ -69,7 +70,7 @@ static void run_case(int dim, mrn_shape_kind shape) {
       sim->grid.vel_new[3 * n + d] = d < dim ? 0.25 * (d + 1) : 0.0;
       sim->grid.vel[3 * n + d] = sim->grid.vel_new[3 * n + d]; /* no acceleration */
     }
-  mrn_g2p(sim, dim, 1e-9, sim->particles.x0);
+  mrn_g2p(&tr, 1e-9, sim->particles.x0);
   double worst = 0;
   for (size_t p = 0; p < sim->particles.n; p++)
     for (int d = 0; d < dim; d++) worst = fmax(worst, fabs(sim->particles.v[3 * p + d] - 0.25 * (d + 1)));
