@@ -25,19 +25,23 @@ void mrn_implicit_options_default(mrn_implicit_options *o) {
   o->cutbacks = 0;
 }
 
+/* the law the integrator runs for material m: the finite-strain form its
+ * type declares (material.h), whatever the model is in explicit runs */
 static int material_of(const mrn_material *m, mrn_emc_material *out) {
-  const char *name = m->type->name;
-  out->lambda = m->derived[0]; /* the isotropic models keep lambda, G first (material.h) */
-  out->G = m->derived[1];
-  out->yield = 0.0;
-  out->H = 0.0;
-  if (!strcmp(name, "von_mises")) {
-    out->yield = mrn_material_get(m, "yield");
-    out->H = mrn_material_get(m, "hardening");
-  } else if (strcmp(name, "hencky")) {
-    return mrn_error_code(MRN_ERR, "implicit: material '%s' (%s) is not supported; use hencky or von_mises", m->name,
-                          name);
+  const mrn_implicit_form *form = m->type->implicit;
+  if (!form) {
+    char names[256];
+    return mrn_error_code(MRN_ERR,
+                          "implicit: material '%s' (%s) has no implicit form; materials with one: %s "
+                          "(doc/implicit.md)",
+                          m->name, m->type->name, mrn_material_implicit_names(names, sizeof names));
   }
+  mrn_implicit_law law;
+  form->law_of(m, &law);
+  out->lambda = law.lambda;
+  out->G = law.G;
+  out->yield = law.yield;
+  out->H = law.hardening;
   return 0;
 }
 
