@@ -20,7 +20,7 @@
  * the dissipation bookkeeping are unchanged). Every affine displacement
  * gives H~ = H, so constant fields and linear momentum are exact; angular
  * momentum is not exact any more (the averaged divergence of a point's
- * mid-point rotation is not its own), the error is measured in the tests.
+ * mid-point rotation is not its own).
  *
  * Force and stiffness. With c_A = g_A - grad N_A(x_p) the derivative of
  * H~_p along u_(A k) is e_k (x) grad N_A + c_(A k) / d I_d, so

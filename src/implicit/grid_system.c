@@ -54,9 +54,9 @@ static int relinearise(const mrn_grid *g, int dim, const double *xp, mrn_implici
   return 0;
 }
 
-/* stencils at the start-of-step positions, active nodes, fixed dofs */
-int mrn_implicit_setup_step(mrn_implicit *im) {
-  mrn_sim *sim = im->sim;
+/* the stencils of the points at their start-of-step positions */
+static void make_stencils(mrn_implicit *im) {
+  const mrn_sim *sim = im->sim;
   const mrn_particles *ps = &sim->particles;
   const mrn_grid *g = &sim->grid;
   mrn_kernel_options kopt = {sim->shape, sim->kernel_boundary, 0, 0};
@@ -64,19 +64,48 @@ int mrn_implicit_setup_step(mrn_implicit *im) {
     if (im->dim == 2) mrn_implicit_stencil_2d(g, &kopt, ps->x + 3 * p, ps->vol0[p], &im->sten[p]);
     else mrn_implicit_stencil_3d(g, &kopt, ps->x + 3 * p, ps->vol0[p], &im->sten[p]);
   }
-  /* Nodes that only the fringe of a shape function reaches (tiny mass, tiny
-   * gradients) make the Jacobian nearly singular and Newton wander (001
-   * §7.1 on integration errors). They are left out, and the points that
-   * touched them get moving-least-squares functions on the nodes they keep
-   * (relinearise), so momenta and the energy identities still hold. */
-  if (grow((void **)&im->gmass, g->n * sizeof(double))) return MRN_ERR;
-  memset(im->gmass, 0, g->n * sizeof(double));
-  double mmax = 0.0;
+}
+
+/* the lumped nodal masses of the stencils (im->gmass) and the heaviest point's mass */
+static int node_masses(mrn_implicit *im, double *mmax) {
+  const mrn_particles *ps = &im->sim->particles;
+  const size_t nn = im->sim->grid.n;
+  if (grow((void **)&im->gmass, nn * sizeof(double))) return MRN_ERR;
+  memset(im->gmass, 0, nn * sizeof(double));
+  *mmax = 0.0;
   for (size_t p = 0; p < im->np; p++) {
-    mmax = fmax(mmax, ps->mass[p]);
+    *mmax = fmax(*mmax, ps->mass[p]);
     for (int k = 0; k < im->sten[p].count; k++) im->gmass[im->sten[p].node[k]] += ps->mass[p] * im->sten[p].N[k];
   }
-  const double floor_mass = im->opt.min_node_mass * mmax;
+  return 0;
+}
+
+/* The kept nodes cannot carry a linear field (all on one line): keep the
+ * partition of unity only, N' = N / sum N, grad N' = grad N - N' sum grad N
+ * (linear momentum and energy still hold, angular momentum not exactly). */
+static int renormalise(const mrn_implicit *im, size_t p, mrn_implicit_stencil *s) {
+  double sum = 0.0, gsum[3] = {0, 0, 0};
+  for (int k = 0; k < s->count; k++) {
+    sum += s->N[k];
+    for (int d = 0; d < 3; d++) gsum[d] += s->dN[k][d];
+  }
+  if (!(sum > 0.0))
+    return mrn_error_code(MRN_ERR_STATE, "implicit: particle %zu has no node above the mass floor (min_node_mass %g)",
+                          p + 1, im->opt.min_node_mass);
+  for (int k = 0; k < s->count; k++) {
+    s->N[k] /= sum;
+    for (int d = 0; d < 3; d++) s->dN[k][d] -= s->N[k] * gsum[d];
+  }
+  return 0;
+}
+
+/* Nodes that only the fringe of a shape function reaches (tiny mass, tiny
+ * gradients) make the Jacobian nearly singular and Newton wander (001 §7.1
+ * on integration errors). They are left out, and the points that touched
+ * them get moving-least-squares functions on the nodes they keep
+ * (relinearise), so momenta and the energy identities still hold. */
+static int drop_light_nodes(mrn_implicit *im, double floor_mass) {
+  const double *x = im->sim->particles.x;
   for (size_t p = 0; p < im->np; p++) {
     mrn_implicit_stencil *s = &im->sten[p];
     int c = 0, dropped = 0;
@@ -90,42 +119,39 @@ int mrn_implicit_setup_step(mrn_implicit *im) {
       c++;
     }
     s->count = c;
-    if (!dropped || !relinearise(g, im->dim, ps->x + 3 * p, s)) continue;
-    /* the kept nodes cannot carry a linear field (all on one line): keep the
-     * partition of unity only, N' = N / sum N, grad N' = grad N - N' sum grad N
-     * (linear momentum and energy still hold, angular momentum not exactly) */
-    double sum = 0.0, gsum[3] = {0, 0, 0};
-    for (int k = 0; k < c; k++) {
-      sum += s->N[k];
-      for (int d = 0; d < 3; d++) gsum[d] += s->dN[k][d];
-    }
-    if (!(sum > 0.0))
-      return mrn_error_code(MRN_ERR_STATE, "implicit: particle %zu has no node above the mass floor (min_node_mass %g)",
-                            p + 1, im->opt.min_node_mass);
-    for (int k = 0; k < c; k++) {
-      s->N[k] /= sum;
-      for (int d = 0; d < 3; d++) s->dN[k][d] -= s->N[k] * gsum[d];
-    }
+    if (!dropped || !relinearise(&im->sim->grid, im->dim, x + 3 * p, s)) continue;
+    if (renormalise(im, p, s)) return MRN_ERR_STATE;
   }
+  return 0;
+}
+
+/* room for the per-node arrays of `nact` active nodes */
+static int reserve_active(mrn_implicit *im, size_t nact) {
+  if (nact <= im->act_cap) return 0;
+  size_t c = nact, NR = (size_t)im->NR;
+  if (grow((void **)&im->act, c * sizeof(size_t)) || grow((void **)&im->ijk, 3 * c * sizeof(int)) ||
+      grow((void **)&im->Kb, c * NR * 9 * sizeof(double)) || grow((void **)&im->Mc, c * NR * sizeof(double)) ||
+      grow((void **)&im->touched, c * NR) || grow((void **)&im->ml, c * sizeof(double)) ||
+      grow((void **)&im->fdof, 3 * c * sizeof(int)) || grow((void **)&im->vfix, 3 * c * sizeof(double)) ||
+      grow((void **)&im->v0, 3 * c * sizeof(double)) ||
+      grow((void **)&im->u, 3 * c * sizeof(double)) || grow((void **)&im->fint, 3 * c * sizeof(double)) ||
+      grow((void **)&im->fext, 3 * c * sizeof(double)) || grow((void **)&im->p, 3 * c * sizeof(double)) ||
+      grow((void **)&im->r, 3 * c * sizeof(double)) || grow((void **)&im->du, 3 * c * sizeof(double)))
+    return MRN_ERR;
+  im->act_cap = c;
+  return 0;
+}
+
+/* the nodes some stencil reaches, numbered in grid order (im->dof, im->act, im->ijk) */
+static int number_active_nodes(mrn_implicit *im) {
+  const mrn_grid *g = &im->sim->grid;
   for (size_t i = 0; i < g->n; i++) im->dof[i] = -1;
   for (size_t p = 0; p < im->np; p++)
     for (int k = 0; k < im->sten[p].count; k++) im->dof[im->sten[p].node[k]] = 0;
   size_t nact = 0;
   for (size_t i = 0; i < g->n; i++)
     if (im->dof[i] == 0) nact++;
-  if (nact > im->act_cap) {
-    size_t c = nact, NR = (size_t)im->NR;
-    if (grow((void **)&im->act, c * sizeof(size_t)) || grow((void **)&im->ijk, 3 * c * sizeof(int)) ||
-        grow((void **)&im->Kb, c * NR * 9 * sizeof(double)) || grow((void **)&im->Mc, c * NR * sizeof(double)) ||
-        grow((void **)&im->touched, c * NR) || grow((void **)&im->ml, c * sizeof(double)) ||
-        grow((void **)&im->fdof, 3 * c * sizeof(int)) || grow((void **)&im->vfix, 3 * c * sizeof(double)) ||
-        grow((void **)&im->v0, 3 * c * sizeof(double)) ||
-        grow((void **)&im->u, 3 * c * sizeof(double)) || grow((void **)&im->fint, 3 * c * sizeof(double)) ||
-        grow((void **)&im->fext, 3 * c * sizeof(double)) || grow((void **)&im->p, 3 * c * sizeof(double)) ||
-        grow((void **)&im->r, 3 * c * sizeof(double)) || grow((void **)&im->du, 3 * c * sizeof(double)))
-      return MRN_ERR;
-    im->act_cap = c;
-  }
+  if (reserve_active(im, nact)) return MRN_ERR;
   im->nact = 0;
   for (size_t i = 0; i < g->n; i++)
     if (im->dof[i] == 0) {
@@ -136,16 +162,23 @@ int mrn_implicit_setup_step(mrn_implicit *im) {
       mrn_grid_node_ijk(g, i, ijk);
       memcpy(im->ijk + 3 * a, ijk, sizeof ijk);
     }
-  /* fixed components: the face conditions on the nodes on and beyond each
-   * face (as the explicit step applies them, grid/boundary.h), then the grid
-   * constraints (which take precedence, as in the explicit step) */
+  return 0;
+}
+
+/* Fixed components: the face conditions on the nodes on and beyond each
+ * face (as the explicit step applies them, grid/boundary.h), then the grid
+ * constraints (which take precedence, as in the explicit step); the free
+ * ones are numbered in order (im->fdof, im->nfree). */
+static void fix_components(mrn_implicit *im) {
+  const mrn_sim *sim = im->sim;
+  const size_t nact = im->nact;
   for (size_t a = 0; a < 3 * nact; a++) im->fdof[a] = 0, im->vfix[a] = 0.0;
   for (size_t a = 0; a < nact; a++)
     for (int axis = 0; axis < im->dim; axis++)
       for (int side = 0; side < 2; side++) {
         const mrn_face_bc *f = &sim->boundary.face[2 * axis + side];
         const int i = im->ijk[3 * a + axis];
-        if (side == 0 ? i > 0 : i < g->ncell[axis]) continue;
+        if (side == 0 ? i > 0 : i < sim->grid.ncell[axis]) continue;
         if (f->kind == MRN_BC_SLIP) im->fdof[im->dim * a + axis] = -1;
         if (f->kind == MRN_BC_FIXED || f->kind == MRN_BC_VELOCITY)
           for (int d = 0; d < im->dim; d++) {
@@ -165,7 +198,17 @@ int mrn_implicit_setup_step(mrn_implicit *im) {
   im->nfree = 0;
   for (size_t a = 0; a < nact * im->dim; a++)
     if (im->fdof[a] == 0) im->fdof[a] = im->nfree++;
-  return 0;
+}
+
+/* stencils at the start-of-step positions, active nodes, fixed dofs */
+int mrn_implicit_setup_step(mrn_implicit *im) {
+  double mmax;
+  make_stencils(im);
+  if (node_masses(im, &mmax)) return MRN_ERR;
+  int rc = drop_light_nodes(im, im->opt.min_node_mass * mmax);
+  if (!rc) rc = number_active_nodes(im);
+  if (!rc) fix_components(im);
+  return rc;
 }
 
 /* mass matrices, grid momentum and external forces at mid-step (001 Eqs. 15-19, 26) */

@@ -29,9 +29,9 @@
  * grid constraints, with their prescribed velocities held through the step
  * (u = dt v there); friction and periodic faces are refused.
  *
- * Limits: materials "hencky" (elastic) and "von_mises" (its E, nu, yield,
- * hardening are used in the finite-strain Hencky form of emc_stress.h);
- * particles may not be added after the integrator is created; initial
+ * Limits: materials whose type has an implicit form (material.h: hencky,
+ * elastic, and von_mises, whose E, nu, yield and hardening are used in the
+ * finite-strain Hencky form of emc_stress.h); particles may not be added after the integrator is created; initial
  * particle stresses are ignored (the state starts from b_e = F F^T). Each
  * point's history (b_e, tau, psi, xi) is kept in the registered particle
  * fields implicit_* (point_state.c), so checkpoints hold it and a new

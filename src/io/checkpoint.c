@@ -76,31 +76,19 @@ static void save_root(mrn_h5w *w) {
   H5Gclose(root);
 }
 
+/* one attribute of /simulation per row of solver/sim_scalars.h, in its order */
+#define SAVE_SCALAR(ctype, name, kind, check, since, initial, ...) \
+  SAVE_##kind(w, g, #name, sim->name, ((mrn_scalar_check){check}));
+#define SAVE_F64(w, g, key, v, check) mrn_h5w_double(w, g, key, v)
+#define SAVE_F64X3(w, g, key, v, check) mrn_h5w_doubles(w, g, key, v, 3)
+#define SAVE_I32(w, g, key, v, check) mrn_h5w_int32(w, g, key, v)
+#define SAVE_I64(w, g, key, v, check) mrn_h5w_int64(w, g, key, v)
+#define SAVE_NAME(w, g, key, v, check) mrn_h5w_string(w, g, key, (check).names()[v])
+
 static void save_simulation(mrn_h5w *w, const mrn_sim *sim) {
   hid_t g = mrn_h5w_group(w, w->file, "simulation");
   if (g < 0) return;
-  mrn_h5w_int32(w, g, "dim", sim->dim);
-  mrn_h5w_string(w, g, "shape", mrn_shape_info_of(sim->shape)->name);
-  mrn_h5w_string(w, g, "kernel_boundary", mrn_kernel_boundary_names()[sim->kernel_boundary]);
-  mrn_h5w_double(w, g, "time", sim->time);
-  mrn_h5w_int64(w, g, "step", sim->step);
-  mrn_h5w_double(w, g, "dt", sim->dt);
-  mrn_h5w_doubles(w, g, "gravity", sim->gravity, 3);
-  mrn_h5w_double(w, g, "damping_cundall", sim->damping_cundall);
-  mrn_h5w_double(w, g, "damping_viscous", sim->damping_viscous);
-  mrn_h5w_double(w, g, "work_friction", sim->work_friction);
-  mrn_h5w_double(w, g, "work_damping", sim->work_damping);
-  mrn_h5w_double(w, g, "work_external", sim->work_external);
-  mrn_h5w_double(w, g, "load_factor", sim->load_factor);
-  mrn_h5w_double(w, g, "energy_ref", sim->energy_ref);
-  mrn_h5w_int32(w, g, "energy_ref_set", sim->energy_ref_set);
-  mrn_h5w_string(w, g, "on_leave", mrn_leave_policy_names()[sim->on_leave]);
-  mrn_h5w_int64(w, g, "outflow_particles", sim->outflow_particles);
-  mrn_h5w_double(w, g, "outflow_mass", sim->outflow_mass);
-  mrn_h5w_double(w, g, "energy_outflow", sim->energy_outflow);
-  mrn_h5w_double(w, g, "mass_floor", sim->mass_floor);
-  mrn_h5w_int64(w, g, "sort_every", sim->sort_every);
-  mrn_h5w_int32(w, g, "affine_pending", sim->affine_pending);
+  MRN_SIM_SCALARS(SAVE_SCALAR)
   H5Gclose(g);
 }
 
@@ -417,6 +405,10 @@ static int take_particles(mrn_sim *sim, const ck_data *d) {
   return MRN_OK;
 }
 
+/* a row of solver/sim_scalars.h, as read */
+#define TAKE_SCALAR(ctype, name, kind, check, since, initial, ...) \
+  memcpy(&sim->name, &d->name, sizeof d->name);
+
 /* everything in d has been checked; what can still fail is memory */
 static mrn_sim *build_sim(const ck_data *d, mrn_checkpoint_info *info) {
   mrn_sim_config cfg = {.dim = d->dim, .cell = d->cell, .shape = d->shape, .kernel_boundary = d->kernel_boundary};
@@ -425,33 +417,16 @@ static mrn_sim *build_sim(const ck_data *d, mrn_checkpoint_info *info) {
   memcpy(cfg.gravity, d->gravity, sizeof cfg.gravity);
   mrn_sim *sim = mrn_sim_new(&cfg);
   if (!sim) return NULL;
-  memcpy(sim->gravity, d->gravity, sizeof sim->gravity);
   sim->scheme = d->scheme;
   sim->boundary = d->boundary;
   take_dt_policy(sim, d, info);
-  sim->time = d->time;
-  sim->step = (long)d->step;
-  sim->dt = d->dt;
-  sim->damping_cundall = d->damping_cundall;
-  sim->damping_viscous = d->damping_viscous;
-  sim->work_friction = d->work_friction;
-  sim->work_damping = d->work_damping;
-  sim->work_external = d->work_external;
-  sim->load_factor = d->load_factor;
-  sim->energy_ref = d->energy_ref;
-  sim->energy_ref_set = d->energy_ref_set;
-  sim->on_leave = (mrn_leave_policy)d->on_leave;
-  sim->outflow_particles = (long)d->outflow_particles;
-  sim->outflow_mass = d->outflow_mass;
-  sim->energy_outflow = d->energy_outflow;
-  sim->affine_pending = d->affine_pending;
-  mrn_sim_set_sort_every(sim, (long)d->sort_every);
   for (int64_t k = 0; k < d->ncontact; k++) sim->grid.contact[d->contact[2 * k]] = (unsigned char)d->contact[2 * k + 1];
   for (int i = 0; i < d->nmaterials; i++)
     if (mrn_sim_add_material(sim, d->materials[i]) < 0) goto fail;
   if (take_particles(sim, d)) goto fail;
   mrn_sim_particles_changed(sim);
-  sim->mass_floor = d->mass_floor; /* as saved, whatever rule computed it */
+  /* last: mass_floor as saved, whatever rule computed it */
+  MRN_SIM_SCALARS(TAKE_SCALAR)
   return sim;
 fail:
   mrn_sim_free(sim);

@@ -12,29 +12,18 @@
 
 /* upper bound on history variables per particle, against absurd files */
 #define CK_MAX_STATE_STRIDE 4096
-/* step counter and next particle id: far beyond any run, far below overflow
- * (both are incremented by the engine without checks) */
-#define CK_MAX_COUNTER ((int64_t)1 << 53)
+/* the next particle id, a counter as the step (solver/sim_scalars.h) */
+#define CK_MAX_COUNTER MRN_MAX_COUNTER
 
 typedef struct ck_data {
   /* / */
   int version;
   int checksums; /* 1: the file's checksum table was verified (checkpoint_sum.c) */
   char moraine_version[64];
-  /* /simulation */
-  int dim;
-  mrn_shape_kind shape;
-  mrn_kernel_boundary kernel_boundary;
-  int affine_pending;
-  double time, dt, gravity[3], mass_floor;
-  double damping_cundall, damping_viscous;
-  double work_friction, work_damping, energy_ref; /* energy balance (000, Eqs. 66-68) */
-  double work_external, load_factor;              /* point forces (solver/point_force.h) */
-  int energy_ref_set;
-  int on_leave; /* mrn_leave_policy */
-  double outflow_mass, energy_outflow;
-  int64_t step, outflow_particles;
-  int64_t sort_every; /* reorder the particles every N steps (transfer/blocks.h) */
+  /* /simulation: the rows of solver/sim_scalars.h, as the members of mrn_sim */
+  struct {
+    MRN_SIM_SCALARS(MRN_SIM_DECLARE)
+  };
   /* /grid */
   double origin[3], size[3], cell;
   int ncell[3];

@@ -95,51 +95,57 @@ static void read_root(mrn_h5r *r, ck_data *d) {
           (long long)version);
 }
 
-static void read_simulation(mrn_h5r *r, ck_data *d) {
+/* 1 when the file predates the attribute `name` of /simulation (a version
+ * before `since`) and lacks it: it loads with the row's initial value. A
+ * file of a later version must hold it, and reading it says it is missing. */
+static int predates(mrn_h5r *r, const ck_data *d, const char *name, int since) {
+  return d->version < since && !mrn_h5r_has_attr(r, "/simulation", name);
+}
+
+/* A row of solver/sim_scalars.h: the value read and checked, or `initial`
+ * when the file predates it or it failed (the message is then set). */
+static double get_f64(mrn_h5r *r, const ck_data *d, const char *name, mrn_scalar_check c, int since, double initial) {
+  double v;
+  if (predates(r, d, name, since)) return initial;
+  read_finite(r, "/simulation", name, c.min, &v);
+  return r->failed ? initial : v;
+}
+
+/* a vector's components need only be finite (MRN_ANY) */
+static void get_f64s(mrn_h5r *r, const ck_data *d, const char *name, int since, double initial, double *out, int n) {
   const char *g = "/simulation";
-  int64_t dim = 0, step = 0;
-  int64_t affine_pending = 0, energy_ref_set = 0;
-  int shape = 0, kernel_boundary = 0;
-  if (mrn_h5r_group(r, g) || mrn_h5r_int(r, g, "dim", &dim)) return;
-  if (require(r, dim == 2 || dim == 3, "%s: dimension %lld, expected 2 or 3", g, (long long)dim)) return;
-  d->dim = (int)dim;
-  mrn_h5r_choice(r, g, "shape", mrn_shape_names(), &shape);
-  d->shape = (mrn_shape_kind)shape;
-  mrn_h5r_choice(r, g, "kernel_boundary", mrn_kernel_boundary_names(), &kernel_boundary);
-  d->kernel_boundary = (mrn_kernel_boundary)kernel_boundary;
-  read_finite(r, g, "time", -HUGE_VAL, &d->time);
-  read_int_in(r, g, "step", 0, CK_MAX_COUNTER, &step);
-  d->step = step;
-  read_finite(r, g, "dt", 0.0, &d->dt);
-  if (!mrn_h5r_doubles(r, g, "gravity", d->gravity, 3))
-    for (int k = 0; k < 3; k++)
-      require(r, isfinite(d->gravity[k]), "attribute 'gravity' of %s has a non-finite component", g);
-  read_finite(r, g, "damping_cundall", 0.0, &d->damping_cundall);
-  read_finite(r, g, "damping_viscous", 0.0, &d->damping_viscous);
-  read_finite(r, g, "work_friction", -HUGE_VAL, &d->work_friction);
-  read_finite(r, g, "work_damping", -HUGE_VAL, &d->work_damping);
-  /* point forces (files written before them have none: no work, factor 1) */
-  d->load_factor = 1.0;
-  if (mrn_h5r_has_attr(r, g, "load_factor")) {
-    read_finite(r, g, "work_external", -HUGE_VAL, &d->work_external);
-    read_finite(r, g, "load_factor", -HUGE_VAL, &d->load_factor);
-  }
-  read_finite(r, g, "energy_ref", -HUGE_VAL, &d->energy_ref);
-  read_int_in(r, g, "energy_ref_set", 0, 1, &energy_ref_set);
-  /* the outflow book (files written before it existed have none: stop, 0) */
-  if (mrn_h5r_has_attr(r, g, "on_leave")) {
-    mrn_h5r_choice(r, g, "on_leave", mrn_leave_policy_names(), &d->on_leave);
-    read_int_in(r, g, "outflow_particles", 0, CK_MAX_COUNTER, &d->outflow_particles);
-    read_finite(r, g, "outflow_mass", 0.0, &d->outflow_mass);
-    read_finite(r, g, "energy_outflow", -HUGE_VAL, &d->energy_outflow);
-  }
-  read_finite(r, g, "mass_floor", 0.0, &d->mass_floor);
-  /* files written before the option existed have none: never */
-  d->sort_every = 0;
-  if (mrn_h5r_has_attr(r, g, "sort_every")) read_int_in(r, g, "sort_every", 0, CK_MAX_COUNTER, &d->sort_every);
-  read_int_in(r, g, "affine_pending", 0, 1, &affine_pending);
-  d->energy_ref_set = (int)energy_ref_set;
-  d->affine_pending = (int)affine_pending;
+  for (int k = 0; k < n; k++) out[k] = initial;
+  if (predates(r, d, name, since) || mrn_h5r_doubles(r, g, name, out, n)) return;
+  for (int k = 0; k < n; k++) require(r, isfinite(out[k]), "attribute '%s' of %s has a non-finite component", name, g);
+}
+
+static int64_t get_int(mrn_h5r *r, const ck_data *d, const char *name, mrn_scalar_check c, int since,
+                       int64_t initial) {
+  int64_t v;
+  if (predates(r, d, name, since)) return initial;
+  read_int_in(r, "/simulation", name, c.lo, c.hi, &v);
+  return r->failed ? initial : v;
+}
+
+static int get_name(mrn_h5r *r, const ck_data *d, const char *name, mrn_scalar_check c, int since, int initial) {
+  int v;
+  if (predates(r, d, name, since)) return initial;
+  mrn_h5r_choice(r, "/simulation", name, c.names(), &v);
+  return r->failed ? initial : v;
+}
+
+#define READ_SCALAR(ctype, name, kind, check, since, initial, ...) \
+  READ_##kind(ctype, d->name, #name, ((mrn_scalar_check){check}), since, initial);
+#define READ_F64(ctype, at, key, c, since, initial) at = get_f64(r, d, key, c, since, initial)
+#define READ_F64X3(ctype, at, key, c, since, initial) get_f64s(r, d, key, since, initial, at, 3)
+#define READ_I32(ctype, at, key, c, since, initial) at = (ctype)get_int(r, d, key, c, since, initial)
+#define READ_I64(ctype, at, key, c, since, initial) at = (ctype)get_int(r, d, key, c, since, initial)
+#define READ_NAME(ctype, at, key, c, since, initial) at = (ctype)get_name(r, d, key, c, since, initial)
+
+/* every row of solver/sim_scalars.h, in its order: the first problem is the message */
+static void read_simulation(mrn_h5r *r, ck_data *d) {
+  if (mrn_h5r_group(r, "/simulation")) return;
+  MRN_SIM_SCALARS(READ_SCALAR)
 }
 
 /* ---- /grid ------------------------------------------------------------------ */

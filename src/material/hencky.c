@@ -11,8 +11,8 @@
  * The stress follows from the deformation gradient alone (no rate form, no
  * Jaumann rotation), so a rigid rotation of any size leaves it unchanged as
  * long as F stays a rotation; the step's F <- (I + L dt) F does not quite:
- * it stretches a spinning body by sqrt(1 + (omega dt)^2) per step (measured
- * in test_material_hyperelastic). */
+ * it stretches a spinning body by sqrt(1 + (omega dt)^2) per step, which
+ * test_material_hyperelastic checks. */
 #include <math.h>
 
 #include "core/tensor.h"
@@ -59,6 +59,16 @@ static inline void update_point(const mrn_material *m, mrn_material_point *pt) {
 
 MRN_MATERIAL_BATCH_UPDATE(update_point)
 
+/* the implicit integrator's law is this one, with no plasticity */
+static void implicit_law(const mrn_material *m, mrn_implicit_law *out) {
+  out->lambda = m->derived[D_LAMBDA];
+  out->G = m->derived[D_SHEAR];
+  out->yield = 0.0;
+  out->hardening = 0.0;
+}
+
+static const mrn_implicit_form implicit_form = {"Hencky elasticity (the same law as in explicit runs)", implicit_law};
+
 /* P-wave speed of the reference configuration */
 const mrn_material_type mrn_material_hencky = {
     .name = "hencky",
@@ -71,4 +81,5 @@ const mrn_material_type mrn_material_hencky = {
     .prepare = prepare,
     .update = update,
     .wave_speed = mrn_material_isotropic_wave_speed,
+    .implicit = &implicit_form,
 };

@@ -28,6 +28,15 @@ const mrn_material_type *mrn_material_type_find(const char *name) {
   return NULL;
 }
 
+const char *mrn_material_implicit_names(char *buf, size_t cap) {
+  size_t used = 0;
+  buf[0] = '\0';
+  for (int i = 0; i < REGISTRY_COUNT && used < cap; i++)
+    if (registry[i]->implicit)
+      used += (size_t)snprintf(buf + used, cap - used, "%s%s", used ? ", " : "", registry[i]->name);
+  return buf;
+}
+
 /* required parameters start as NaN so prepare() can tell they were not set */
 mrn_material *mrn_material_new(const mrn_material_type *type) {
   mrn_material *m = calloc(1, sizeof *m);

@@ -10,6 +10,8 @@
 #ifndef MRN_MATERIAL_MATERIAL_H
 #define MRN_MATERIAL_MATERIAL_H
 
+#include <stddef.h>
+
 #include "core/spec.h"
 #include "core/tensor.h"
 
@@ -37,6 +39,26 @@ typedef struct mrn_material_point {
   double dw_plastic;      /* out: plastic work increment per unit volume, <= 0 (000, Eq. 65) */
 } mrn_material_point;
 
+/* The constitutive law of the implicit integrator (implicit/, paper 001):
+ * Hencky elasticity, tau = lambda tr(e) I + 2 G e on the logarithmic elastic
+ * strain e = ln(b_e) / 2, with von Mises plasticity and linear isotropic
+ * hardening, return-mapped in principal logarithmic strains (001 Eqs.
+ * 62-63), when the yield stress is > 0. These are a model's values of it. */
+typedef struct mrn_implicit_law {
+  double lambda, G; /* Lame constants (Pa) */
+  double yield;     /* uniaxial yield stress sigma_y (Pa); 0: elastic */
+  double hardening; /* linear isotropic hardening modulus H (Pa) */
+} mrn_implicit_law;
+
+/* What a model runs as in an implicit simulation; a model without one
+ * (mrn_material_type.implicit NULL) is refused there. The law is finite
+ * strain whatever the model is in explicit runs. */
+typedef struct mrn_implicit_form {
+  const char *law; /* in words, for messages and doc/implicit.md */
+  /* the law's values for a prepared material m */
+  void (*law_of)(const struct mrn_material *m, mrn_implicit_law *out);
+} mrn_implicit_form;
+
 typedef struct mrn_material_type {
   const char *name;
   const char *summary;
@@ -60,6 +82,8 @@ typedef struct mrn_material_type {
   /* viscous time-step limit (s) for a grid spacing h, h^2 / nu (002, Eq. 36);
    * NULL for models without viscosity */
   double (*viscous_dt)(const struct mrn_material *m, double h);
+  /* its form in the implicit integrator; NULL: it has none */
+  const mrn_implicit_form *implicit;
 } mrn_material_type;
 
 typedef struct mrn_material {
@@ -87,6 +111,9 @@ double mrn_material_get(const mrn_material *m, const char *key);
 double mrn_material_density(const mrn_material *m);
 /* Young's modulus used by the a_tau time step (000, Eq. 29) */
 double mrn_material_young(const mrn_material *m);
+
+/* "hencky, von_mises": the models that have an implicit form */
+const char *mrn_material_implicit_names(char *buf, size_t cap);
 
 /* P-wave speed sqrt((lambda + 2G) / rho) of the isotropic elastic models,
  * which all keep density as their first parameter and lambda, G as their

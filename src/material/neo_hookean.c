@@ -10,8 +10,8 @@
  * The stress follows from the deformation gradient alone (no rate form, no
  * Jaumann rotation), so a rigid rotation of any size leaves it unchanged as
  * long as F stays a rotation; the step's F <- (I + L dt) F does not quite:
- * it stretches a spinning body by sqrt(1 + (omega dt)^2) per step (measured
- * in test_material_hyperelastic). */
+ * it stretches a spinning body by sqrt(1 + (omega dt)^2) per step, which
+ * test_material_hyperelastic checks. */
 #include <math.h>
 
 #include "core/tensor.h"

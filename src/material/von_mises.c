@@ -58,6 +58,21 @@ static inline void update_point(const mrn_material *m, mrn_material_point *pt) {
 
 MRN_MATERIAL_BATCH_UPDATE(update_point)
 
+/* In an implicit run the same parameters drive the finite-strain law: Hencky
+ * elasticity with the von Mises yield surface in principal logarithmic
+ * strains (001 Eqs. 62-63), not the small-strain rate form above. */
+static void implicit_law(const mrn_material *m, mrn_implicit_law *out) {
+  out->lambda = m->derived[D_LAMBDA];
+  out->G = m->derived[D_SHEAR];
+  out->yield = m->param[P_YIELD];
+  out->hardening = m->param[P_HARDENING];
+}
+
+static const mrn_implicit_form implicit_form = {
+    "Hencky elasticity with von Mises plasticity and linear isotropic hardening in logarithmic strains (finite "
+    "strain; explicit runs use the small-strain rate form)",
+    implicit_law};
+
 const mrn_material_type mrn_material_von_mises = {
     .name = "von_mises",
     .summary = "von Mises plasticity with linear isotropic hardening, radial return (002, Eq. 66)",
@@ -69,4 +84,5 @@ const mrn_material_type mrn_material_von_mises = {
     .prepare = prepare,
     .update = update,
     .wave_speed = mrn_material_isotropic_wave_speed,
+    .implicit = &implicit_form,
 };

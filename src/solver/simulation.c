@@ -12,6 +12,14 @@
 #include "core/parallel.h"
 #include "transfer/kernels.h"
 
+/* a row's value in a new simulation (the `initial` column of sim_scalars.h) */
+#define SET_INITIAL(ctype, name, kind, check, since, initial, ...) SET_INITIAL_##kind(sim->name, initial);
+#define SET_INITIAL_F64(at, v) at = (v)
+#define SET_INITIAL_F64X3(at, v) for (int k = 0; k < 3; k++) at[k] = (v)
+#define SET_INITIAL_I32(at, v) at = (v)
+#define SET_INITIAL_I64(at, v) at = (v)
+#define SET_INITIAL_NAME(at, v) at = (v)
+
 mrn_sim *mrn_sim_new(const mrn_sim_config *cfg) {
   mrn_sim *sim = calloc(1, sizeof *sim);
   if (!sim) {
@@ -22,6 +30,7 @@ mrn_sim *mrn_sim_new(const mrn_sim_config *cfg) {
     free(sim);
     return NULL;
   }
+  MRN_SIM_SCALARS(SET_INITIAL)
   sim->dim = cfg->dim;
   mrn_particles_init(&sim->particles, cfg->dim);
   sim->shape = cfg->shape;
@@ -29,7 +38,6 @@ mrn_sim *mrn_sim_new(const mrn_sim_config *cfg) {
   mrn_scheme_default(&sim->scheme);
   for (int d = 0; d < 3; d++) sim->gravity[d] = d < cfg->dim ? cfg->gravity[d] : 0.0;
   mrn_dt_policy_a_tau(&sim->dt_policy, 0.05);
-  sim->load_factor = 1.0;
   mrn_watchdog_default(&sim->watchdog);
   sim->sorted_step = -1;
   sim->blocks = mrn_blocks_new(&sim->grid);

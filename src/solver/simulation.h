@@ -17,6 +17,7 @@
 #include "particles/seed.h"
 #include "shape/shape.h"
 #include "solver/diagnostics.h"
+#include "solver/sim_scalars.h"
 #include "solver/timestep.h"
 #include "solver/watchdog.h"
 #include "transfer/context.h"
@@ -46,45 +47,20 @@ typedef struct mrn_integrator {
 } mrn_integrator;
 
 typedef struct mrn_sim {
-  int dim;
+  /* dimension, kernel, clock, gravity, damping, energy book, outflow: the
+   * persistent scalars, declared and described in solver/sim_scalars.h */
+  MRN_SIM_SCALARS(MRN_SIM_MEMBER)
+
   mrn_grid grid;
   mrn_particles particles;
-  mrn_shape_kind shape;
-  mrn_kernel_boundary kernel_boundary;
   mrn_scheme scheme;
   mrn_boundary boundary;
   mrn_constraint *constraints; /* prescribed nodal velocities in regions */
   int nconstraints;
-  double gravity[3];
   mrn_dt_policy dt_policy;
 
   mrn_material *materials[MRN_MAX_MATERIALS];
   int nmaterials;
-
-  /* clock */
-  double time;
-  long step;
-  double dt;          /* the step size of the last (or next) step */
-
-  /* damping of the grid forces */
-  double damping_cundall; /* D of Cundall's local non-viscous damping (000, Eqs. 61-62), >= 0 */
-  double damping_viscous; /* alpha of mass-proportional viscous damping f = -alpha m v (1/s), >= 0 */
-
-  /* cumulative energy terms that are not stored per particle */
-  double work_friction; /* (000, Eq. 66), negative while dissipating */
-  double work_damping;  /* work of the damping forces, negative while dissipating */
-  double work_external; /* work of the point forces (solver/point_force.h) */
-  double load_factor;   /* multiplies every point force (default 1) */
-  double energy_ref;    /* E_k + E_g + E_el when the energy balance started (000, Eq. 68) */
-  int energy_ref_set;
-
-  /* particles deleted on leaving the grid (on_leave = MRN_LEAVE_DELETE) */
-  mrn_leave_policy on_leave;
-  long outflow_particles; /* how many */
-  double outflow_mass;    /* their mass (kg; per metre of thickness in 2D) */
-  double energy_outflow;  /* their E_k + E_g + E_el - W_pl when deleted, added back in W_MPM (J) */
-  double mass_floor;    /* nodes lighter than this are treated as empty */
-  int affine_pending;   /* initial velocities were assigned: initialise grad v / B at the next run */
 
   /* an integrator that takes the place of the explicit step in mrn_run
    * (the implicit one attaches itself: implicit/implicit.h); step == NULL:
@@ -99,7 +75,6 @@ typedef struct mrn_sim {
    * every step that is a multiple of sort_every (> 0; 0: never). Off unless
    * asked for: the Lua API documents particle indices in order of creation. */
   mrn_blocks *blocks;
-  long sort_every;
   long sorted_step; /* the step of the last reordering, -1 before any */
 
   /* scratch, sized to the particle count */

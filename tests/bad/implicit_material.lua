@@ -1,4 +1,4 @@
--- expect: implicit_material.lua:6: implicit\{\}: implicit: material 'linear_elastic' \(linear_elastic\) is not supported; use hencky or von_mises
+-- expect: implicit_material.lua:6: implicit\{\}: implicit: material 'linear_elastic' \(linear_elastic\) has no implicit form; materials with one: von_mises, hencky \(doc/implicit.md\)
 -- case: choices | implicit{} on a material the implicit integrator does not model
 local mpm = require "moraine"
 local sim = mpm.simulation{ dim = 2, grid = { size = {1, 1}, cell = 0.1 } }

@@ -412,6 +412,8 @@ static void d_version(hid_t f, long n) { set_int_attr(f, "/", "version", MRN_CHE
 static void d_version_type(hid_t f, long n) { set_string_attr(f, "/", "version", "one"); }
 static void d_dim(hid_t f, long n) { set_int_attr(f, "/simulation", "dim", 4); }
 static void d_time(hid_t f, long n) { set_double_attr(f, "/simulation", "time", NAN); }
+/* every file of version 2 holds the rows added during version 1 (sim_scalars.h `since`) */
+static void d_no_load_factor(hid_t f, long n) { H5Adelete_by_name(f, "/simulation", "load_factor", H5P_DEFAULT); }
 static void d_shape(hid_t f, long n) { set_string_attr(f, "/simulation", "shape", "cubic"); }
 static void d_grid_missing(hid_t f, long n) { H5Ldelete(f, "/grid", H5P_DEFAULT); }
 static void d_grid_cell(hid_t f, long n) { set_double_attr(f, "/grid", "cell", 0.3); }
@@ -508,8 +510,9 @@ static void test_damaged_files(void) {
       {"other format", d_format, "not a moraine checkpoint (format is 'spreadsheet')"},
       {"newer version", d_version, "newer moraine (format version 3; this moraine reads version 2)"},
       {"version as text", d_version_type, "attribute 'version' of / is a string, expected an integer"},
-      {"dimension 4", d_dim, "/simulation: dimension 4, expected 2 or 3"},
+      {"dimension 4", d_dim, "attribute 'dim' of /simulation is 4, expected 2 to 3"},
       {"time NaN", d_time, "attribute 'time' of /simulation is NaN"},
+      {"version 2 without load_factor", d_no_load_factor, "/simulation has no attribute 'load_factor'"},
       {"unknown shape", d_shape, "attribute 'shape' of /simulation is 'cubic', expected one of: linear"},
       {"no /grid", d_grid_missing, "missing group /grid"},
       {"cell vs ncell", d_grid_cell, "but ncell[1] is 10"},
@@ -787,6 +790,9 @@ static void test_older_file(void) {
     return;
   }
   CHECK(info.version == 1 && info.checksums == 0 && mrn_warning_count() == 1);
+  /* written before point forces and the outflow book: their initial values */
+  CHECK(sim->load_factor == 1.0 && sim->work_external == 0.0 && sim->on_leave == MRN_LEAVE_STOP &&
+        sim->outflow_particles == 0 && sim->outflow_mass == 0.0 && sim->energy_outflow == 0.0);
   printf("older file: version %d, %ld particles, checksums %d, warnings %d\n", info.version, info.particles,
          info.checksums, mrn_warning_count());
   const char *again = tmp_path("older_saved.h5");
