@@ -40,32 +40,18 @@ ALLOWED = {
 C_KEYWORDS = {"if", "for", "while", "switch", "return", "sizeof", "do", "else", "_Pragma", "__attribute__"}
 
 
+C_BLANKED = re.compile(r"/\*.*?\*/|//[^\n]*|\"(?:\\.|[^\"\\\n])*\"|'(?:\\.|[^'\\\n])*'", re.S)
+
+
 def blank_c(text):
     """text with comments, strings and character literals blanked (newlines kept)"""
-    out, i, n = [], 0, len(text)
-    while i < n:
-        c = text[i]
-        if text.startswith("/*", i):
-            j = text.find("*/", i + 2)
-            j = n if j < 0 else j + 2
-            out.append(re.sub(r"[^\n]", " ", text[i:j]))
-            i = j
-        elif text.startswith("//", i):
-            j = text.find("\n", i)
-            j = n if j < 0 else j
-            out.append(" " * (j - i))
-            i = j
-        elif c in "\"'":
-            j = i + 1
-            while j < n and text[j] != c and text[j] != "\n":
-                j += 2 if text[j] == "\\" else 1
-            j = min(j + 1, n)
-            out.append(c + re.sub(r"[^\n]", " ", text[i + 1 : j - 1]) + c)
-            i = j
-        else:
-            out.append(c)
-            i += 1
-    return "".join(out)
+
+    def blank(m):
+        t = m.group()
+        inner = re.sub(r"[^\n]", " ", t)
+        return t[0] + inner[1:-1] + t[-1] if t[0] in "\"'" else inner
+
+    return C_BLANKED.sub(blank, text)
 
 
 def split_directives(text):
