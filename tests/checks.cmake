@@ -8,7 +8,9 @@
 #   check.function_length  no function over 80 lines in src/ and lua/, the
 #                          transfer kernels' reference form under 300 lines
 #                          (scripts/check_function_length.py)
-foreach(check layers function_length)
+#   check.selftest         both fail on a tree broken on purpose, one rule at
+#                          a time (scripts/check_selftest.py)
+foreach(check layers function_length selftest)
   add_test(NAME check.${check}
            COMMAND ${Python3_EXECUTABLE} ${CMAKE_SOURCE_DIR}/scripts/check_${check}.py ${CMAKE_SOURCE_DIR})
   set_tests_properties(check.${check} PROPERTIES LABELS check ENVIRONMENT PYTHONDONTWRITEBYTECODE=1)
