@@ -37,7 +37,8 @@ typedef enum mrn_run_moment { MRN_RUN_START, MRN_RUN_STEP, MRN_RUN_END } mrn_run
  * hooks due have run:
  *   snapshot()  may write a snapshot of the state, and then sets *wrote
  *               (the hooks with at_output follow it);
- *   row_due()   says whether it records a row of diagnostics of this state;
+ *   row_due()   says whether it records a row of diagnostics of this state
+ *               (none: a row of every state);
  *   row()       records it: the diagnostics are computed once for all the
  *               observers and the thermo line.
  * The state the run ends on gets row_due(MRN_RUN_END) and row() only. */
