@@ -2,8 +2,6 @@
 # assertions (tests/decks/testlib.lua) hold; a failed check exits non-zero with
 # the deck's file and line.
 set(MORAINE_DECK_DIR ${CMAKE_CURRENT_SOURCE_DIR}/decks)
-set(MORAINE_TEST_OUT ${CMAKE_CURRENT_BINARY_DIR}/out)
-set(MORAINE_PYTHON /usr/bin/python3) # Debian's python3 with python3-vtk9
 
 function(moraine_deck_test name deck)
   cmake_parse_arguments(ARG "" "" "ARGS;LABELS" ${ARGN})
@@ -54,12 +52,12 @@ moraine_deck_test(vertical_cut vertical_cut.lua)
 # VTK files read back by the real VTK reader
 moraine_deck_test(vtk_output vtk_output.lua)
 add_test(NAME python.vtk_run_readback
-         COMMAND ${MORAINE_PYTHON} ${CMAKE_CURRENT_SOURCE_DIR}/python/check_run_vtk.py
+         COMMAND ${Python3_EXECUTABLE} ${CMAKE_CURRENT_SOURCE_DIR}/python/check_run_vtk.py
                  ${MORAINE_TEST_OUT}/vtk_output run2d series3d/run3d)
 set_tests_properties(python.vtk_run_readback PROPERTIES DEPENDS deck.vtk_output LABELS python)
 add_test(NAME python.vtk_roundtrip_write COMMAND test_vtk ${MORAINE_TEST_OUT}/vtk_roundtrip)
 add_test(NAME python.vtk_roundtrip
-         COMMAND ${MORAINE_PYTHON} ${CMAKE_CURRENT_SOURCE_DIR}/python/test_vtk_roundtrip.py
+         COMMAND ${Python3_EXECUTABLE} ${CMAKE_CURRENT_SOURCE_DIR}/python/test_vtk_roundtrip.py
                  ${MORAINE_TEST_OUT}/vtk_roundtrip)
 set_tests_properties(python.vtk_roundtrip PROPERTIES DEPENDS python.vtk_roundtrip_write LABELS python)
 
@@ -88,7 +86,7 @@ add_test(NAME robust.sigint COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/robust/sigint.sh
                                     ${MORAINE_TEST_OUT}/robust_sigint)
 set_tests_properties(robust.sigint PROPERTIES LABELS robust ENVIRONMENT OMP_WAIT_POLICY=PASSIVE)
 add_test(NAME robust.failed_state
-         COMMAND ${MORAINE_PYTHON} ${CMAKE_CURRENT_SOURCE_DIR}/robust/check_failed_state.py
+         COMMAND ${Python3_EXECUTABLE} ${CMAKE_CURRENT_SOURCE_DIR}/robust/check_failed_state.py
                  ${MORAINE_TEST_OUT}/bad/unstable/simulation_failed.h5)
 set_tests_properties(robust.failed_state PROPERTIES DEPENDS bad.unstable LABELS robust)
 
@@ -100,10 +98,10 @@ set_tests_properties(install.lua_library PROPERTIES LABELS install)
 # HDF5 series and grid snapshots of a real run
 moraine_deck_test(series_output series_output.lua)
 add_test(NAME python.series_run
-         COMMAND ${MORAINE_PYTHON} ${CMAKE_CURRENT_SOURCE_DIR}/python/check_series_h5.py
+         COMMAND ${Python3_EXECUTABLE} ${CMAKE_CURRENT_SOURCE_DIR}/python/check_series_h5.py
                  ${MORAINE_TEST_OUT}/series_output/diagnostics.h5 ${MORAINE_TEST_OUT}/series_output/diagnostics.csv
                  --extra-columns)
 set_tests_properties(python.series_run PROPERTIES DEPENDS deck.series_output LABELS python)
 add_test(NAME python.vti_run
-         COMMAND ${MORAINE_PYTHON} ${CMAKE_CURRENT_SOURCE_DIR}/python/check_grid_run.py ${MORAINE_TEST_OUT}/series_output s 10 10)
+         COMMAND ${Python3_EXECUTABLE} ${CMAKE_CURRENT_SOURCE_DIR}/python/check_grid_run.py ${MORAINE_TEST_OUT}/series_output s 10 10)
 set_tests_properties(python.vti_run PROPERTIES DEPENDS deck.series_output LABELS python)

@@ -5,7 +5,7 @@
 # diagnostics column, method and command-line option found in the sources
 # (rules in tests/python/check_api_doc.py). Needs only the Python standard library.
 add_test(NAME doc.api_reference_complete
-         COMMAND /usr/bin/python3 ${CMAKE_CURRENT_SOURCE_DIR}/python/check_api_doc.py
+         COMMAND ${Python3_EXECUTABLE} ${CMAKE_CURRENT_SOURCE_DIR}/python/check_api_doc.py
                  $<TARGET_FILE:moraine> ${CMAKE_SOURCE_DIR}/doc/lua-api.md)
 set_tests_properties(doc.api_reference_complete PROPERTIES LABELS "doc;python")
 
@@ -16,7 +16,7 @@ foreach(doc README.md doc/getting-started.md doc/tutorial-column-collapse.md doc
   get_filename_component(stem ${doc} NAME_WE)
   string(REPLACE "-" "_" stem ${stem})
   add_test(NAME doc.decks_${stem}
-           COMMAND /usr/bin/python3 ${CMAKE_CURRENT_SOURCE_DIR}/python/check_doc_decks.py
+           COMMAND ${Python3_EXECUTABLE} ${CMAKE_CURRENT_SOURCE_DIR}/python/check_doc_decks.py
                    $<TARGET_FILE:moraine> ${CMAKE_CURRENT_BINARY_DIR}/out/doc_decks ${CMAKE_SOURCE_DIR}/${doc})
   set_tests_properties(doc.decks_${stem} PROPERTIES LABELS "doc;python" ENVIRONMENT OMP_WAIT_POLICY=PASSIVE)
 endforeach()
@@ -28,6 +28,6 @@ set_tests_properties(doc.decks_tutorial_column_collapse PROPERTIES LABELS "doc;p
 # shape function, strategy, stress update, boundary condition, time-step policy
 # and deck key (it removes one of each from a copy of lua-api.md)
 add_test(NAME doc.api_reference_selftest
-         COMMAND /usr/bin/python3 ${CMAKE_CURRENT_SOURCE_DIR}/python/check_api_doc_selftest.py
+         COMMAND ${Python3_EXECUTABLE} ${CMAKE_CURRENT_SOURCE_DIR}/python/check_api_doc_selftest.py
                  $<TARGET_FILE:moraine> ${CMAKE_SOURCE_DIR}/doc/lua-api.md)
 set_tests_properties(doc.api_reference_selftest PROPERTIES LABELS "doc;python" ENVIRONMENT PYTHONDONTWRITEBYTECODE=1)

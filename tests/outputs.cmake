@@ -18,12 +18,6 @@
 #                             checkpoint of the same state; Lua reductions = numpy
 #   robust.sigkill            files left by runs killed with SIGKILL are whole
 #   python.example_pngs       the examples' own PNG plots are valid images
-if(NOT DEFINED MORAINE_TEST_OUT)
-  set(MORAINE_TEST_OUT ${CMAKE_CURRENT_BINARY_DIR}/out)
-endif()
-if(NOT DEFINED MORAINE_PYTHON)
-  set(MORAINE_PYTHON /usr/bin/python3) # Debian's python3 with python3-vtk9, h5py, numpy
-endif()
 set(MORAINE_OUTPUTS_DIR ${MORAINE_TEST_OUT}/outputs)
 set(MORAINE_PLOT ${CMAKE_SOURCE_DIR}/scripts/moraine-plot)
 
@@ -31,7 +25,7 @@ set(MORAINE_PLOT ${CMAKE_SOURCE_DIR}/scripts/moraine-plot)
 add_test(NAME python.vti_write COMMAND test_vti ${MORAINE_OUTPUTS_DIR}/vti)
 set_tests_properties(python.vti_write PROPERTIES LABELS python FIXTURES_SETUP outputs_vti)
 add_test(NAME python.vti
-         COMMAND ${MORAINE_PYTHON} ${CMAKE_CURRENT_SOURCE_DIR}/python/check_vti.py ${MORAINE_OUTPUTS_DIR}/vti)
+         COMMAND ${Python3_EXECUTABLE} ${CMAKE_CURRENT_SOURCE_DIR}/python/check_vti.py ${MORAINE_OUTPUTS_DIR}/vti)
 set_tests_properties(python.vti PROPERTIES LABELS python FIXTURES_REQUIRED outputs_vti)
 
 # ---- HDF5 time series ----------------------------------------------------------
@@ -39,7 +33,7 @@ set(series_dir ${MORAINE_OUTPUTS_DIR}/series_h5)
 add_test(NAME python.series_h5_write COMMAND test_series_h5 ${series_dir})
 set_tests_properties(python.series_h5_write PROPERTIES LABELS python FIXTURES_SETUP outputs_series)
 add_test(NAME python.series_h5
-         COMMAND ${MORAINE_PYTHON} ${CMAKE_CURRENT_SOURCE_DIR}/python/check_series_h5.py
+         COMMAND ${Python3_EXECUTABLE} ${CMAKE_CURRENT_SOURCE_DIR}/python/check_series_h5.py
                  ${series_dir}/series.h5 ${series_dir}/series.csv ${series_dir}/killed.h5 ${series_dir}/killed.csv)
 set_tests_properties(python.series_h5 PROPERTIES LABELS python FIXTURES_REQUIRED outputs_series)
 
@@ -47,7 +41,7 @@ set_tests_properties(python.series_h5 PROPERTIES LABELS python FIXTURES_REQUIRED
 # auto always runs (matplotlib if installed, else gnuplot); each drawing tool
 # found now is also tried on its own
 set(plot_backends auto)
-execute_process(COMMAND ${MORAINE_PYTHON} -c "import matplotlib"
+execute_process(COMMAND ${Python3_EXECUTABLE} -c "import matplotlib"
                 RESULT_VARIABLE no_matplotlib OUTPUT_QUIET ERROR_QUIET)
 if(no_matplotlib EQUAL 0)
   list(APPEND plot_backends matplotlib)
@@ -62,12 +56,12 @@ set(plot_files "")
 foreach(backend ${plot_backends})
   # the diagnostics CSV: energies against time
   add_test(NAME plot.csv_${backend}
-           COMMAND ${MORAINE_PYTHON} ${MORAINE_PLOT} ${plot_dir}/energies_${backend}.png ${series_dir}/series.csv
+           COMMAND ${Python3_EXECUTABLE} ${MORAINE_PLOT} ${plot_dir}/energies_${backend}.png ${series_dir}/series.csv
                    E_kinetic E_gravity E_total --title "Energies (${backend})" --ylabel "energy (J)"
                    --backend ${backend})
   # the HDF5 series: a value recorded now and then, against the step, units from the file
   add_test(NAME plot.h5_${backend}
-           COMMAND ${MORAINE_PYTHON} ${MORAINE_PLOT} ${plot_dir}/runout_${backend}.png ${series_dir}/series.h5
+           COMMAND ${Python3_EXECUTABLE} ${MORAINE_PLOT} ${plot_dir}/runout_${backend}.png ${series_dir}/series.h5
                    runout com_y --x step --backend ${backend})
   set_tests_properties(plot.csv_${backend} plot.h5_${backend} PROPERTIES
                        LABELS plot FIXTURES_REQUIRED outputs_series FIXTURES_SETUP outputs_plots)
@@ -76,11 +70,11 @@ endforeach()
 
 # a column the file does not have: refused, with the columns it has listed
 add_test(NAME plot.unknown_column
-         COMMAND ${MORAINE_PYTHON} ${MORAINE_PLOT} ${plot_dir}/never.png ${series_dir}/series.csv no_such_column)
+         COMMAND ${Python3_EXECUTABLE} ${MORAINE_PLOT} ${plot_dir}/never.png ${series_dir}/series.csv no_such_column)
 set_tests_properties(plot.unknown_column PROPERTIES LABELS plot FIXTURES_REQUIRED outputs_series
                      PASS_REGULAR_EXPRESSION "has no column no_such_column; it has: step, time, dt, E_kinetic")
 
-add_test(NAME python.png COMMAND ${MORAINE_PYTHON} ${CMAKE_CURRENT_SOURCE_DIR}/python/check_png.py ${plot_files})
+add_test(NAME python.png COMMAND ${Python3_EXECUTABLE} ${CMAKE_CURRENT_SOURCE_DIR}/python/check_png.py ${plot_files})
 set_tests_properties(python.png PROPERTIES LABELS "python;plot" FIXTURES_REQUIRED "outputs_series;outputs_plots")
 
 # ---- every output against the checkpoint of the same state (must-show 1 and 4) --
@@ -91,7 +85,7 @@ set_tests_properties(python.png PROPERTIES LABELS "python;plot" FIXTURES_REQUIRE
 moraine_deck_test(outputs_roundtrip outputs_roundtrip.lua)
 set_tests_properties(deck.outputs_roundtrip PROPERTIES FIXTURES_SETUP outputs_roundtrip)
 add_test(NAME python.outputs_roundtrip
-         COMMAND ${MORAINE_PYTHON} ${CMAKE_CURRENT_SOURCE_DIR}/python/check_outputs_roundtrip.py
+         COMMAND ${Python3_EXECUTABLE} ${CMAKE_CURRENT_SOURCE_DIR}/python/check_outputs_roundtrip.py
                  ${MORAINE_TEST_OUT}/outputs_roundtrip run2d run3d)
 set_tests_properties(python.outputs_roundtrip PROPERTIES LABELS python FIXTURES_REQUIRED outputs_roundtrip)
 
@@ -105,7 +99,7 @@ moraine_deck_test(particle_fields particle_fields.lua)
 # HDF5 series, a CSV and a checkpoint every step (about 15 s); every file left
 # is read back whole. "long": the sanitizer pass leaves it to the release pass.
 add_test(NAME robust.sigkill COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/robust/sigkill.sh $<TARGET_FILE:moraine>
-                                     ${MORAINE_TEST_OUT}/robust_sigkill 14)
+                                     ${MORAINE_TEST_OUT}/robust_sigkill 14 ${Python3_EXECUTABLE})
 set_tests_properties(robust.sigkill PROPERTIES LABELS "robust;long" ENVIRONMENT OMP_WAIT_POLICY=PASSIVE TIMEOUT 120)
 
 # ---- the examples' own plots (must-show 6) --------------------------------------
@@ -125,6 +119,6 @@ set(collapse_pngs runout kinetic w_mpm lube AR1_FLIP_energies)
 list(TRANSFORM collapse_pngs PREPEND ${example_plot_dir}/column_collapse/)
 list(TRANSFORM collapse_pngs APPEND .png)
 add_test(NAME python.example_pngs
-         COMMAND ${MORAINE_PYTHON} ${CMAKE_CURRENT_SOURCE_DIR}/python/check_png.py ${collapse_pngs}
+         COMMAND ${Python3_EXECUTABLE} ${CMAKE_CURRENT_SOURCE_DIR}/python/check_png.py ${collapse_pngs}
                  ${example_plot_dir}/bouncing_cube/energies.png ${example_plot_dir}/bouncing_cube/momentum.png)
 set_tests_properties(python.example_pngs PROPERTIES LABELS "python;plot" FIXTURES_REQUIRED example_plots)

@@ -131,9 +131,10 @@ static void fill_from_field(const void *ctx, size_t first, size_t count, void *o
   mrn_field_fill_range(src->sim, &src->field, first, count, out);
 }
 
-int mrn_output_write_vtk(mrn_output *o, const mrn_sim *sim) {
-  if (!o->vtk_name) return MRN_OK;
-  if (mrn_mkdir_p(o->dir) != MRN_OK) return MRN_ERR_IO;
+/* OUTDIR/<vtk name>, the directories it names made and its .pvd started;
+ * NULL (MRN_ERR_IO, message set) when a directory cannot be made */
+static char *snapshot_base(mrn_output *o) {
+  if (mrn_mkdir_p(o->dir) != MRN_OK) return NULL;
   char *base = mrn_path_join(o->dir, o->vtk_name);
   /* a series name may contain directories: make them too */
   char *slash = strrchr(base, '/');
@@ -143,7 +144,7 @@ int mrn_output_write_vtk(mrn_output *o, const mrn_sim *sim) {
     *slash = '/';
     if (rc != MRN_OK) {
       free(base);
-      return MRN_ERR_IO;
+      return NULL;
     }
   }
   if (!o->pvd.path) {
@@ -153,22 +154,18 @@ int mrn_output_write_vtk(mrn_output *o, const mrn_sim *sim) {
     mrn_pvd_init(&o->pvd, pvd_path);
     free(pvd_path);
   }
-  size_t len = strlen(base) + 32;
-  char *path = malloc(len);
-  snprintf(path, len, "%s_%06d.vtp", base, o->vtk_count);
-  const char *file_part = strrchr(path, '/');
-  file_part = file_part ? file_part + 1 : path;
+  return base;
+}
 
-  /* gather the requested arrays */
-  const size_t n = sim->particles.n;
-  int nf = 0;
-  mrn_vtk_array arrays[MRN_OUTPUT_MAX_FIELDS];
-  field_source sources[MRN_OUTPUT_MAX_FIELDS]; /* made a chunk at a time as the file is written */
-  /* every field by default: the built-in ones, then those the deck registered */
+/* the arrays of the fields the deck listed, every field when it listed none
+ * (the built-in ones, then those it registered); an error names a field
+ * that is neither */
+static int gather_fields(const mrn_output *o, const mrn_sim *sim, mrn_vtk_array *arrays, field_source *sources,
+                         int *nf) {
   const int builtins = mrn_output_field_count();
   int count = o->nfields ? o->nfields : builtins + sim->particles.nuser;
-  int rc = MRN_OK;
-  for (int i = 0; i < count && nf < MRN_OUTPUT_MAX_FIELDS; i++) {
+  *nf = 0;
+  for (int i = 0; i < count && *nf < MRN_OUTPUT_MAX_FIELDS; i++) {
     const char *name = o->nfields      ? o->fields[i]
                        : i < builtins ? mrn_output_field_at(i)->name
                                       : sim->particles.user_fields[i - builtins].name;
@@ -179,32 +176,52 @@ int mrn_output_write_vtk(mrn_output *o, const mrn_sim *sim) {
       for (const char *const *b = mrn_output_field_names(); *b; b++) known[k++] = *b;
       for (int u = 0; u < sim->particles.nuser; u++) known[k++] = sim->particles.user_fields[u].name;
       known[k] = NULL;
-      rc = mrn_error("output field '%s' is neither a built-in particle field nor one registered with "
-                     "sim:particle_field%s", name, mrn_hint(mrn_suggest_from(known, name)).s);
-      break;
+      return mrn_error("output field '%s' is neither a built-in particle field nor one registered with "
+                       "sim:particle_field%s", name, mrn_hint(mrn_suggest_from(known, name)).s);
     }
-    sources[nf] = (field_source){sim, f};
-    arrays[nf] = (mrn_vtk_array){f.name, f.ncomp, f.type, NULL, fill_from_field, &sources[nf]};
-    nf++;
+    sources[*nf] = (field_source){sim, f};
+    arrays[*nf] = (mrn_vtk_array){f.name, f.ncomp, f.type, NULL, fill_from_field, &sources[*nf]};
+    (*nf)++;
   }
-  if (rc == MRN_OK) rc = mrn_vtp_write(path, n, sim->particles.x, arrays, nf, o->encoding);
+  return MRN_OK;
+}
+
+/* the nodal mass, velocity and force of the last step, beside the particles'
+ * snapshot; len bounds the length of the particles' file name */
+static int write_grid_snapshot(mrn_output *o, const mrn_sim *sim, const char *base, size_t len) {
+  char *grid_path = malloc(len + 16);
+  snprintf(grid_path, len + 16, "%s_grid_%06d.vti", base, o->vtk_count);
+  if (!o->grid_pvd.path) {
+    char *pvd_path = malloc(len + 16);
+    snprintf(pvd_path, len + 16, "%s_grid.pvd", base);
+    mrn_pvd_init(&o->grid_pvd, pvd_path);
+    free(pvd_path);
+  }
+  const char *grid_file = strrchr(grid_path, '/');
+  grid_file = grid_file ? grid_file + 1 : grid_path;
+  int rc = mrn_vti_write_grid(grid_path, &sim->grid, sim->time, o->encoding);
+  if (rc == MRN_OK) rc = mrn_pvd_add(&o->grid_pvd, sim->time, grid_file);
+  free(grid_path);
+  return rc;
+}
+
+int mrn_output_write_vtk(mrn_output *o, const mrn_sim *sim) {
+  if (!o->vtk_name) return MRN_OK;
+  char *base = snapshot_base(o);
+  if (!base) return MRN_ERR_IO;
+  size_t len = strlen(base) + 32;
+  char *path = malloc(len);
+  snprintf(path, len, "%s_%06d.vtp", base, o->vtk_count);
+  const char *file_part = strrchr(path, '/');
+  file_part = file_part ? file_part + 1 : path;
+
+  int nf;
+  mrn_vtk_array arrays[MRN_OUTPUT_MAX_FIELDS];
+  field_source sources[MRN_OUTPUT_MAX_FIELDS]; /* made a chunk at a time as the file is written */
+  int rc = gather_fields(o, sim, arrays, sources, &nf);
+  if (rc == MRN_OK) rc = mrn_vtp_write(path, sim->particles.n, sim->particles.x, arrays, nf, o->encoding);
   if (rc == MRN_OK) rc = mrn_pvd_add(&o->pvd, sim->time, file_part);
-  if (rc == MRN_OK && o->grid_vtk) {
-    /* the nodal mass, velocity and force of the last step */
-    char *grid_path = malloc(len + 16);
-    snprintf(grid_path, len + 16, "%s_grid_%06d.vti", base, o->vtk_count);
-    if (!o->grid_pvd.path) {
-      char *pvd_path = malloc(len + 16);
-      snprintf(pvd_path, len + 16, "%s_grid.pvd", base);
-      mrn_pvd_init(&o->grid_pvd, pvd_path);
-      free(pvd_path);
-    }
-    const char *grid_file = strrchr(grid_path, '/');
-    grid_file = grid_file ? grid_file + 1 : grid_path;
-    rc = mrn_vti_write_grid(grid_path, &sim->grid, sim->time, o->encoding);
-    if (rc == MRN_OK) rc = mrn_pvd_add(&o->grid_pvd, sim->time, grid_file);
-    free(grid_path);
-  }
+  if (rc == MRN_OK && o->grid_vtk) rc = write_grid_snapshot(o, sim, base, len);
   if (rc == MRN_OK) {
     o->vtk_count++;
     o->vtk_last_step = sim->step;
@@ -373,4 +390,32 @@ int mrn_output_flush(mrn_output *o) {
   int rc = o->series ? mrn_series_flush(o->series) : MRN_OK;
   if (rc == MRN_OK && o->csv_fd >= 0) rc = sync_csv(o);
   return rc;
+}
+
+/* ---- observing a run (solver/run.h) -------------------------------------- */
+
+static int observe_snapshot(void *ctx, const mrn_sim *sim, int *wrote) {
+  mrn_output *o = ctx;
+  const int before = o->vtk_count;
+  int rc = mrn_output_maybe_vtk(o, sim);
+  *wrote = o->vtk_count != before;
+  return rc;
+}
+
+/* a row of the starting state, then on the CSV's cadence, and of the state a
+ * run ends on unless the cadence has just written it */
+static int observe_row_due(void *ctx, const mrn_sim *sim, mrn_run_moment when) {
+  const mrn_output *o = ctx;
+  if (!o->csv_name && !o->series_name) return 0;
+  const int on_cadence = o->csv_every > 0 && sim->step % o->csv_every == 0;
+  if (when == MRN_RUN_START) return 1;
+  return when == MRN_RUN_STEP ? on_cadence : o->csv_every > 0 && !on_cadence;
+}
+
+static int observe_row(void *ctx, const mrn_sim *sim, const mrn_diagnostics *d) {
+  return mrn_output_maybe_csv(ctx, sim, d, 1);
+}
+
+mrn_run_observer mrn_output_observer(mrn_output *o) {
+  return (mrn_run_observer){observe_snapshot, observe_row_due, observe_row, o};
 }

@@ -1,4 +1,4 @@
-/* moraine: what a simulation writes while it runs.
+/* moraine: what a simulation writes while it runs (an observer of mrn_run).
  *
  *   OUTDIR/<vtk>_NNNNNN.vtp + OUTDIR/<vtk>.pvd   particle snapshots (ParaView)
  *   OUTDIR/<diagnostics>                          CSV of the diagnostics
@@ -11,8 +11,7 @@
 #include "io/series_h5.h"
 #include "io/vtk.h"
 #include "solver/diagnostics.h"
-
-struct mrn_sim;
+#include "solver/run.h"
 
 #define MRN_OUTPUT_MAX_FIELDS 32
 
@@ -78,5 +77,10 @@ int mrn_output_maybe_csv(mrn_output *o, const struct mrn_sim *sim, const mrn_dia
 /* Put every row so far on disk, as when a run stops early: the HDF5 series
  * rewritten if it lags, the CSV fsynced. 0 or MRN_ERR_IO. */
 int mrn_output_flush(mrn_output *o);
+
+/* The writers above as an observer of mrn_run: a VTK snapshot when one is
+ * due, and the CSV and HDF5 series' rows (of the first state, on the CSV's
+ * cadence and of the last state). The output must outlive the run. */
+mrn_run_observer mrn_output_observer(mrn_output *o);
 
 #endif

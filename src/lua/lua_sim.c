@@ -12,6 +12,7 @@
 #include "io/atomic_file.h"
 #include "core/tensor.h"
 #include "io/checkpoint.h"
+#include "io/output.h"
 #include "io/particle_fields.h"
 #include "lua/lua_check.h"
 #include "lua/lua_internal.h"
@@ -844,7 +845,10 @@ static int l_run(lua_State *L) {
   mrn_lua_active = L;
   mrn_suspicious_run(b->sim);
   b->busy = where;
-  int rc = mrn_run(b->sim, &b->out, &opt);
+  mrn_run_observer writers = mrn_output_observer(&b->out); /* the run knows no file format */
+  opt.observers = &writers;
+  opt.nobservers = 1;
+  int rc = mrn_run(b->sim, &opt);
   b->busy = NULL;
   mrn_lua_callback_release(stop_cb);
   if (rc != MRN_OK) return raise_engine_error(L, rc, where, b);

@@ -49,30 +49,65 @@ static int due_hook(mrn_hook *h, const mrn_sim *sim) {
   return due;
 }
 
-/* hooks, outputs and thermo for the state just reached; returns 0, MRN_STOP or an error */
-static int after_step(mrn_sim *sim, mrn_output *out, mrn_run_options *opt, int first) {
+static int call_hooks_at_output(mrn_sim *sim, mrn_run_options *opt) {
+  int rc;
+  for (int i = 0; i < opt->nhooks; i++)
+    if (opt->hooks[i].at_output && (rc = opt->hooks[i].fn(opt->hooks[i].ctx, sim)) != 0) return rc;
+  return MRN_OK;
+}
+
+/* the observers' snapshots; the hooks that follow a snapshot run once after
+ * them when any observer wrote one */
+static int report_snapshots(mrn_sim *sim, mrn_run_options *opt) {
+  int rc, wrote = 0;
+  for (int i = 0; i < opt->nobservers; i++) {
+    const mrn_run_observer *ob = &opt->observers[i];
+    int w = 0;
+    if (ob->snapshot && (rc = ob->snapshot(ob->ctx, sim, &w)) != MRN_OK) return rc;
+    wrote |= w;
+  }
+  return wrote ? call_hooks_at_output(sim, opt) : MRN_OK;
+}
+
+static int row_due(const mrn_run_observer *ob, const mrn_sim *sim, mrn_run_moment when) {
+  return ob->row && (!ob->row_due || ob->row_due(ob->ctx, sim, when));
+}
+
+/* The thermo line and the observers' rows of this state. The diagnostics sum
+ * over every particle: computed once, and only when a line or a row is due.
+ * The thermo line comes on its cadence and at the start; at the end only when
+ * the cadence has not just printed this state. */
+static int report_rows(mrn_sim *sim, mrn_run_options *opt, mrn_run_moment when) {
+  const long every = opt->thermo_every;
+  const int on_cadence = every > 0 && sim->step % every == 0;
+  const int thermo = every > 0 && !mrn_log_quiet() &&
+                     (when == MRN_RUN_START || (when == MRN_RUN_STEP ? on_cadence : !on_cadence));
+  int due = thermo;
+  for (int i = 0; i < opt->nobservers && !due; i++) due = row_due(&opt->observers[i], sim, when);
+  if (!due) return MRN_OK;
+  mrn_diagnostics d;
+  mrn_sim_diagnostics(sim, &d);
+  if (thermo) mrn_thermo_line(stdout, sim, &d);
+  for (int i = 0; i < opt->nobservers; i++) {
+    const mrn_run_observer *ob = &opt->observers[i];
+    int rc;
+    if (row_due(ob, sim, when) && (rc = ob->row(ob->ctx, sim, &d)) != MRN_OK) return rc;
+  }
+  return MRN_OK;
+}
+
+/* hooks, observers and thermo for the state just reached; returns 0, MRN_STOP or an error */
+static int after_step(mrn_sim *sim, mrn_run_options *opt, int first) {
   int rc;
   for (int i = 0; i < opt->nhooks; i++)
     if (due_hook(&opt->hooks[i], sim) && (rc = opt->hooks[i].fn(opt->hooks[i].ctx, sim)) != 0) return rc;
-  const int snapshots = out ? out->vtk_count : 0;
-  if (out && (rc = mrn_output_maybe_vtk(out, sim)) != MRN_OK) return rc;
-  if (out && out->vtk_count != snapshots) /* a snapshot was just written */
-    for (int i = 0; i < opt->nhooks; i++)
-      if (opt->hooks[i].at_output && (rc = opt->hooks[i].fn(opt->hooks[i].ctx, sim)) != 0) return rc;
-  int thermo_due = opt->thermo_every > 0 && (first || sim->step % opt->thermo_every == 0);
-  int csv_due = out && (out->csv_name || out->series_name) &&
-                (first || (out->csv_every > 0 && sim->step % out->csv_every == 0));
-  if (thermo_due || csv_due) {
-    mrn_diagnostics d;
-    mrn_sim_diagnostics(sim, &d);
-    if (thermo_due && !mrn_log_quiet()) mrn_thermo_line(stdout, sim, &d);
-    if (csv_due && (rc = mrn_output_maybe_csv(out, sim, &d, 1)) != MRN_OK) return rc;
-  }
+  if ((rc = report_snapshots(sim, opt)) != MRN_OK) return rc;
+  if ((rc = report_rows(sim, opt, first ? MRN_RUN_START : MRN_RUN_STEP)) != MRN_OK) return rc;
   if (!first && opt->stop_when && (rc = opt->stop_when(opt->stop_ctx, sim)) != 0) return rc;
   return MRN_OK;
 }
 
-int mrn_run(mrn_sim *sim, mrn_output *out, mrn_run_options *opt) {
+int mrn_run(mrn_sim *sim, mrn_run_options *opt) {
   if (!(opt->time > 0) && !(opt->steps > 0)) return mrn_error("run: give a positive time or number of steps");
   const double t_end = opt->time > 0 ? sim->time + opt->time : HUGE_VAL;
   const long step_end = opt->steps > 0 ? sim->step + opt->steps : -1;
@@ -89,7 +124,7 @@ int mrn_run(mrn_sim *sim, mrn_output *out, mrn_run_options *opt) {
   if (!sim->energy_ref_set) mrn_sim_energy_balance_start(sim);
   mrn_watchdog_start(&sim->watch, sim);
   if (opt->thermo_every > 0 && !mrn_log_quiet()) mrn_thermo_header(stdout);
-  int rc = after_step(sim, out, opt, 1);
+  int rc = after_step(sim, opt, 1);
   while (rc == MRN_OK) {
     if (step_end >= 0 && sim->step >= step_end) break;
     if (sim->integrator.step) {
@@ -111,7 +146,7 @@ int mrn_run(mrn_sim *sim, mrn_output *out, mrn_run_options *opt) {
       if ((rc = mrn_sim_step_dt(sim, dt)) != MRN_OK) break;
     }
     if ((rc = mrn_watchdog_check(&sim->watch, sim, sim->step == step_start + 1)) != MRN_OK) break;
-    rc = after_step(sim, out, opt, 0);
+    rc = after_step(sim, opt, 0);
     if (rc == MRN_OK && mrn_interrupt_pending()) rc = MRN_ERR_INTERRUPTED;
     if (opt->progress) {
       double now = wall_seconds();
@@ -132,16 +167,7 @@ int mrn_run(mrn_sim *sim, mrn_output *out, mrn_run_options *opt) {
     draw_progress(1.0, wall_seconds() - wall_start);
     fputc('\n', stderr);
   }
-  /* the final state always reaches the thermo output and the CSV */
-  if (rc == MRN_OK || rc == MRN_STOP) {
-    mrn_diagnostics d;
-    mrn_sim_diagnostics(sim, &d);
-    if (opt->thermo_every > 0 && sim->step % opt->thermo_every != 0 && !mrn_log_quiet()) mrn_thermo_line(stdout, sim, &d);
-    if (out && (out->csv_name || out->series_name) && out->csv_every > 0 && sim->step % out->csv_every != 0) {
-      int crc = mrn_output_maybe_csv(out, sim, &d, 1);
-      if (crc != MRN_OK) return crc;
-    }
-    return MRN_OK;
-  }
+  /* the final state always reaches the thermo output and the observers' rows */
+  if (rc == MRN_OK || rc == MRN_STOP) return report_rows(sim, opt, MRN_RUN_END);
   return rc;
 }

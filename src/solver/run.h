@@ -2,12 +2,15 @@
  *
  * mrn_run() steps until the requested model time has passed or the requested
  * number of steps is done (whichever comes first), calling hooks on their
- * schedule, writing outputs, thermo lines and a progress bar. The last step is
- * shortened so a `time` run ends exactly on time. */
+ * schedule, reporting each state to its observers (the writers of io/, which
+ * the caller registers), printing thermo lines and a progress bar. The last
+ * step is shortened so a `time` run ends exactly on time. */
 #ifndef MRN_SOLVER_RUN_H
 #define MRN_SOLVER_RUN_H
 
-#include "io/output.h"
+#include <stdio.h>
+
+#include "solver/diagnostics.h"
 #include "solver/simulation.h"
 
 /* a hook returns 0 to go on, MRN_STOP to end the run cleanly, or an error code */
@@ -17,11 +20,34 @@ typedef int (*mrn_hook_fn)(void *ctx, mrn_sim *sim);
 typedef struct mrn_hook {
   long every_steps;   /* > 0: call every this many steps */
   double every_time;  /* > 0: call every this much model time */
-  int at_output;      /* 1: call after each VTK snapshot the run writes */
+  int at_output;      /* 1: call after each snapshot an observer writes */
   double next_time;
   mrn_hook_fn fn;
   void *ctx;
 } mrn_hook;
+
+/* Which state the run reports: the one it starts from, one a step reached,
+ * or the one it ends on (also after a hook or stop_when ended it). */
+typedef enum mrn_run_moment { MRN_RUN_START, MRN_RUN_STEP, MRN_RUN_END } mrn_run_moment;
+
+/* Whoever records a run: the solver knows no file format, so io/ hands its
+ * writers in as observers (mrn_output_observer) and the caller lists them in
+ * the options. Each callback may be NULL and returns 0 or an error code,
+ * which ends the run. For the starting state and after every step, once the
+ * hooks due have run:
+ *   snapshot()  may write a snapshot of the state, and then sets *wrote
+ *               (the hooks with at_output follow it);
+ *   row_due()   says whether it records a row of diagnostics of this state
+ *               (none: a row of every state);
+ *   row()       records it: the diagnostics are computed once for all the
+ *               observers and the thermo line.
+ * The state the run ends on gets row_due(MRN_RUN_END) and row() only. */
+typedef struct mrn_run_observer {
+  int (*snapshot)(void *ctx, const mrn_sim *sim, int *wrote);
+  int (*row_due)(void *ctx, const mrn_sim *sim, mrn_run_moment when);
+  int (*row)(void *ctx, const mrn_sim *sim, const mrn_diagnostics *d);
+  void *ctx;
+} mrn_run_observer;
 
 typedef struct mrn_run_options {
   double time;        /* > 0: run this much model time */
@@ -30,13 +56,15 @@ typedef struct mrn_run_options {
   int progress;       /* draw a progress bar on stderr */
   mrn_hook *hooks;
   int nhooks;
+  const mrn_run_observer *observers; /* called in this order */
+  int nobservers;
   mrn_hook_fn stop_when; /* checked after every step: MRN_STOP ends the run */
   void *stop_ctx;
 } mrn_run_options;
 
 /* 0 when the run completed (or a hook/stop_when ended it), otherwise an error
  * code with the message set; the state is left at the last completed step. */
-int mrn_run(mrn_sim *sim, mrn_output *out, mrn_run_options *opt);
+int mrn_run(mrn_sim *sim, mrn_run_options *opt);
 
 void mrn_thermo_header(FILE *f);
 void mrn_thermo_line(FILE *f, const mrn_sim *sim, const mrn_diagnostics *d);

@@ -2,7 +2,7 @@
 # runs and warnings (doc/errors.md lists them with the message each shows).
 set(MORAINE_ROBUST_DIR ${CMAKE_CURRENT_SOURCE_DIR}/robust)
 add_test(NAME robust.disk_full
-         COMMAND ${MORAINE_ROBUST_DIR}/disk_full.sh $<TARGET_FILE:moraine> ${MORAINE_TEST_OUT}/robust_disk_full ${MORAINE_PYTHON})
+         COMMAND ${MORAINE_ROBUST_DIR}/disk_full.sh $<TARGET_FILE:moraine> ${MORAINE_TEST_OUT}/robust_disk_full ${Python3_EXECUTABLE})
 add_test(NAME robust.permission COMMAND ${MORAINE_ROBUST_DIR}/permission.sh $<TARGET_FILE:moraine> ${MORAINE_TEST_OUT}/robust_permission)
 set_tests_properties(robust.permission PROPERTIES SKIP_RETURN_CODE 77)
 add_test(NAME robust.sigterm_twice COMMAND ${MORAINE_ROBUST_DIR}/sigterm_twice.sh $<TARGET_FILE:moraine> ${MORAINE_TEST_OUT}/robust_sigterm_twice)
@@ -19,7 +19,7 @@ add_library(faultfs MODULE ${MORAINE_ROBUST_DIR}/faultfs.c)
 set_target_properties(faultfs PROPERTIES LIBRARY_OUTPUT_DIRECTORY ${CMAKE_BINARY_DIR} COMPILE_OPTIONS "-Wall;-Wextra" LINK_OPTIONS "")
 target_link_libraries(faultfs PRIVATE ${CMAKE_DL_LIBS})
 add_test(NAME robust.faults
-         COMMAND ${MORAINE_ROBUST_DIR}/faults.sh $<TARGET_FILE:moraine> ${MORAINE_TEST_OUT}/robust_faults ${MORAINE_PYTHON})
+         COMMAND ${MORAINE_ROBUST_DIR}/faults.sh $<TARGET_FILE:moraine> ${MORAINE_TEST_OUT}/robust_faults ${Python3_EXECUTABLE})
 # the physical-sanity watchdog: an explosive run pinned to the walls stops;
 # violent runs that are right (bouncing cube, dam break) keep far from its bounds
 add_test(NAME robust.watchdog
@@ -28,7 +28,7 @@ add_test(NAME robust.watchdog_legit
          COMMAND $<TARGET_FILE:moraine> ${MORAINE_ROBUST_DIR}/watchdog_legit.lua -q -o ${MORAINE_TEST_OUT}/robust_watchdog_legit)
 # one damaged byte in a checkpoint, older checkpoints without checksums, no HDF5 printing
 add_test(NAME robust.checkpoint_damage
-         COMMAND ${MORAINE_ROBUST_DIR}/checkpoint_damage.sh $<TARGET_FILE:moraine> ${MORAINE_TEST_OUT}/robust_checkpoint_damage ${MORAINE_PYTHON})
+         COMMAND ${MORAINE_ROBUST_DIR}/checkpoint_damage.sh $<TARGET_FILE:moraine> ${MORAINE_TEST_OUT}/robust_checkpoint_damage ${Python3_EXECUTABLE})
 set_tests_properties(robust.disk_full robust.permission robust.sigterm_twice robust.warnings robust.unstable_cfl
                      robust.watchdog robust.watchdog_legit robust.checkpoint_damage robust.faults PROPERTIES LABELS robust)
 
@@ -41,7 +41,7 @@ add_test(NAME robust.safe_example COMMAND ${MORAINE_ROBUST_DIR}/safe_example.sh 
 set_tests_properties(robust.safe_symlink robust.safe_allowed robust.safe_example PROPERTIES LABELS robust)
 
 # doc/errors.md lists every case above and in tests/bad/ with its message
-add_test(NAME doc.errors_table COMMAND ${MORAINE_PYTHON} ${CMAKE_CURRENT_SOURCE_DIR}/bad/errors_table.py --check
+add_test(NAME doc.errors_table COMMAND ${Python3_EXECUTABLE} ${CMAKE_CURRENT_SOURCE_DIR}/bad/errors_table.py --check
                                        ${CMAKE_SOURCE_DIR}/doc/errors.md)
 set_tests_properties(doc.errors_table PROPERTIES LABELS doc)
 

@@ -3,9 +3,9 @@
 # an HDF5 series, a CSV and checkpoints all the time; every file left must be
 # complete and readable, or absent (check_killed_outputs.py). Hidden temporary
 # files (.NAME.tmp.PID) may remain and are ignored by name.
-# usage: sigkill.sh MORAINE OUTDIR [KILLS]
+# usage: sigkill.sh MORAINE OUTDIR [KILLS [PYTHON]]
 set -u
-moraine=$1 out=$2 kills=${3:-12} here=$(cd "$(dirname "$0")" && pwd)
+moraine=$1 out=$2 kills=${3:-12} python=${4:-python3} here=$(cd "$(dirname "$0")" && pwd)
 rm -rf "$out"; mkdir -p "$out"
 RANDOM=6 # the same delays every time
 dirs=()
@@ -23,7 +23,7 @@ for i in $(seq 1 "$kills"); do
   echo "run $i: killed after $delay s of writing: $(ls "$dir" | wc -l) files"
   dirs+=("$dir")
 done
-/usr/bin/python3 "$here/check_killed_outputs.py" "${dirs[@]}"
+"$python" "$here/check_killed_outputs.py" "${dirs[@]}"
 status=$?
 [ $status -eq 0 ] && rm -rf "$out"/kill_* # several GB
 exit $status
