@@ -58,7 +58,7 @@ static int l_particle_field(lua_State *L) {
     mrn_lua_error(L, where, "unit '%s' is longer than %d characters", unit,
                   (int)sizeof sim->particles.user_fields[0].unit - 1);
   if (mrn_particles_add_user_field(&sim->particles, name, ncomp, init, unit) != MRN_OK)
-    mrn_lua_error(L, where, "%s", mrn_error_message());
+    mrn_lua_engine_error(L, where);
   return 0;
 }
 

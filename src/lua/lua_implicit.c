@@ -148,7 +148,7 @@ static void new_integrator(lua_State *L, int sim_idx, int opt_idx, const char *w
   lua_pushvalue(L, sim_idx);
   lua_setiuservalue(L, -2, 1);
   b->im = mrn_implicit_new(sim, &o);
-  if (!b->im) mrn_lua_error(L, where, "%s", mrn_error_message());
+  if (!b->im) mrn_lua_engine_error(L, where);
   mrn_implicit_attach(b->im); /* sim:run now steps with it */
   lua_pushvalue(L, -1);
   set_weak(L, INTEGRATORS, sim_idx);
@@ -203,7 +203,7 @@ static void push_history(lua_State *L, const mrn_implicit_history *h) {
 static int l_step(lua_State *L) {
   mrn_implicit *im = check_implicit(L, 1);
   mrn_implicit_history h;
-  if (mrn_implicit_advance(im, HUGE_VAL, &h)) return luaL_error(L, "%s", mrn_error_message());
+  if (mrn_implicit_advance(im, HUGE_VAL, &h)) return mrn_lua_engine_error(L, NULL);
   push_history(L, &h);
   return 1;
 }
@@ -240,7 +240,7 @@ static int l_energy(lua_State *L) {
 static int l_next_dt(lua_State *L) {
   mrn_implicit *im = check_implicit(L, 1);
   double dt;
-  if (mrn_implicit_next_dt(im, &dt)) return luaL_error(L, "%s", mrn_error_message());
+  if (mrn_implicit_next_dt(im, &dt)) return mrn_lua_engine_error(L, NULL);
   lua_pushnumber(L, dt);
   return 1;
 }

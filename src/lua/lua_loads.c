@@ -42,7 +42,7 @@ long mrn_lua_point_force_args(lua_State *L, int idx, const mrn_sim *sim, const c
     double fp[3];
     double scale = has_force ? 1.0 / (double)count : pow(ps->vol0[p], (sim->dim - 1.0) / sim->dim);
     for (int d = 0; d < 3; d++) fp[d] = f[d] * scale;
-    if (set(ctx, p, fp)) mrn_lua_error(L, where, "%s", mrn_error_message());
+    if (set(ctx, p, fp)) mrn_lua_engine_error(L, where);
   }
   return count;
 }

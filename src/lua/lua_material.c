@@ -27,7 +27,7 @@ static int l_new_material(lua_State *L) {
   b->m = NULL;
   luaL_setmetatable(L, MRN_LUA_MATERIAL);
   b->m = mrn_material_new(type);
-  if (!b->m) mrn_lua_error(L, where, "%s", mrn_error_message());
+  if (!b->m) mrn_lua_engine_error(L, where);
   lua_pushnil(L);
   while (lua_next(L, 1)) {
     if (lua_type(L, -2) != LUA_TSTRING) mrn_lua_error(L, where, "parameters must be named (key = value)");

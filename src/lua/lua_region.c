@@ -13,7 +13,7 @@ typedef struct region_box {
 } region_box;
 
 static void push_region(lua_State *L, mrn_region *r, const char *where) {
-  if (!r) mrn_lua_error(L, where, "%s", mrn_error_message());
+  if (!r) mrn_lua_engine_error(L, where);
   region_box *b = lua_newuserdatauv(L, sizeof *b, 0);
   b->r = r;
   luaL_setmetatable(L, MRN_LUA_REGION);
@@ -174,7 +174,7 @@ static int l_contains(lua_State *L) {
   double x[3] = {luaL_checknumber(L, 2), luaL_checknumber(L, 3), luaL_optnumber(L, 4, 0.0)};
   mrn_lua_active = L;
   int in = mrn_region_contains(r, x);
-  if (in < 0) return luaL_error(L, "%s", mrn_error_message());
+  if (in < 0) return mrn_lua_engine_error(L, NULL);
   lua_pushboolean(L, in);
   return 1;
 }

@@ -289,7 +289,7 @@ static void read_boundary(lua_State *L, int idx, const char *where, mrn_sim *sim
     read_face(L, -1, sub, key, &sim->boundary.face[face], sim->dim);
     lua_pop(L, 1);
   }
-  if (mrn_boundary_validate(&sim->boundary, sim->dim) != MRN_OK) mrn_lua_error(L, sub, "%s", mrn_error_message());
+  if (mrn_boundary_validate(&sim->boundary, sim->dim) != MRN_OK) mrn_lua_engine_error(L, sub);
 }
 
 /* one of the three knobs by name, overriding the preset */
@@ -304,7 +304,7 @@ static void read_scheme(lua_State *L, int idx, const char *where, mrn_sim *sim) 
   idx = lua_absindex(L, idx);
   mrn_scheme s = sim->scheme;
   if (lua_type(L, idx) == LUA_TSTRING) {
-    if (mrn_scheme_from_preset(lua_tostring(L, idx), &s) != MRN_OK) mrn_lua_error(L, where, "%s", mrn_error_message());
+    if (mrn_scheme_from_preset(lua_tostring(L, idx), &s) != MRN_OK) mrn_lua_engine_error(L, where);
   } else if (lua_istable(L, idx)) {
     const int n = MRN_COUNT(scheme_specs);
     mrn_lua_check_table(L, idx, where, scheme_specs, n);
@@ -338,7 +338,7 @@ static void read_scheme(lua_State *L, int idx, const char *where, mrn_sim *sim) 
     mrn_lua_error(L, where, "scheme must be a preset name or a table {transfer = ..., stress_update = ...}, got %s",
                   luaL_typename(L, idx));
   }
-  if (mrn_scheme_validate(&s) != MRN_OK) mrn_lua_error(L, where, "%s", mrn_error_message());
+  if (mrn_scheme_validate(&s) != MRN_OK) mrn_lua_engine_error(L, where);
   sim->scheme = s;
 }
 
@@ -523,7 +523,7 @@ static int l_simulation(lua_State *L) {
   sim_box *b = push_sim_box(L);
   int self = lua_gettop(L);
   b->sim = mrn_sim_new(&cfg);
-  if (!b->sim) mrn_lua_error(L, where, "%s", mrn_error_message());
+  if (!b->sim) mrn_lua_engine_error(L, where);
   read_on_leave(L, 1, where, sim_specs, MRN_COUNT(sim_specs), b->sim);
   mrn_blocks_set_sort_every(&b->sim->grid, mrn_lua_get_integer(L, 1, where, sim_specs, MRN_COUNT(sim_specs), "sort_every"));
   for (int i = 0; i < MRN_FACE_COUNT; i++) b->sim->boundary.face[i].kind = MRN_BC_SLIP;
@@ -682,14 +682,14 @@ static int l_add_particles(lua_State *L) {
                   "simulation (a box needs min and max of 3 components)", region->lo[2], region->hi[2]);
 
   int mat_index = mrn_sim_add_material(b->sim, mat);
-  if (mat_index < 0) mrn_lua_error(L, where, "%s", mrn_error_message());
+  if (mat_index < 0) mrn_lua_engine_error(L, where);
   size_t first = 0;
   long count = 0;
   mrn_lua_active = L;
   b->busy = where; /* region functions run inside the seeding */
   int seeded = mrn_sim_seed(b->sim, region, mat_index, per_axis, pl, &first, &count);
   b->busy = NULL;
-  if (seeded != MRN_OK) mrn_lua_error(L, where, "%s", mrn_error_message());
+  if (seeded != MRN_OK) mrn_lua_engine_error(L, where);
   if (count == 0) mrn_lua_error(L, where, "the region seeds no particle on this grid (is it inside the domain?)");
   mrn_suspicious_seed(b->sim, per_axis, count);
 
@@ -791,7 +791,7 @@ static int raise_engine_error(lua_State *L, int rc, const char *where, sim_box *
     lua_pushstring(L, mrn_error_message());
     return lua_error(L);
   }
-  if (rc == MRN_ERR_IO) return mrn_lua_output_error(L, where, "%s", mrn_error_message());
+  if (rc == MRN_ERR_IO) return mrn_lua_engine_output_error(L, where);
   if (rc == MRN_ERR_STATE || rc == MRN_ERR_INTERRUPTED) {
     char note[1536];
     int written = write_final_state(b, rc == MRN_ERR_STATE ? "failed" : "interrupted", note, sizeof note);
@@ -806,7 +806,7 @@ static int raise_engine_error(lua_State *L, int rc, const char *where, sim_box *
     if (written != MRN_OK) return mrn_lua_output_error(L, where, "%s", message);
     return mrn_lua_error(L, where, "%s", message);
   }
-  return mrn_lua_error(L, where, "%s", mrn_error_message());
+  return mrn_lua_engine_error(L, where);
 }
 
 static int l_run(lua_State *L) {
@@ -949,7 +949,7 @@ static int l_constrain(lua_State *L) {
   if (!read_components(L, 2, where, b->sim->dim, v, &mask)) mrn_lua_error(L, where, "give at least one of vx, vy, vz");
   mrn_lua_active = L;
   int i = mrn_sim_add_constraint(b->sim, region, mask, v);
-  if (i < 0) mrn_lua_error(L, where, "%s", mrn_error_message());
+  if (i < 0) mrn_lua_engine_error(L, where);
   lua_pushinteger(L, i + 1);
   return 1;
 }
@@ -998,8 +998,8 @@ static int l_save(lua_State *L) {
   sim_box *b = check_sim(L, 1);
   const char *path = output_path(L, b, luaL_checkstring(L, 2));
   mrn_lua_check_write(L, "save()", path);
-  if (mrn_mkdir_p(b->out.dir) != MRN_OK) mrn_lua_error(L, "save()", "%s", mrn_error_message());
-  if (mrn_checkpoint_save(b->sim, path) != MRN_OK) mrn_lua_output_error(L, "save()", "%s", mrn_error_message());
+  if (mrn_mkdir_p(b->out.dir) != MRN_OK) mrn_lua_engine_error(L, "save()");
+  if (mrn_checkpoint_save(b->sim, path) != MRN_OK) mrn_lua_engine_output_error(L, "save()");
   lua_pushstring(L, path);
   return 1;
 }
@@ -1034,7 +1034,7 @@ static int l_load(lua_State *L) {
   int self = lua_gettop(L);
   mrn_checkpoint_info info;
   b->sim = mrn_checkpoint_load_info(path, &info);
-  if (!b->sim) mrn_lua_error(L, where, "%s", mrn_error_message());
+  if (!b->sim) mrn_lua_engine_error(L, where);
   if (info.dt_function_dropped) mrn_warn("%s", info.note);
   snprintf(b->name, sizeof b->name, "%s", "loaded");
   mrn_output_set_csv(&b->out, "diagnostics.csv", 10);
@@ -1089,7 +1089,7 @@ static int l_import(lua_State *L) {
   if (path[0] != '/' && access(path, F_OK) != 0) path = output_path(L, b, path);
   long count = 0;
   if (mrn_checkpoint_import(b->sim, path, override, offset, &count) != MRN_OK)
-    mrn_lua_error(L, where, "%s", mrn_error_message());
+    mrn_lua_engine_error(L, where);
   lua_pushinteger(L, count);
   return 1;
 }
@@ -1124,7 +1124,7 @@ static int l_write_vtk(lua_State *L) {
   sim_box *b = check_sim(L, 1);
   if (!b->out.vtk_name) mrn_lua_error(L, "write_vtk()", "no VTK series configured (output{vtk = name})");
   if (mrn_output_write_vtk(&b->out, b->sim) != MRN_OK)
-    mrn_lua_output_error(L, "write_vtk()", "%s", mrn_error_message());
+    mrn_lua_engine_output_error(L, "write_vtk()");
   return 0;
 }
 
@@ -1206,7 +1206,7 @@ static int l_record(lua_State *L) {
   const char *name = luaL_checkstring(L, 2);
   double v = luaL_checknumber(L, 3);
   if (!name[0] || strchr(name, '/')) mrn_lua_error(L, "record()", "'%s' is not a valid series name", name);
-  if (mrn_output_record(&b->out, name, v) != MRN_OK) mrn_lua_output_error(L, "record()", "%s", mrn_error_message());
+  if (mrn_output_record(&b->out, name, v) != MRN_OK) mrn_lua_engine_output_error(L, "record()");
   return 0;
 }
 
@@ -1309,7 +1309,7 @@ static int l_reduce(lua_State *L) {
     const double *x = ps->x + 3 * p;
     if (region) {
       int in = mrn_region_contains(region, x);
-      if (in < 0) mrn_lua_error(L, where, "%s", mrn_error_message());
+      if (in < 0) mrn_lua_engine_error(L, where);
       if (!in) continue;
     }
     if (pred) {
@@ -1396,7 +1396,7 @@ static int release_sim(lua_State *L) {
 
 /* sim:free() and the end of a `<close>` variable: a failure is raised */
 static int l_free(lua_State *L) {
-  if (release_sim(L) != MRN_OK) mrn_lua_output_error(L, "free()", "%s", mrn_error_message());
+  if (release_sim(L) != MRN_OK) mrn_lua_engine_output_error(L, "free()");
   return 0;
 }
 
