@@ -112,76 +112,50 @@ void mrn_lua_read_on_leave(lua_State *L, int idx, const char *where, const mrn_s
     if (!strcmp(policy, mrn_leave_policy_names()[k])) sim->on_leave = (mrn_leave_policy)k;
 }
 
-int l_simulation(lua_State *L) {
-  const char *where = "simulation{}";
-  mrn_lua_check_table(L, 1, where, sim_specs, MRN_COUNT(sim_specs));
-  const int dim = (int)mrn_lua_get_integer(L, 1, where, sim_specs, MRN_COUNT(sim_specs), "dim");
+/* the spec arguments of the getters for a key of simulation{} */
+#define SIM_SPECS sim_specs, MRN_COUNT(sim_specs)
 
-  mrn_sim_config cfg;
-  memset(&cfg, 0, sizeof cfg);
-  cfg.dim = dim;
+/* dim, grid, shape, gravity and shape_boundary: what mrn_sim_new needs */
+static void read_config(lua_State *L, const char *where, mrn_sim_config *cfg) {
+  memset(cfg, 0, sizeof *cfg);
+  const int dim = (int)mrn_lua_get_integer(L, 1, where, SIM_SPECS, "dim");
+  cfg->dim = dim;
   lua_getfield(L, 1, "grid");
   char gwhere[] = "simulation{} grid";
   mrn_lua_check_table(L, -1, gwhere, grid_specs, MRN_COUNT(grid_specs));
-  mrn_lua_get_vector(L, -1, gwhere, grid_specs, MRN_COUNT(grid_specs), "origin", dim, cfg.origin, 0);
-  mrn_lua_get_vector(L, -1, gwhere, grid_specs, MRN_COUNT(grid_specs), "size", dim, cfg.size, 1);
-  cfg.cell = mrn_lua_get_number(L, -1, gwhere, grid_specs, MRN_COUNT(grid_specs), "cell");
+  mrn_lua_get_vector(L, -1, gwhere, grid_specs, MRN_COUNT(grid_specs), "origin", dim, cfg->origin, 0);
+  mrn_lua_get_vector(L, -1, gwhere, grid_specs, MRN_COUNT(grid_specs), "size", dim, cfg->size, 1);
+  cfg->cell = mrn_lua_get_number(L, -1, gwhere, grid_specs, MRN_COUNT(grid_specs), "cell");
   lua_pop(L, 1);
 
-  cfg.shape = MRN_SHAPE_QUADRATIC_BSPLINE;
-  const char *shape = mrn_lua_get_string(L, 1, where, sim_specs, MRN_COUNT(sim_specs), "shape");
+  cfg->shape = MRN_SHAPE_QUADRATIC_BSPLINE;
+  const char *shape = mrn_lua_get_string(L, 1, where, SIM_SPECS, "shape");
   if (shape) {
     mrn_lua_check_choice(L, where, "shape", shape, mrn_shape_names());
-    mrn_shape_from_name(shape, &cfg.shape);
+    mrn_shape_from_name(shape, &cfg->shape);
   }
-  mrn_lua_get_vector(L, 1, where, sim_specs, MRN_COUNT(sim_specs), "gravity", dim, cfg.gravity, 0);
-  const char *sb = mrn_lua_get_string(L, 1, where, sim_specs, MRN_COUNT(sim_specs), "shape_boundary");
-  cfg.kernel_boundary = MRN_KERNEL_EXTENDED;
+  mrn_lua_get_vector(L, 1, where, SIM_SPECS, "gravity", dim, cfg->gravity, 0);
+  const char *sb = mrn_lua_get_string(L, 1, where, SIM_SPECS, "shape_boundary");
+  cfg->kernel_boundary = MRN_KERNEL_EXTENDED;
   if (sb) {
     mrn_lua_check_choice(L, where, "shape_boundary", sb, mrn_kernel_boundary_names());
-    mrn_kernel_boundary_from_name(sb, &cfg.kernel_boundary);
+    mrn_kernel_boundary_from_name(sb, &cfg->kernel_boundary);
   }
+}
 
-  sim_box *b = mrn_lua_sim_push(L);
-  int self = lua_gettop(L);
-  b->sim = mrn_sim_new(&cfg);
-  if (!b->sim) mrn_lua_engine_error(L, where);
-  mrn_lua_read_on_leave(L, 1, where, sim_specs, MRN_COUNT(sim_specs), b->sim);
-  mrn_blocks_set_sort_every(&b->sim->grid, mrn_lua_get_integer(L, 1, where, sim_specs, MRN_COUNT(sim_specs), "sort_every"));
-  for (int i = 0; i < MRN_FACE_COUNT; i++) b->sim->boundary.face[i].kind = MRN_BC_SLIP;
-  mrn_output_set_csv(&b->out, "diagnostics.csv", 10);
-  const char *name = mrn_lua_get_string(L, 1, where, sim_specs, MRN_COUNT(sim_specs), "name");
-  snprintf(b->name, sizeof b->name, "%s", name ? name : "simulation");
+typedef void (*option_reader)(lua_State *L, int idx, const char *where, mrn_sim *sim);
 
-  if (mrn_lua_has(L, 1, "scheme")) {
-    lua_getfield(L, 1, "scheme");
-    mrn_lua_read_scheme(L, -1, "simulation{} scheme", b->sim);
-    lua_pop(L, 1);
-  }
-  if (mrn_lua_has(L, 1, "boundary")) {
-    lua_getfield(L, 1, "boundary");
-    mrn_lua_read_boundary(L, -1, where, b->sim);
-    lua_pop(L, 1);
-  }
-  if (mrn_lua_has(L, 1, "dt")) {
-    lua_getfield(L, 1, "dt");
-    mrn_lua_read_dt(L, -1, where, b->sim);
-    lua_pop(L, 1);
-  }
-  if (mrn_lua_has(L, 1, "damping")) {
-    lua_getfield(L, 1, "damping");
-    mrn_lua_read_damping(L, -1, where, b->sim);
-    lua_pop(L, 1);
-  }
-  if (mrn_lua_has(L, 1, "watchdog")) {
-    lua_getfield(L, 1, "watchdog");
-    mrn_lua_read_watchdog(L, -1, where, b->sim);
-    lua_pop(L, 1);
-  }
-  b->thermo_every = mrn_lua_get_integer(L, 1, where, sim_specs, MRN_COUNT(sim_specs), "thermo");
-  b->progress = mrn_lua_get_boolean(L, 1, where, sim_specs, MRN_COUNT(sim_specs), "progress", 1);
+/* the key of simulation{} read by `read`, when present */
+static void read_option(lua_State *L, const char *key, const char *where, mrn_sim *sim, option_reader read) {
+  if (!mrn_lua_has(L, 1, key)) return;
+  lua_getfield(L, 1, key);
+  read(L, -1, where, sim);
+  lua_pop(L, 1);
+}
 
-  long csv_every = mrn_lua_get_integer(L, 1, where, sim_specs, MRN_COUNT(sim_specs), "diagnostics_every");
+/* diagnostics = "file.csv" | false and series = "file.h5" | false */
+static void read_diagnostics(lua_State *L, const char *where, sim_box *b) {
+  long csv_every = mrn_lua_get_integer(L, 1, where, SIM_SPECS, "diagnostics_every");
   lua_getfield(L, 1, "diagnostics");
   if (lua_isnil(L, -1)) mrn_output_set_csv(&b->out, "diagnostics.csv", csv_every);
   else if (lua_type(L, -1) == LUA_TSTRING) mrn_output_set_csv(&b->out, lua_tostring(L, -1), csv_every);
@@ -195,14 +169,11 @@ int l_simulation(lua_State *L) {
   else if (lua_type(L, -1) == LUA_TBOOLEAN && !lua_toboolean(L, -1)) mrn_output_set_series(&b->out, NULL);
   else mrn_lua_error(L, where, "series must be a file name or false, got %s", luaL_typename(L, -1));
   lua_pop(L, 1);
+}
 
-  if (mrn_lua_has(L, 1, "output")) {
-    lua_getfield(L, 1, "output");
-    mrn_lua_read_output(L, -1, where, b);
-    lua_pop(L, 1);
-  }
-  mrn_lua_check_outputs(L, where, &b->out, b->name);
-  const char *integrator = mrn_lua_get_string(L, 1, where, sim_specs, MRN_COUNT(sim_specs), "integrator");
+/* integrator = "implicit" with its options, for the simulation at self */
+static void read_integrator(lua_State *L, const char *where, int self) {
+  const char *integrator = mrn_lua_get_string(L, 1, where, SIM_SPECS, "integrator");
   const int implicit = integrator && !strcmp(integrator, "implicit");
   if (mrn_lua_has(L, 1, "implicit") && !implicit)
     mrn_lua_error(L, where, "implicit: the implicit integrator's options need integrator = \"implicit\"");
@@ -211,10 +182,46 @@ int l_simulation(lua_State *L) {
     mrn_lua_implicit_configure(L, self, lua_isnil(L, -1) ? 0 : lua_gettop(L), "simulation{} implicit");
     lua_pop(L, 1);
   }
+}
+
+/* mpm.simulation{...}: the keys are read in a fixed order, so that of two
+ * wrong keys the same one is always reported */
+int l_simulation(lua_State *L) {
+  const char *where = "simulation{}";
+  mrn_lua_check_table(L, 1, where, SIM_SPECS);
+  mrn_sim_config cfg;
+  read_config(L, where, &cfg);
+
+  sim_box *b = mrn_lua_sim_push(L);
+  int self = lua_gettop(L);
+  b->sim = mrn_sim_new(&cfg);
+  if (!b->sim) mrn_lua_engine_error(L, where);
+  mrn_lua_read_on_leave(L, 1, where, SIM_SPECS, b->sim);
+  mrn_blocks_set_sort_every(&b->sim->grid, mrn_lua_get_integer(L, 1, where, SIM_SPECS, "sort_every"));
+  for (int i = 0; i < MRN_FACE_COUNT; i++) b->sim->boundary.face[i].kind = MRN_BC_SLIP;
+  mrn_output_set_csv(&b->out, "diagnostics.csv", 10);
+  const char *name = mrn_lua_get_string(L, 1, where, SIM_SPECS, "name");
+  snprintf(b->name, sizeof b->name, "%s", name ? name : "simulation");
+
+  read_option(L, "scheme", "simulation{} scheme", b->sim, mrn_lua_read_scheme);
+  read_option(L, "boundary", where, b->sim, mrn_lua_read_boundary);
+  read_option(L, "dt", where, b->sim, mrn_lua_read_dt);
+  read_option(L, "damping", where, b->sim, mrn_lua_read_damping);
+  read_option(L, "watchdog", where, b->sim, mrn_lua_read_watchdog);
+  b->thermo_every = mrn_lua_get_integer(L, 1, where, SIM_SPECS, "thermo");
+  b->progress = mrn_lua_get_boolean(L, 1, where, SIM_SPECS, "progress", 1);
+  read_diagnostics(L, where, b);
+
+  if (mrn_lua_has(L, 1, "output")) {
+    lua_getfield(L, 1, "output");
+    mrn_lua_read_output(L, -1, where, b);
+    lua_pop(L, 1);
+  }
+  mrn_lua_check_outputs(L, where, &b->out, b->name);
+  read_integrator(L, where, self);
   lua_pushvalue(L, self);
   return 1;
 }
-
 
 const mrn_spec_group mrn_lua_simulation_group = {"simulation{}", sim_specs, MRN_COUNT(sim_specs)};
 const mrn_spec_group mrn_lua_grid_group = {"simulation{} grid", grid_specs, MRN_COUNT(grid_specs)};
