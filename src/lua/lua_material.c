@@ -98,8 +98,13 @@ static int l_material_index(lua_State *L) {
 
 void mrn_lua_open_materials(lua_State *L, int module) {
   luaL_newmetatable(L, MRN_LUA_MATERIAL);
+  /* the metamethod __NAME is l_material_NAME; every mpm.material.<model> is l_new_material */
   static const luaL_Reg meta[] = {
-      {"__gc", l_material_gc}, {"__tostring", l_material_tostring}, {"__index", l_material_index}, {NULL, NULL}};
+      {"__gc", l_material_gc},
+      {"__tostring", l_material_tostring},
+      {"__index", l_material_index},
+      {NULL, NULL},
+  };
   luaL_setfuncs(L, meta, 0);
   lua_pop(L, 1);
 
