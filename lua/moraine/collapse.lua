@@ -155,7 +155,7 @@ end
 -- the two regimes both laws are returned (low, high). Also returns the final
 -- height H_f / L_i (a for a < 1.15, a^0.4 above) and the arrest time in units
 -- of sqrt(H_i / g), about 3 (so it compares with t~ of Eq. 73).
--- (/work/shared/VALIDATION.md; the prefactors are Lube et al.'s, to 20 %.)
+-- (VALIDATION.md; the prefactors are Lube et al.'s, to 20 %.)
 function M.lube(a)
   local lin, pow = 1.2 * a, 1.9 * a ^ (2 / 3)
   local lo, hi
