@@ -6,11 +6,7 @@ or lua/ (`function ... end`) is longer than LIMIT lines, counted from the
 line of its name to the line of its closing brace or `end`, and when a file
 of FILE_LIMITS is longer than its limit.
 
-ALLOWED lists the functions over the limit today, each with the length it
-has: such a function may shrink but not grow, and an entry whose function is
-no longer over the limit (or no longer exists) fails the check too, so that
-the list is deleted a line at a time and never grows back. A new function
-over the limit is split, not added to the list.
+There is no allow-list: a function over the limit is split.
 
     scripts/check_function_length.py [ROOT]      exit status 0 when it holds
 """
@@ -23,15 +19,6 @@ LIMIT = 80
 # files that must stay short as a whole (when they exist): the reference
 # form of the transfer kernels is there to be read beside the textbook
 FILE_LIMITS = {"src/transfer/reference.c": 300}
-
-# (file, function): its length today; delete an entry when its function is
-# split.
-ALLOWED = {
-    ("lua/moraine/collapse.lua", "M.run"): 170,
-    ("src/lua/lua_sim.c", "l_reduce"): 112,
-    ("src/lua/lua_sim.c", "l_simulation"): 103,
-    ("src/main.c", "main"): 104,
-}
 
 C_KEYWORDS = {"if", "for", "while", "switch", "return", "sizeof", "do", "else", "_Pragma", "__attribute__"}
 
@@ -180,23 +167,12 @@ def sources(root):
 
 def main():
     root = os.path.abspath(sys.argv[1] if len(sys.argv) > 1 else os.path.join(os.path.dirname(__file__), ".."))
-    errors, used = [], set()
+    errors = []
     for rel, functions in sources(root):
         for name, first, last in functions:
             length = last - first + 1
-            key = (rel, name)
-            if length <= LIMIT:
-                continue
-            if key in ALLOWED:
-                used.add(key)
-                if length > ALLOWED[key]:
-                    errors.append("%s:%d: %s is %d lines, longer than the %d it had: split it" %
-                                  (rel, first, name, length, ALLOWED[key]))
-            else:
+            if length > LIMIT:
                 errors.append("%s:%d: %s is %d lines (at most %d): split it" % (rel, first, name, length, LIMIT))
-    for key in sorted(set(ALLOWED) - used):
-        errors.append("%s: %s is no longer over %d lines: delete its entry in ALLOWED (%s)" %
-                      (key[0], key[1], LIMIT, "scripts/check_function_length.py"))
     for rel, limit in sorted(FILE_LIMITS.items()):
         path = os.path.join(root, rel)
         if os.path.exists(path):
@@ -205,8 +181,7 @@ def main():
                 errors.append("%s: %d lines (under %d)" % (rel, n, limit))
     for e in errors:
         print(e)
-    print("check_function_length: %d problem(s), %d allowed function(s) over %d lines left" %
-          (len(errors), len(ALLOWED), LIMIT))
+    print("check_function_length: %d problem(s), functions of at most %d lines" % (len(errors), LIMIT))
     return 1 if errors else 0
 
 

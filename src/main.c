@@ -95,92 +95,115 @@ static int sign_checkpoints(int count, char **files) {
   return rc;
 }
 
-int main(int argc, char **argv) {
-  const char *deck = NULL;
-  mrn_deck_options opt = {0};
-  opt.outdir = "out";
-  const char **sets = calloc((size_t)argc + 1, sizeof *sets);
-  int nsets = 0;
+/* what the command line asks for */
+typedef struct cli {
+  const char *deck;
+  mrn_deck_options opt;
+  const char **sets; /* the NAME=VALUE of every --set */
+  int nsets;
+} cli;
+
+#define GO_ON (-1) /* a parsing step's answer when moraine is not done yet */
+
+/* the options that print something and exit: their exit status, or GO_ON for any other */
+static int informational_option(const char *a, int argc, char **argv, int i) {
+  if (!strcmp(a, "-h") || !strcmp(a, "--help")) {
+    usage(stdout);
+    return 0;
+  }
+  if (!strcmp(a, "-v") || !strcmp(a, "--version")) {
+    printf("moraine %s (commit %s)\n", MORAINE_VERSION, MORAINE_GIT_COMMIT);
+    return 0;
+  }
+  if (!strcmp(a, "--list-options")) {
+    list_options();
+    return 0;
+  }
+  if (!strcmp(a, "--sign-checkpoint")) return sign_checkpoints(argc - i - 1, argv + i + 1);
+  return GO_ON;
+}
+
+/* the value of option `a`: GO_ON when valid, else 2 with the message printed */
+static int value_option(const char *a, const char *value, cli *c) {
+  if (!strcmp(a, "-o") || !strcmp(a, "--output")) {
+    c->opt.outdir = value;
+  } else if (!strcmp(a, "--set")) {
+    if (!strchr(value, '=') || value[0] == '=') {
+      fprintf(stderr, "moraine: --set expects NAME=VALUE, got '%s'\n", value);
+      return 2;
+    }
+    c->sets[c->nsets++] = value;
+  } else if (!strcmp(a, "--ignore-warning")) {
+    if (mrn_warning_ignore(value) != MRN_OK) {
+      fprintf(stderr, "moraine: --ignore-warning: %s (known: ", mrn_error_message());
+      for (const char *const *id = mrn_warning_ids(); *id; id++) fprintf(stderr, "%s, ", *id);
+      fprintf(stderr, "all)\n");
+      return 2;
+    }
+  } else { /* --threads */
+    char *end;
+    long n = strtol(value, &end, 10);
+    if (*end || n < 1 || n > 4096) {
+      fprintf(stderr, "moraine: --threads expects a positive whole number, got '%s'\n", value);
+      return 2;
+    }
+#ifdef _OPENMP
+    omp_set_num_threads((int)n);
+#endif
+  }
+  return GO_ON;
+}
+
+static int takes_value(const char *a) {
+  return !strcmp(a, "-o") || !strcmp(a, "--output") || !strcmp(a, "--set") || !strcmp(a, "--ignore-warning") ||
+         !strcmp(a, "--threads");
+}
+
+/* The arguments in order, each option applied as it comes. GO_ON, or the
+ * exit status when moraine is done (an informational option, an error). */
+static int parse_args(int argc, char **argv, cli *c) {
   for (int i = 1; i < argc; i++) {
     const char *a = argv[i];
-    if (!strcmp(a, "-h") || !strcmp(a, "--help")) {
-      usage(stdout);
-      free(sets);
-      return 0;
-    } else if (!strcmp(a, "-v") || !strcmp(a, "--version")) {
-      printf("moraine %s (commit %s)\n", MORAINE_VERSION, MORAINE_GIT_COMMIT);
-      free(sets);
-      return 0;
-    } else if (!strcmp(a, "--list-options")) {
-      list_options();
-      free(sets);
-      return 0;
-    } else if (!strcmp(a, "--sign-checkpoint")) {
-      free(sets);
-      return sign_checkpoints(argc - i - 1, argv + i + 1);
-    } else if (!strcmp(a, "--safe")) {
-      opt.safe = 1;
+    int rc = informational_option(a, argc, argv, i);
+    if (rc != GO_ON) return rc;
+    if (!strcmp(a, "--safe")) {
+      c->opt.safe = 1;
     } else if (!strcmp(a, "-q") || !strcmp(a, "--quiet")) {
       mrn_log_set_quiet(1);
-    } else if (!strcmp(a, "-o") || !strcmp(a, "--output")) {
-      if (++i >= argc) goto missing;
-      opt.outdir = argv[i];
-    } else if (!strcmp(a, "--set")) {
-      if (++i >= argc) goto missing;
-      if (!strchr(argv[i], '=') || argv[i][0] == '=') {
-        fprintf(stderr, "moraine: --set expects NAME=VALUE, got '%s'\n", argv[i]);
-        free(sets);
+    } else if (takes_value(a)) {
+      if (++i >= argc) {
+        fprintf(stderr, "moraine: option '%s' needs a value\n", argv[argc - 1]);
         return 2;
       }
-      sets[nsets++] = argv[i];
-    } else if (!strcmp(a, "--ignore-warning")) {
-      if (++i >= argc) goto missing;
-      if (mrn_warning_ignore(argv[i]) != MRN_OK) {
-        fprintf(stderr, "moraine: --ignore-warning: %s (known: ", mrn_error_message());
-        for (const char *const *id = mrn_warning_ids(); *id; id++) fprintf(stderr, "%s, ", *id);
-        fprintf(stderr, "all)\n");
-        free(sets);
-        return 2;
-      }
-    } else if (!strcmp(a, "--threads")) {
-      if (++i >= argc) goto missing;
-      char *end;
-      long n = strtol(argv[i], &end, 10);
-      if (*end || n < 1 || n > 4096) {
-        fprintf(stderr, "moraine: --threads expects a positive whole number, got '%s'\n", argv[i]);
-        free(sets);
-        return 2;
-      }
-#ifdef _OPENMP
-      omp_set_num_threads((int)n);
-#endif
+      if ((rc = value_option(a, argv[i], c)) != GO_ON) return rc;
     } else if (a[0] == '-' && a[1]) {
       fprintf(stderr, "moraine: unknown option '%s' (see moraine --help)\n", a);
-      free(sets);
       return 2;
-    } else if (!deck) {
-      deck = a;
+    } else if (!c->deck) {
+      c->deck = a;
     } else {
-      fprintf(stderr, "moraine: more than one deck given ('%s' and '%s')\n", deck, a);
-      free(sets);
+      fprintf(stderr, "moraine: more than one deck given ('%s' and '%s')\n", c->deck, a);
       return 2;
     }
   }
-  if (!deck) {
+  if (!c->deck) {
     usage(stderr);
-    free(sets);
     return 2;
   }
+  return GO_ON;
+}
+
+/* the deck, once the command line is read; the exit status */
+static int run(int argc, char **argv, cli *c) {
   /* the output directory exists before the deck runs, so decks can write there too */
-  if (mrn_mkdir_p(opt.outdir) != 0) {
+  if (mrn_mkdir_p(c->opt.outdir) != 0) {
     fprintf(stderr, "moraine: %s\n", mrn_error_message());
-    free(sets);
     return 1;
   }
-  opt.sets = sets;
-  opt.nsets = nsets;
-  opt.argv = (const char *const *)argv;
-  opt.argc = argc;
+  c->opt.sets = c->sets;
+  c->opt.nsets = c->nsets;
+  c->opt.argv = (const char *const *)argv;
+  c->opt.argc = argc;
   mrn_interrupt_install();
   /* moraine reports every HDF5 failure in its own words; HDF5's printing
    * stays off to the end, when HDF5 1.10 would otherwise complain
@@ -188,14 +211,18 @@ int main(int argc, char **argv) {
    * damaged file of format version 1, which has no checksums */
   mrn_h5_quiet hdf5;
   mrn_h5_silence(&hdf5);
-  int rc = mrn_lua_run_deck(deck, &opt);
+  int rc = mrn_lua_run_deck(c->deck, &c->opt);
   /* a signal stopped the run; unless what it leaves could not be written */
   if (rc && rc != MRN_EXIT_OUTPUT && mrn_interrupt_pending()) rc = MRN_EXIT_INTERRUPTED;
-  free(sets);
   return rc;
+}
 
-missing:
-  fprintf(stderr, "moraine: option '%s' needs a value\n", argv[argc - 1]);
-  free(sets);
-  return 2;
+int main(int argc, char **argv) {
+  cli c = {0};
+  c.opt.outdir = "out";
+  c.sets = calloc((size_t)argc + 1, sizeof *c.sets);
+  int rc = parse_args(argc, argv, &c);
+  if (rc == GO_ON) rc = run(argc, argv, &c);
+  free(c.sets);
+  return rc;
 }

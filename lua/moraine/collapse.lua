@@ -155,7 +155,7 @@ end
 -- the two regimes both laws are returned (low, high). Also returns the final
 -- height H_f / L_i (a for a < 1.15, a^0.4 above) and the arrest time in units
 -- of sqrt(H_i / g), about 3 (so it compares with t~ of Eq. 73).
--- (/work/shared/VALIDATION.md; the prefactors are Lube et al.'s, to 20 %.)
+-- (VALIDATION.md; the prefactors are Lube et al.'s, to 20 %.)
 function M.lube(a)
   local lin, pow = 1.2 * a, 1.9 * a ^ (2 / 3)
   local lo, hi
@@ -216,22 +216,34 @@ function M.mid_height_stress(sim, height, density, g, band)
   return sum / n, ref / n, math.abs(sum - ref) / math.abs(ref)
 end
 
+-- H, the column's height, and the grid's height above it (000, Eq. 58)
+local function heights(o)
+  local H = o.aspect_ratio * o.width
+  return H, (math.ceil(H / o.cell - 1e-9) + o.headroom) * o.cell
+end
+
+-- the simulation of one phase ("settle" or "collapse") on a grid `width` wide;
+-- the phases differ only in width, transfer and damping
+local function phase_sim(o, phase, width, transfer, damping)
+  local _, Hmesh = heights(o)
+  return mpm.simulation{
+    dim = 2, grid = { origin = { 0, 0 }, size = { width, Hmesh }, cell = o.cell }, gravity = { 0, -o.g },
+    shape = o.shape, shape_boundary = o.shape_boundary,
+    scheme = { transfer = transfer, stress_update = o.stress_update },
+    dt = dt_policy(o), damping = { cundall = damping },
+    boundary = { left = "slip", right = "slip", bottom = { "friction", mu = o.friction }, top = "free" },
+    thermo = o.thermo, diagnostics = o.diagnostics and (o.name .. "_" .. phase .. ".csv") or false,
+    diagnostics_every = o.diagnostics_every, name = o.name .. "_" .. phase,
+    output = vtk_output(o, o.name .. "_" .. phase),
+  }
+end
+
 local function settle_phase(o)
-  local W, l, ar = o.width, o.cell, o.aspect_ratio
-  local H = ar * W
-  local Hmesh = (math.ceil(H / l - 1e-9) + o.headroom) * l
+  local W, l = o.width, o.cell
+  local H = heights(o)
   local elastic = mpm.material.linear_elastic{ density = o.density, E = o.E, nu = o.nu, name = "settling" }
   local s0 = o.initial_stress
-  local sim = mpm.simulation{
-    dim = 2, grid = { origin = { 0, 0 }, size = { W, Hmesh }, cell = l }, gravity = { 0, -o.g },
-    shape = o.shape, shape_boundary = o.shape_boundary,
-    scheme = { transfer = o.settle_strategy or o.strategy, stress_update = o.stress_update },
-    dt = dt_policy(o), damping = { cundall = o.damping },
-    boundary = { left = "slip", right = "slip", bottom = { "friction", mu = o.friction }, top = "free" },
-    thermo = o.thermo, diagnostics = o.diagnostics and (o.name .. "_settle.csv") or false,
-    diagnostics_every = o.diagnostics_every, name = o.name .. "_settle",
-    output = vtk_output(o, o.name .. "_settle"),
-  }
+  local sim = phase_sim(o, "settle", W, o.settle_strategy or o.strategy, o.damping)
   sim:add_particles(mpm.box{ min = { 0, 0 }, max = { W, H } },
                     { material = elastic, per_axis = o.per_axis, stress = { s0, s0, s0, 0, 0, 0 } })
   local e0 = sim:energy()
@@ -283,6 +295,177 @@ end
 local SERIES_HEADER = { "time", "t_tilde", "max_x", "L_x", "d_r", "L_tilde", "height", "E_kinetic", "E_gravity",
                         "E_elastic", "W_plastic", "W_friction", "W_damping", "W_MPM" }
 
+-- the settling, saved to a checkpoint (or the one given as `settled`); its path
+local function settled_checkpoint(o, result)
+  if o.settled then return o.settled end
+  local ssim, info = settle_phase(o)
+  result.settle = info
+  local path = ssim:save(o.name .. "_settled.h5")
+  if o.keep then result.settle_sim = ssim else ssim:free() end
+  return path
+end
+
+-- the settled particles on a grid width_factor times wider, as Mohr-Coulomb sand
+local function collapse_sim(o, settled)
+  local sand = mpm.material.mohr_coulomb{ density = o.density, E = o.E, nu = o.nu, phi = o.phi, psi = o.psi,
+                                          cohesion = o.cohesion, tension = o.tension, name = "sand" }
+  local sim = phase_sim(o, "collapse", o.width_factor * o.width, o.strategy, o.collapse_damping)
+  sim:import(settled, { material = sand })
+  return sim
+end
+
+-- The particles' positions as initial position + displacement, so that a
+-- sample costs one field call instead of one sim:particle() per particle.
+-- Returns a table: n, xs() (every x) and extent() (the largest x and y).
+local function positions(sim)
+  local n = sim:particle_count()
+  local base = {}
+  do
+    local u = sim:field("displacement")
+    for i = 1, n do
+      local x = sim:particle(i).x
+      base[2 * i - 1] = x[1] - u[3 * i - 2]
+      base[2 * i] = x[2] - u[3 * i - 1]
+    end
+  end
+  local p = { n = n }
+  function p.extent()
+    local u = sim:field("displacement")
+    local mx, my = -math.huge, -math.huge
+    for i = 1, n do
+      local x = base[2 * i - 1] + u[3 * i - 2]
+      local y = base[2 * i] + u[3 * i - 1]
+      if x > mx then mx = x end
+      if y > my then my = y end
+    end
+    return mx, my
+  end
+  function p.xs()
+    local u, xs = sim:field("displacement"), {}
+    for i = 1, n do xs[i] = base[2 * i - 1] + u[3 * i - 2] end
+    return xs
+  end
+  return p
+end
+
+-- The series of the collapse (columns SERIES_HEADER) and the peak of E_k:
+-- st.sample(sim) adds the row of the current time, once per time.
+local function series(o, pos, Lx0, tscale)
+  local W, l = o.width, o.cell
+  local st = { cols = {}, peak = 0, t_peak = 0 }
+  for _, h in ipairs(SERIES_HEADER) do st.cols[h] = {} end
+  local last_t = -1
+  function st.sample(s)
+    local t = s:time()
+    if t == last_t then return end
+    last_t = t
+    local mx, my = pos.extent()
+    local Lx = M.Lx(mx, l)
+    local e = s:energy()
+    local row = { t, t / tscale, mx, Lx, Lx - Lx0, (Lx - Lx0) / Lx0, my / W, e.kinetic, e.gravity, e.elastic,
+                  e.plastic, e.friction, e.damping, e.mpm_error }
+    for k, h in ipairs(SERIES_HEADER) do local c = st.cols[h]; c[#c + 1] = row[k] end
+    if e.kinetic > st.peak then st.peak, st.t_peak = e.kinetic, t end
+  end
+  return st
+end
+
+-- with stop_at_rest: stop once E_k stayed below rest_fraction of its peak for rest_hold s
+local function rest_stop(o, st)
+  if not o.stop_at_rest then return nil end
+  local since
+  return function(s)
+    local ek = s:energy().kinetic
+    if ek > st.peak then st.peak, st.t_peak = ek, s:time() end
+    if st.peak > 0 and ek < o.rest_fraction * st.peak and s:time() > st.t_peak then
+      since = since or s:time()
+      return s:time() - since >= o.rest_hold
+    end
+    since = nil
+    return false
+  end
+end
+
+-- t_rest, t_rest_tilde and t_final_Lx from the last sample of the series backwards
+local function rest_times(result, o, st, tscale)
+  local cols, k = st.cols, #st.cols.time
+  local t_rest
+  for j = k, 1, -1 do
+    if cols.E_kinetic[j] >= o.rest_fraction * st.peak or cols.time[j] <= st.t_peak then break end
+    t_rest = cols.time[j]
+  end
+  result.t_rest = t_rest
+  result.t_rest_tilde = t_rest and t_rest / tscale
+  for j = k, 1, -1 do
+    if cols.L_x[j] ~= result.L_x then break end
+    result.t_final_Lx = cols.time[j]
+  end
+end
+
+-- the measures of the deposit at the end of the collapse into result
+local function final_measures(result, o, sim, st, pos, e0, tscale)
+  local l, cols = o.cell, st.cols
+  local k = #cols.time
+  local Lx0 = result.L_x_init
+  local e1 = sim:energy()
+  result.L_x = cols.L_x[k]
+  result.d_r = cols.d_r[k]
+  result.runout = cols.L_tilde[k]
+  result.max_x = cols.max_x[k]
+  result.height = cols.height[k]
+  -- the column reached the right wall of the grid: the runout is capped
+  result.at_wall = result.max_x > o.width_factor * o.width - l
+  result.time = sim:time()
+  result.steps = sim:step()
+  result.ek_peak, result.t_peak, result.ek_final = st.peak, st.t_peak, e1.kinetic
+  rest_times(result, o, st, tscale)
+  local x_mass, x_conn = M.bulk_fronts(pos.xs(), sim:field("mass"), l, o.bulk_fraction)
+  result.runout_mass = (M.Lx(x_mass, l) - Lx0) / Lx0
+  result.runout_connected = (x_conn - Lx0) / Lx0
+  result.dEp_stable = math.abs((e1.gravity + e1.elastic) - (e0.gravity + e0.elastic))
+  result.W_MPM = e1.mpm_error
+  result.W_MPM_ratio = result.dEp_stable > 0 and math.abs(e1.mpm_error) / result.dEp_stable or nil
+  result.energy = e1
+  result.ek_start = e0.kinetic
+  local eps = sim:field("eps_D")
+  local emax = 0
+  for i = 1, #eps do if eps[i] > emax then emax = eps[i] end end
+  result.eps_D_max = emax
+  result.series = cols
+end
+
+-- <name>_series.csv: one row per sample
+local function write_series(o, cols)
+  local rows = {}
+  for j = 1, #cols.time do
+    local r = {}
+    for c, h in ipairs(SERIES_HEADER) do r[c] = cols[h][j] end
+    rows[j] = r
+  end
+  return M.write_csv(o.name .. "_series.csv", SERIES_HEADER, rows)
+end
+
+-- result:at(t_tilde) and result:t_tilde_at_front(d)
+local function add_lookups(result)
+  function result:at(t_tilde)
+    local c = self.series
+    local j = 1
+    while j < #c.t_tilde and c.t_tilde[j + 1] <= t_tilde + 1e-12 do j = j + 1 end
+    local s = {}
+    for _, h in ipairs(SERIES_HEADER) do s[h] = c[h][j] end
+    s.front = c.max_x[j] - self.max_x_init   -- front advance, m (not quantised)
+    return s
+  end
+  -- the first sampled t~ at which the front had advanced by d metres (nil if never)
+  function result:t_tilde_at_front(d)
+    local c = self.series
+    for j = 1, #c.max_x do
+      if c.max_x[j] - self.max_x_init >= d then return c.t_tilde[j] end
+    end
+    return nil
+  end
+end
+
 --- Runs the settling and the collapse; returns a result table:
 --   runout       final L~ (000, Eq. 72)
 --   L_x, d_r     final column width and runout, m (000, Eqs. 70-71)
@@ -315,171 +498,31 @@ local SERIES_HEADER = { "time", "t_tilde", "max_x", "L_x", "d_r", "L_tilde", "he
 function M.run(opts)
   local o = default_name(check_options(opts))
   local W, l, ar = o.width, o.cell, o.aspect_ratio
-  local H = ar * W
-  local Hmesh = (math.ceil(H / l - 1e-9) + o.headroom) * l
   local result = { aspect_ratio = ar, strategy = o.strategy, stress_update = o.stress_update, cell = l,
                    per_axis = o.per_axis, width = W, name = o.name, files = {} }
-
   -- 1. settling, saved to a checkpoint
-  local settled = o.settled
-  if not settled then
-    local ssim, info = settle_phase(o)
-    result.settle = info
-    settled = ssim:save(o.name .. "_settled.h5")
-    if o.keep then result.settle_sim = ssim else ssim:free() end
-  end
+  local settled = settled_checkpoint(o, result)
   result.files.settled = settled
-
   -- 2. collapse on a wider grid, Mohr-Coulomb
-  local sand = mpm.material.mohr_coulomb{ density = o.density, E = o.E, nu = o.nu, phi = o.phi, psi = o.psi,
-                                          cohesion = o.cohesion, tension = o.tension, name = "sand" }
-  local sim = mpm.simulation{
-    dim = 2, grid = { origin = { 0, 0 }, size = { o.width_factor * W, Hmesh }, cell = l }, gravity = { 0, -o.g },
-    shape = o.shape, shape_boundary = o.shape_boundary,
-    scheme = { transfer = o.strategy, stress_update = o.stress_update },
-    dt = dt_policy(o), damping = { cundall = o.collapse_damping },
-    boundary = { left = "slip", right = "slip", bottom = { "friction", mu = o.friction }, top = "free" },
-    thermo = o.thermo, diagnostics = o.diagnostics and (o.name .. "_collapse.csv") or false,
-    diagnostics_every = o.diagnostics_every, name = o.name .. "_collapse",
-    output = vtk_output(o, o.name .. "_collapse"),
-  }
-  sim:import(settled, { material = sand })
+  local sim = collapse_sim(o, settled)
   if o.vtk then result.files.vtk = { settle = o.name .. "_settle.pvd", collapse = o.name .. "_collapse.pvd" } end
-
-  -- positions = base + displacement: one field call per sample
-  local n = sim:particle_count()
-  local base = {}
-  do
-    local u = sim:field("displacement")
-    for i = 1, n do
-      local x = sim:particle(i).x
-      base[2 * i - 1] = x[1] - u[3 * i - 2]
-      base[2 * i] = x[2] - u[3 * i - 1]
-    end
-  end
-  local function extent()
-    local u = sim:field("displacement")
-    local mx, my = -math.huge, -math.huge
-    for i = 1, n do
-      local x = base[2 * i - 1] + u[3 * i - 2]
-      local y = base[2 * i] + u[3 * i - 1]
-      if x > mx then mx = x end
-      if y > my then my = y end
-    end
-    return mx, my
-  end
-
-  local mx0 = extent()
+  local pos = positions(sim)
+  local mx0 = pos.extent()
   local Lx0 = M.Lx(mx0, l)
   local e0 = sim:energy()
   local tscale = math.sqrt(ar * W / o.g)
-  local cols = {}
-  for _, h in ipairs(SERIES_HEADER) do cols[h] = {} end
-  local peak, t_peak, last_t = 0, 0, -1
-  local function sample(s)
-    local t = s:time()
-    if t == last_t then return end
-    last_t = t
-    local mx, my = extent()
-    local Lx = M.Lx(mx, l)
-    local e = s:energy()
-    local row = { t, t / tscale, mx, Lx, Lx - Lx0, (Lx - Lx0) / Lx0, my / W, e.kinetic, e.gravity, e.elastic,
-                  e.plastic, e.friction, e.damping, e.mpm_error }
-    for k, h in ipairs(SERIES_HEADER) do local c = cols[h]; c[#c + 1] = row[k] end
-    if e.kinetic > peak then peak, t_peak = e.kinetic, t end
-  end
-  sim:hook{ every_time = o.sample_every, fn = sample }
-  local T = o.collapse_time or 8 * tscale
-  local stop
-  if o.stop_at_rest then
-    local since
-    stop = function(s)
-      local ek = s:energy().kinetic
-      if ek > peak then peak, t_peak = ek, s:time() end
-      if peak > 0 and ek < o.rest_fraction * peak and s:time() > t_peak then
-        since = since or s:time()
-        return s:time() - since >= o.rest_hold
-      end
-      since = nil
-      return false
-    end
-  end
-  sim:run{ time = T, stop_when = stop }
-  sample(sim)
-
+  local st = series(o, pos, Lx0, tscale)
+  sim:hook{ every_time = o.sample_every, fn = st.sample }
+  sim:run{ time = o.collapse_time or 8 * tscale, stop_when = rest_stop(o, st) }
+  st.sample(sim)
   -- results
-  local e1 = sim:energy()
-  local k = #cols.time
   result.L_x_init = Lx0
   result.max_x_init = mx0
-  result.L_x = cols.L_x[k]
-  result.d_r = cols.d_r[k]
-  result.runout = cols.L_tilde[k]
-  result.max_x = cols.max_x[k]
-  result.height = cols.height[k]
-  -- the column reached the right wall of the grid: the runout is capped
-  result.at_wall = result.max_x > o.width_factor * W - l
-  result.time = sim:time()
-  result.steps = sim:step()
-  result.ek_peak, result.t_peak, result.ek_final = peak, t_peak, e1.kinetic
-  local t_rest
-  for j = k, 1, -1 do
-    if cols.E_kinetic[j] >= o.rest_fraction * peak or cols.time[j] <= t_peak then break end
-    t_rest = cols.time[j]
-  end
-  result.t_rest = t_rest
-  result.t_rest_tilde = t_rest and t_rest / tscale
-  for j = k, 1, -1 do
-    if cols.L_x[j] ~= result.L_x then break end
-    result.t_final_Lx = cols.time[j]
-  end
-  do
-    local u, mass, xs = sim:field("displacement"), sim:field("mass"), {}
-    for i = 1, n do xs[i] = base[2 * i - 1] + u[3 * i - 2] end
-    local x_mass, x_conn = M.bulk_fronts(xs, mass, l, o.bulk_fraction)
-    result.runout_mass = (M.Lx(x_mass, l) - Lx0) / Lx0
-    result.runout_connected = (x_conn - Lx0) / Lx0
-  end
-  result.dEp_stable = math.abs((e1.gravity + e1.elastic) - (e0.gravity + e0.elastic))
-  result.W_MPM = e1.mpm_error
-  result.W_MPM_ratio = result.dEp_stable > 0 and math.abs(e1.mpm_error) / result.dEp_stable or nil
-  result.energy = e1
-  result.ek_start = e0.kinetic
-  local eps = sim:field("eps_D")
-  local emax = 0
-  for i = 1, #eps do if eps[i] > emax then emax = eps[i] end end
-  result.eps_D_max = emax
-  result.series = cols
+  final_measures(result, o, sim, st, pos, e0, tscale)
   result.time_scale = tscale
-
-  if o.csv then
-    local rows = {}
-    for j = 1, k do
-      local r = {}
-      for c, h in ipairs(SERIES_HEADER) do r[c] = cols[h][j] end
-      rows[j] = r
-    end
-    result.files.series = M.write_csv(o.name .. "_series.csv", SERIES_HEADER, rows)
-  end
+  if o.csv then result.files.series = write_series(o, st.cols) end
   if o.keep then result.collapse_sim = sim else sim:free() end
-
-  function result:at(t_tilde)
-    local c = self.series
-    local j = 1
-    while j < #c.t_tilde and c.t_tilde[j + 1] <= t_tilde + 1e-12 do j = j + 1 end
-    local s = {}
-    for _, h in ipairs(SERIES_HEADER) do s[h] = c[h][j] end
-    s.front = c.max_x[j] - self.max_x_init   -- front advance, m (not quantised)
-    return s
-  end
-  -- the first sampled t~ at which the front had advanced by d metres (nil if never)
-  function result:t_tilde_at_front(d)
-    local c = self.series
-    for j = 1, #c.max_x do
-      if c.max_x[j] - self.max_x_init >= d then return c.t_tilde[j] end
-    end
-    return nil
-  end
+  add_lookups(result)
   return result
 end
 

@@ -36,6 +36,15 @@ int mrn_lua_output_error(lua_State *L, const char *where, const char *fmt, ...) 
   return lua_error(L);
 }
 
+int mrn_lua_engine_error(lua_State *L, const char *where) {
+  if (!where) return luaL_error(L, "%s", mrn_error_message());
+  return mrn_lua_error(L, where, "%s", mrn_error_message());
+}
+
+int mrn_lua_engine_output_error(lua_State *L, const char *where) {
+  return mrn_lua_output_error(L, where, "%s", mrn_error_message());
+}
+
 static int late_output_failure;
 
 void mrn_lua_late_output_error(const char *fmt, ...) {

@@ -22,6 +22,13 @@ int mrn_lua_error(lua_State *L, const char *where, const char *fmt, ...) __attri
  * file-size limit, permission): the message is also remembered, so that
  * when it is what stops the deck moraine exits with MRN_EXIT_OUTPUT. */
 int mrn_lua_output_error(lua_State *L, const char *where, const char *fmt, ...) __attribute__((format(printf, 3, 4)));
+/* Re-raise the engine's last error (mrn_error_message()) at the deck line:
+ * "where: message", or the message alone when where is NULL. Every failed
+ * engine call of the binding ends in one of these two, so the message a deck
+ * sees is the engine's, unchanged. */
+int mrn_lua_engine_error(lua_State *L, const char *where);
+/* the same for an output that could not be written (mrn_lua_output_error) */
+int mrn_lua_engine_output_error(lua_State *L, const char *where);
 /* the exit status for the error message at the top of the stack: 1, or
  * MRN_EXIT_OUTPUT when it is the last output error raised */
 int mrn_lua_exit_status(lua_State *L);

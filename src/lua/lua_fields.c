@@ -37,7 +37,7 @@ static int valid_name(const char *s) {
   return 1;
 }
 
-static int l_particle_field(lua_State *L) {
+static int l_sim_particle_field(lua_State *L) {
   mrn_sim *sim = mrn_lua_check_sim(L, 1);
   const char *where = "particle_field{}";
   mrn_lua_check_table(L, 2, where, particle_field_specs, MRN_COUNT(particle_field_specs));
@@ -58,7 +58,7 @@ static int l_particle_field(lua_State *L) {
     mrn_lua_error(L, where, "unit '%s' is longer than %d characters", unit,
                   (int)sizeof sim->particles.user_fields[0].unit - 1);
   if (mrn_particles_add_user_field(&sim->particles, name, ncomp, init, unit) != MRN_OK)
-    mrn_lua_error(L, where, "%s", mrn_error_message());
+    mrn_lua_engine_error(L, where);
   return 0;
 }
 
@@ -84,7 +84,7 @@ static const mrn_user_field *check_user(lua_State *L, const mrn_sim *sim, const 
 }
 
 /* sim:value(name, i): a number for one component, else a table */
-static int l_value(lua_State *L) {
+static int l_sim_value(lua_State *L) {
   mrn_sim *sim = mrn_lua_check_sim(L, 1);
   const char *where = "value()";
   const char *name = luaL_checkstring(L, 2);
@@ -140,7 +140,7 @@ static void read_value(lua_State *L, int idx, const mrn_user_field *f, const cha
   for (int k = 0; k < ncomp; k++) check_component(L, where, f, k, v[k]);
 }
 
-static int l_set_value(lua_State *L) {
+static int l_sim_set_value(lua_State *L) {
   mrn_sim *sim = mrn_lua_check_sim(L, 1);
   const char *where = "set_value()";
   const mrn_user_field *f = check_user(L, sim, luaL_checkstring(L, 2), where);
@@ -157,7 +157,7 @@ static int l_set_value(lua_State *L) {
  * particle), a flat table of n * ncomp numbers (as sim:field gives), or a
  * function(x, y, z, i) returning the particle's value. The values are all
  * read and checked before any is stored: a refused call changes nothing. */
-static int l_set_field(lua_State *L) {
+static int l_sim_set_field(lua_State *L) {
   mrn_sim *sim = mrn_lua_check_sim(L, 1);
   const char *where = "set_field()";
   const mrn_user_field *f = check_user(L, sim, luaL_checkstring(L, 2), where);
@@ -218,7 +218,7 @@ static const mrn_spec probe_specs[] = {
 
 /* sim:probe{field, x, y [, z]}: the nodal field interpolated at the point,
  * a number (mass) or a table of dim components; nil outside the grid */
-static int l_probe(lua_State *L) {
+static int l_sim_probe(lua_State *L) {
   mrn_sim *sim = mrn_lua_check_sim(L, 1);
   const char *where = "probe{}";
   mrn_lua_check_table(L, 2, where, probe_specs, MRN_COUNT(probe_specs));
@@ -261,8 +261,15 @@ static int l_probe(lua_State *L) {
 }
 
 void mrn_lua_add_field_methods(lua_State *L, int methods) {
-  static const luaL_Reg fns[] = {{"particle_field", l_particle_field}, {"value", l_value}, {"set_value", l_set_value},
-                                 {"set_field", l_set_field}, {"probe", l_probe}, {NULL, NULL}};
+  /* sim:NAME is l_sim_NAME, as in lua_sim.c */
+  static const luaL_Reg fns[] = {
+      {"particle_field", l_sim_particle_field},
+      {"value", l_sim_value},
+      {"set_value", l_sim_set_value},
+      {"set_field", l_sim_set_field},
+      {"probe", l_sim_probe},
+      {NULL, NULL},
+  };
   lua_pushvalue(L, methods);
   luaL_setfuncs(L, fns, 0);
   lua_pop(L, 1);

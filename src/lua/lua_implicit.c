@@ -92,7 +92,7 @@ static int get_weak(lua_State *L, const char *name, int key_idx) {
   return type;
 }
 
-static int l_implicit_gc(lua_State *L) {
+static int l_implicit_free(lua_State *L) {
   implicit_box *b = luaL_checkudata(L, 1, MRN_LUA_IMPLICIT);
   if (!b->im) return 0;
   mrn_implicit_free(b->im);
@@ -148,7 +148,7 @@ static void new_integrator(lua_State *L, int sim_idx, int opt_idx, const char *w
   lua_pushvalue(L, sim_idx);
   lua_setiuservalue(L, -2, 1);
   b->im = mrn_implicit_new(sim, &o);
-  if (!b->im) mrn_lua_error(L, where, "%s", mrn_error_message());
+  if (!b->im) mrn_lua_engine_error(L, where);
   mrn_implicit_attach(b->im); /* sim:run now steps with it */
   lua_pushvalue(L, -1);
   set_weak(L, INTEGRATORS, sim_idx);
@@ -200,16 +200,16 @@ static void push_history(lua_State *L, const mrn_implicit_history *h) {
   lua_setfield(L, -2, "errors");
 }
 
-static int l_step(lua_State *L) {
+static int l_implicit_step(lua_State *L) {
   mrn_implicit *im = check_implicit(L, 1);
   mrn_implicit_history h;
-  if (mrn_implicit_advance(im, HUGE_VAL, &h)) return luaL_error(L, "%s", mrn_error_message());
+  if (mrn_implicit_advance(im, HUGE_VAL, &h)) return mrn_lua_engine_error(L, NULL);
   push_history(L, &h);
   return 1;
 }
 
 /* imp:last(): the Newton history of the last step (of imp:step() or sim:run) */
-static int l_last(lua_State *L) {
+static int l_implicit_last(lua_State *L) {
   push_history(L, mrn_implicit_last(check_implicit(L, 1)));
   return 1;
 }
@@ -219,7 +219,7 @@ static void push_vector(lua_State *L, const double v[3]) {
   for (int d = 0; d < 3; d++) lua_pushnumber(L, v[d]), lua_rawseti(L, -2, d + 1);
 }
 
-static int l_energy(lua_State *L) {
+static int l_implicit_energy(lua_State *L) {
   mrn_implicit *im = check_implicit(L, 1);
   mrn_implicit_energy e;
   mrn_implicit_energies(im, &e);
@@ -237,10 +237,10 @@ static int l_energy(lua_State *L) {
   return 1;
 }
 
-static int l_next_dt(lua_State *L) {
+static int l_implicit_next_dt(lua_State *L) {
   mrn_implicit *im = check_implicit(L, 1);
   double dt;
-  if (mrn_implicit_next_dt(im, &dt)) return luaL_error(L, "%s", mrn_error_message());
+  if (mrn_implicit_next_dt(im, &dt)) return mrn_lua_engine_error(L, NULL);
   lua_pushnumber(L, dt);
   return 1;
 }
@@ -249,7 +249,7 @@ static int l_next_dt(lua_State *L) {
  * points inside region (selected as sim:point_force does); returns how many */
 static int set_implicit(void *ctx, size_t p, const double f[3]) { return mrn_implicit_set_point_force(ctx, p, f); }
 
-static int l_point_force(lua_State *L) {
+static int l_implicit_point_force(lua_State *L) {
   mrn_implicit *im = check_implicit(L, 1);
   lua_getiuservalue(L, 1, 1);
   mrn_sim *sim = mrn_lua_check_sim(L, -1);
@@ -258,13 +258,13 @@ static int l_point_force(lua_State *L) {
   return 1;
 }
 
-static int l_load_factor(lua_State *L) {
+static int l_implicit_load_factor(lua_State *L) {
   mrn_implicit *im = check_implicit(L, 1);
   mrn_implicit_set_load_factor(im, mrn_lua_check_load_factor(L, 2));
   return 0;
 }
 
-static int l_clear_forces(lua_State *L) {
+static int l_implicit_clear_forces(lua_State *L) {
   mrn_implicit_clear_point_forces(check_implicit(L, 1));
   return 0;
 }
@@ -272,12 +272,25 @@ static int l_clear_forces(lua_State *L) {
 void mrn_lua_open_implicit(lua_State *L, int module) {
   (void)module;
   luaL_newmetatable(L, MRN_LUA_IMPLICIT);
-  static const luaL_Reg meta[] = {{"__gc", l_implicit_gc}, {"__close", l_implicit_gc}, {NULL, NULL}};
+  /* imp:NAME is l_implicit_NAME; __gc and __close are imp:free, and
+   * sim:implicit and sim:integrator (below) are l_sim_implicit and l_sim_integrator */
+  static const luaL_Reg meta[] = {
+      {"__gc", l_implicit_free},
+      {"__close", l_implicit_free},
+      {NULL, NULL},
+  };
   luaL_setfuncs(L, meta, 0);
-  static const luaL_Reg methods[] = {{"step", l_step}, {"last", l_last},           {"energy", l_energy},
-                                     {"next_dt", l_next_dt},     {"point_force", l_point_force},
-                                     {"clear_forces", l_clear_forces}, {"load_factor", l_load_factor}, {"free", l_implicit_gc},
-                                     {NULL, NULL}};
+  static const luaL_Reg methods[] = {
+      {"step", l_implicit_step},
+      {"last", l_implicit_last},
+      {"energy", l_implicit_energy},
+      {"next_dt", l_implicit_next_dt},
+      {"point_force", l_implicit_point_force},
+      {"clear_forces", l_implicit_clear_forces},
+      {"load_factor", l_implicit_load_factor},
+      {"free", l_implicit_free},
+      {NULL, NULL},
+  };
   lua_newtable(L);
   luaL_setfuncs(L, methods, 0);
   mrn_lua_strict(L, -1, "implicit integrator", "method");

@@ -8,8 +8,8 @@
  * looks at the hook on every backward jump, so even `while true do end`
  * stops at the next instruction, with "interrupted by signal N" at its line.
  * The hook is not installed before a signal: a count hook makes the virtual
- * machine call out at every instruction, which doubles the time of plain Lua
- * loops. Code in C (a step, a seeding, a library function) is not cut
+ * machine call out at every instruction, a cost every Lua loop of a deck
+ * would pay for a signal that rarely comes. Code in C (a step, a seeding, a library function) is not cut
  * short: the hook fires when it returns to Lua, and a second signal still
  * exits at once. Coroutines made after the signal inherit the hook; one
  * already running stops when it yields or returns to the main thread. */

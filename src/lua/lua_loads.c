@@ -42,14 +42,14 @@ long mrn_lua_point_force_args(lua_State *L, int idx, const mrn_sim *sim, const c
     double fp[3];
     double scale = has_force ? 1.0 / (double)count : pow(ps->vol0[p], (sim->dim - 1.0) / sim->dim);
     for (int d = 0; d < 3; d++) fp[d] = f[d] * scale;
-    if (set(ctx, p, fp)) mrn_lua_error(L, where, "%s", mrn_error_message());
+    if (set(ctx, p, fp)) mrn_lua_engine_error(L, where);
   }
   return count;
 }
 
 static int set_explicit(void *ctx, size_t p, const double f[3]) { return mrn_sim_set_point_force(ctx, p, f); }
 
-static int l_point_force(lua_State *L) {
+static int l_sim_point_force(lua_State *L) {
   mrn_sim *sim = mrn_lua_check_sim(L, 1);
   lua_pushinteger(L, mrn_lua_point_force_args(L, 2, sim, "point_force{}", set_explicit, sim));
   return 1;
@@ -65,20 +65,25 @@ double mrn_lua_check_load_factor(lua_State *L, int idx) {
   return f;
 }
 
-static int l_load_factor(lua_State *L) {
+static int l_sim_load_factor(lua_State *L) {
   mrn_sim *sim = mrn_lua_check_sim(L, 1);
   mrn_sim_set_load_factor(sim, mrn_lua_check_load_factor(L, 2));
   return 0;
 }
 
-static int l_clear_forces(lua_State *L) {
+static int l_sim_clear_forces(lua_State *L) {
   mrn_sim_clear_point_forces(mrn_lua_check_sim(L, 1));
   return 0;
 }
 
 void mrn_lua_add_load_methods(lua_State *L, int methods) {
-  static const luaL_Reg fns[] = {{"point_force", l_point_force}, {"load_factor", l_load_factor},
-                                 {"clear_forces", l_clear_forces}, {NULL, NULL}};
+  /* sim:NAME is l_sim_NAME, as in lua_sim.c */
+  static const luaL_Reg fns[] = {
+      {"point_force", l_sim_point_force},
+      {"load_factor", l_sim_load_factor},
+      {"clear_forces", l_sim_clear_forces},
+      {NULL, NULL},
+  };
   lua_pushvalue(L, methods);
   luaL_setfuncs(L, fns, 0);
   lua_pop(L, 1);

@@ -27,7 +27,7 @@ static int l_new_material(lua_State *L) {
   b->m = NULL;
   luaL_setmetatable(L, MRN_LUA_MATERIAL);
   b->m = mrn_material_new(type);
-  if (!b->m) mrn_lua_error(L, where, "%s", mrn_error_message());
+  if (!b->m) mrn_lua_engine_error(L, where);
   lua_pushnil(L);
   while (lua_next(L, 1)) {
     if (lua_type(L, -2) != LUA_TSTRING) mrn_lua_error(L, where, "parameters must be named (key = value)");
@@ -98,8 +98,13 @@ static int l_material_index(lua_State *L) {
 
 void mrn_lua_open_materials(lua_State *L, int module) {
   luaL_newmetatable(L, MRN_LUA_MATERIAL);
+  /* the metamethod __NAME is l_material_NAME; every mpm.material.<model> is l_new_material */
   static const luaL_Reg meta[] = {
-      {"__gc", l_material_gc}, {"__tostring", l_material_tostring}, {"__index", l_material_index}, {NULL, NULL}};
+      {"__gc", l_material_gc},
+      {"__tostring", l_material_tostring},
+      {"__index", l_material_index},
+      {NULL, NULL},
+  };
   luaL_setfuncs(L, meta, 0);
   lua_pop(L, 1);
 

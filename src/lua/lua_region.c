@@ -13,7 +13,7 @@ typedef struct region_box {
 } region_box;
 
 static void push_region(lua_State *L, mrn_region *r, const char *where) {
-  if (!r) mrn_lua_error(L, where, "%s", mrn_error_message());
+  if (!r) mrn_lua_engine_error(L, where);
   region_box *b = lua_newuserdatauv(L, sizeof *b, 0);
   b->r = r;
   luaL_setmetatable(L, MRN_LUA_REGION);
@@ -169,12 +169,12 @@ static int l_union(lua_State *L) { return combine(L, MRN_REGION_UNION, "union()"
 static int l_difference(lua_State *L) { return combine(L, MRN_REGION_DIFFERENCE, "difference()"); }
 static int l_intersection(lua_State *L) { return combine(L, MRN_REGION_INTERSECTION, "intersection()"); }
 
-static int l_contains(lua_State *L) {
+static int l_region_contains(lua_State *L) {
   mrn_region *r = mrn_lua_check_region(L, 1, "region:contains()");
   double x[3] = {luaL_checknumber(L, 2), luaL_checknumber(L, 3), luaL_optnumber(L, 4, 0.0)};
   mrn_lua_active = L;
   int in = mrn_region_contains(r, x);
-  if (in < 0) return luaL_error(L, "%s", mrn_error_message());
+  if (in < 0) return mrn_lua_engine_error(L, NULL);
   lua_pushboolean(L, in);
   return 1;
 }
@@ -195,19 +195,36 @@ static int l_region_tostring(lua_State *L) {
 
 void mrn_lua_open_regions(lua_State *L, int module) {
   luaL_newmetatable(L, MRN_LUA_REGION);
-  static const luaL_Reg meta[] = {{"__gc", l_region_gc}, {"__tostring", l_region_tostring}, {"__add", l_union},
-                                  {"__sub", l_difference}, {"__mul", l_intersection}, {NULL, NULL}};
+  /* mpm.NAME is l_NAME, region:NAME and the metamethod __NAME are
+   * l_region_NAME; the operators + - * are mpm.union, mpm.difference and
+   * mpm.intersection, and mpm.disk and mpm.sphere are both l_sphere (the
+   * upvalue names the function in messages) */
+  static const luaL_Reg meta[] = {
+      {"__gc", l_region_gc},
+      {"__tostring", l_region_tostring},
+      {"__add", l_union},
+      {"__sub", l_difference},
+      {"__mul", l_intersection},
+      {NULL, NULL},
+  };
   luaL_setfuncs(L, meta, 0);
   lua_newtable(L);
-  lua_pushcfunction(L, l_contains);
+  lua_pushcfunction(L, l_region_contains);
   lua_setfield(L, -2, "contains");
   mrn_lua_strict(L, -1, "region", "method");
   lua_setfield(L, -2, "__index");
   lua_pop(L, 1);
 
-  static const luaL_Reg fns[] = {{"box", l_box}, {"cylinder", l_cylinder}, {"polygon", l_polygon},
-                                 {"region", l_region}, {"union", l_union}, {"difference", l_difference},
-                                 {"intersection", l_intersection}, {NULL, NULL}};
+  static const luaL_Reg fns[] = {
+      {"box", l_box},
+      {"cylinder", l_cylinder},
+      {"polygon", l_polygon},
+      {"region", l_region},
+      {"union", l_union},
+      {"difference", l_difference},
+      {"intersection", l_intersection},
+      {NULL, NULL},
+  };
   lua_pushvalue(L, module);
   luaL_setfuncs(L, fns, 0);
   lua_pushstring(L, "disk{}");

@@ -40,12 +40,12 @@ void mrn_lua_read_watchdog(lua_State *L, int idx, const char *where, mrn_sim *si
   if (mrn_lua_has(L, idx, "every")) w->every = mrn_lua_get_integer(L, idx, sub, watchdog_specs, n, "every");
 }
 
-static int l_set_watchdog(lua_State *L) {
+static int l_sim_set_watchdog(lua_State *L) {
   mrn_lua_read_watchdog(L, 2, "set_watchdog()", mrn_lua_check_sim(L, 1));
   return 0;
 }
 
-static int l_watchdog(lua_State *L) {
+static int l_sim_watchdog(lua_State *L) {
   const mrn_watchdog_state *s = &mrn_lua_check_sim(L, 1)->watch;
   lua_createtable(L, 0, 4);
   lua_pushnumber(L, s->peak_energy);
@@ -60,7 +60,12 @@ static int l_watchdog(lua_State *L) {
 }
 
 void mrn_lua_add_watchdog_methods(lua_State *L, int methods) {
-  static const luaL_Reg fns[] = {{"set_watchdog", l_set_watchdog}, {"watchdog", l_watchdog}, {NULL, NULL}};
+  /* sim:NAME is l_sim_NAME, as in lua_sim.c */
+  static const luaL_Reg fns[] = {
+      {"set_watchdog", l_sim_set_watchdog},
+      {"watchdog", l_sim_watchdog},
+      {NULL, NULL},
+  };
   lua_pushvalue(L, methods);
   luaL_setfuncs(L, fns, 0);
   lua_pop(L, 1);
