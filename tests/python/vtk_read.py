@@ -5,6 +5,7 @@ Run with Debian's /usr/bin/python3 (python3-vtk9 and numpy). As a library:
 
     points, arrays = read_vtp("out/p_000010.vtp")   # (N, 3), {name: (N,) or (N, ncomp)}
     series = read_pvd("out/p.pvd")                  # [(time, absolute .vtp path), ...]
+    t = time_value("out/p_000010.vtp")              # its TimeValue field data, or None
 
 As a command:
 
@@ -76,6 +77,13 @@ def read_vtp(path):
         a = pd.GetAbstractArray(i)
         arrays[a.GetName()] = _to_numpy(a, a.GetNumberOfComponents())
     return points, arrays
+
+
+def time_value(path):
+    """the TimeValue field data of a .vtp as VTK reads it, or None"""
+    fd = _read_polydata(path).GetFieldData()
+    a = fd.GetArray("TimeValue") if fd is not None else None
+    return None if a is None else float(a.GetValue(0))
 
 
 def read_pvd(path):
