@@ -69,15 +69,6 @@ static int begin(mrn_h5w *w) {
   return 1;
 }
 
-/* the moraine message for a failed write, in the checkpoint writer's words */
-static int report(const mrn_h5w *w, const char *path) {
-  if (w->err) return mrn_error_code(MRN_ERR_IO, "cannot write '%s': %s (writing %s)", path, strerror(w->err), w->what);
-  char detail[256];
-  mrn_h5_error_detail(detail, sizeof detail);
-  return mrn_error_code(MRN_ERR_IO, "cannot write '%s': HDF5 could not write %s%s%s%s", path, w->what,
-                        detail[0] ? " (" : "", detail, detail[0] ? ")" : "");
-}
-
 /* ---- datasets ----------------------------------------------------------------- */
 
 /* A 1D dataset of `rows` entries holding `data`, chunked with an unlimited
@@ -152,7 +143,7 @@ static int publish(mrn_series *s) {
   mrn_h5w w = {.file = H5I_INVALID_HID};
   size_t size;
   void *bytes = build_image(&w, s, &size);
-  int rc = bytes ? mrn_atomic_write_file(s->path, bytes, size) : report(&w, s->path);
+  int rc = bytes ? mrn_atomic_write_file(s->path, bytes, size) : mrn_h5w_report(&w, s->path);
   free(bytes);
   if (rc != MRN_OK) {
     s->broken = 1;

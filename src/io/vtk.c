@@ -37,7 +37,7 @@ typedef struct block {
 } block;
 
 /* reject arrays the file could not describe, before any file is created */
-static int check_arrays(const char *path, size_t n, const double *points, const mrn_vtk_array *arrays,
+int mrn_vtk_check_arrays(const char *path, size_t n, const double *points, const mrn_vtk_array *arrays,
                         int narrays) {
   if (n > 0 && !points) return mrn_error_code(MRN_ERR_IO, "cannot write '%s': no point coordinates", path);
   if (narrays > 0 && !arrays) return mrn_error_code(MRN_ERR_IO, "cannot write '%s': no arrays", path);
@@ -360,7 +360,7 @@ int mrn_vtp_write_with(const char *path, size_t npoints, const double *points, c
   const mrn_vtp_options plain = {0};
   const mrn_vtp_options *o = options ? options : &plain;
   if (narrays < 0) narrays = 0;
-  int rc = check_arrays(path, npoints, points, arrays, narrays);
+  int rc = mrn_vtk_check_arrays(path, npoints, points, arrays, narrays);
   if (rc != MRN_OK) return rc;
   const int nblocks = narrays + 3;
   block *blocks = calloc((size_t)nblocks, sizeof *blocks);

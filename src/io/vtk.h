@@ -29,6 +29,11 @@ typedef struct mrn_vtk_array {
   const void *ctx;
 } mrn_vtk_array;
 
+/* 0, or MRN_ERR_IO when the arrays could not be described in a file
+ * (no name, no data, an unknown type, too many components) */
+int mrn_vtk_check_arrays(const char *path, size_t npoints, const double *points, const mrn_vtk_array *arrays,
+                         int narrays);
+
 /* values asked of a `fill` at a time (a 512 KB buffer of 8-byte values) */
 #define MRN_VTK_FILL_VALUES 65536
 #define MRN_VTK_FILL_POINTS(ncomp) (MRN_VTK_FILL_VALUES / (size_t)(ncomp))

@@ -84,6 +84,19 @@ def check_forms(d, exp):
     print(f"zlib: {sr} -> {sz} bytes ({sr / sz:.2f}x)")
 
 
+def check_vtkhdf(d, exp):
+    """the VTKHDF files hold what the raw .vtp holds, and their time"""
+    points, arrays, t = vtk_read.read_vtkhdf(os.path.join(d, "roundtrip.vtkhdf"))
+    check(np.array_equal(points, exp["points"]), "vtkhdf: point coordinates")
+    check(sorted(arrays) == ["id", "mass", "material", "stress"], f"vtkhdf: array names {sorted(arrays)}")
+    for k in ("stress", "mass", "id", "material"):
+        a = arrays.get(k)
+        check(a is not None and a.dtype == exp[k].dtype and np.array_equal(a, exp[k]), f"vtkhdf: {k}")
+    check(t == 0.125, f"vtkhdf: TimeValue {t}")
+    points, arrays, t = vtk_read.read_vtkhdf(os.path.join(d, "roundtrip_empty.vtkhdf"))
+    check(points.shape == (0, 3) and t is None, "vtkhdf: an empty file, no time")
+
+
 def main():
     if len(sys.argv) != 2:
         print("usage: test_vtk_roundtrip.py DIR", file=sys.stderr)
@@ -94,6 +107,7 @@ def main():
         check_file(os.path.join(d, "roundtrip.vtp"), exp, "binary")
         check_file(os.path.join(d, "roundtrip_ascii.vtp"), exp, "ascii")
         check_forms(d, exp)
+        check_vtkhdf(d, exp)
 
         points, arrays = vtk_read.read_vtp(os.path.join(d, "roundtrip_empty.vtp"))
         check(points.shape == (0, 3), f"empty: points shape {points.shape}")

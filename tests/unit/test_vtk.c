@@ -17,6 +17,7 @@
 #include "core/error.h"
 #include "io/atomic_file.h"
 #include "io/vtk.h"
+#include "io/vtkhdf.h"
 
 /* ---- deterministic test data (mirrored in test_vtk_roundtrip.py) -------- */
 
@@ -257,6 +258,10 @@ static int write_roundtrip(const char *dir, const sample *s) {
     free(path);
   }
   if (rc == MRN_OK) rc = write_big(dir);
+  char *hdf = mrn_path_join(dir, "roundtrip.vtkhdf"), *hdf_empty = mrn_path_join(dir, "roundtrip_empty.vtkhdf");
+  if (rc == MRN_OK) rc = mrn_vtkhdf_write(hdf, NPTS, s->points, s->arrays, 4, 1, 0.125);
+  if (rc == MRN_OK) rc = mrn_vtkhdf_write(hdf_empty, 0, NULL, s->arrays, 4, 0, 0.0);
+  free(hdf), free(hdf_empty);
   mrn_pvd pvd;
   mrn_pvd_init(&pvd, pvd_path);
   if (rc == MRN_OK) rc = mrn_pvd_add(&pvd, 0.0, "roundtrip.vtp");
