@@ -10,6 +10,7 @@ packages=(
   zlib1g-dev                      # CRC-32 of the checkpoint checksums
   libsuitesparse-dev              # UMFPACK sparse LU for the implicit integrator
   python3 python3-numpy python3-vtk9 python3-h5py   # the tests read outputs with the real VTK reader
+  python3-xarray python3-h5netcdf  # the series read as xarray sees it (dimension scales)
   python3-matplotlib gnuplot-nox  # plots (scripts/moraine-plot uses matplotlib, else gnuplot)
   clang libclang-rt-14-dev        # the libFuzzer harnesses (-DMORAINE_FUZZ=ON, tests/fuzz/README.md)
   valgrind                        # the weekly memcheck target (scripts/memcheck.sh)

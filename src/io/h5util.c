@@ -51,7 +51,7 @@ static int w_begin(mrn_h5w *w) {
 }
 
 /* remember the first failure: "attribute 'cell' of /grid", "/particles/x" */
-static void w_fail(mrn_h5w *w, hid_t obj, const char *name, int is_attr) {
+void mrn_h5w_fail(mrn_h5w *w, hid_t obj, const char *name, int is_attr) {
   if (w->failed) return;
   w->failed = 1;
   w->err = errno;
@@ -63,10 +63,18 @@ static void w_fail(mrn_h5w *w, hid_t obj, const char *name, int is_attr) {
     snprintf(w->what, sizeof w->what, "%s%s%s", strcmp(where, "/") == 0 ? "" : where, "/", name);
 }
 
+int mrn_h5w_report(const mrn_h5w *w, const char *path) {
+  if (w->err) return mrn_error_code(MRN_ERR_IO, "cannot write '%s': %s (writing %s)", path, strerror(w->err), w->what);
+  char detail[256];
+  mrn_h5_error_detail(detail, sizeof detail);
+  return mrn_error_code(MRN_ERR_IO, "cannot write '%s': HDF5 could not write %s%s%s%s", path, w->what,
+                        detail[0] ? " (" : "", detail, detail[0] ? ")" : "");
+}
+
 hid_t mrn_h5w_group(mrn_h5w *w, hid_t parent, const char *name) {
   if (!w_begin(w)) return H5I_INVALID_HID;
   hid_t g = H5Gcreate2(parent, name, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
-  if (g < 0) w_fail(w, parent, name, 0);
+  if (g < 0) mrn_h5w_fail(w, parent, name, 0);
   return g;
 }
 
@@ -74,7 +82,7 @@ hid_t mrn_h5w_group(mrn_h5w *w, hid_t parent, const char *name) {
 static void w_attr(mrn_h5w *w, hid_t obj, const char *name, hid_t type, hid_t space, const void *data) {
   if (w->failed || space < 0) {
     if (space >= 0) H5Sclose(space);
-    else w_fail(w, obj, name, 1);
+    else mrn_h5w_fail(w, obj, name, 1);
     return;
   }
   errno = 0;
@@ -82,7 +90,7 @@ static void w_attr(mrn_h5w *w, hid_t obj, const char *name, hid_t type, hid_t sp
   herr_t rc = a < 0 ? -1 : H5Awrite(a, type, data);
   if (a >= 0 && H5Aclose(a) < 0) rc = -1;
   H5Sclose(space);
-  if (rc < 0) w_fail(w, obj, name, 1);
+  if (rc < 0) mrn_h5w_fail(w, obj, name, 1);
 }
 
 static hid_t list_space(int n) {
@@ -100,7 +108,7 @@ void mrn_h5w_string(mrn_h5w *w, hid_t obj, const char *name, const char *value) 
   if (t < 0 || H5Tset_size(t, strlen(value) + 1) < 0 || H5Tset_strpad(t, H5T_STR_NULLTERM) < 0 ||
       H5Tset_cset(t, H5T_CSET_UTF8) < 0) {
     if (t >= 0) H5Tclose(t);
-    w_fail(w, obj, name, 1);
+    mrn_h5w_fail(w, obj, name, 1);
     return;
   }
   w_attr(w, obj, name, t, H5Screate(H5S_SCALAR), value);
@@ -139,12 +147,12 @@ void mrn_h5w_dataset(mrn_h5w *w, hid_t group, const char *name, hid_t type, cons
   herr_t rc = d < 0 ? -1 : 0;
   if (rc == 0 && count > 0) rc = H5Dwrite(d, type, H5S_ALL, H5S_ALL, H5P_DEFAULT, data);
   if (rc < 0) {
-    w_fail(w, group, name, 0);
+    mrn_h5w_fail(w, group, name, 0);
   } else {
     mrn_h5w_string(w, d, "units", units);
     mrn_h5w_string(w, d, "description", description);
   }
-  if (d >= 0 && H5Dclose(d) < 0) w_fail(w, group, name, 0);
+  if (d >= 0 && H5Dclose(d) < 0) mrn_h5w_fail(w, group, name, 0);
 }
 
 /* ---- reading: failures ---------------------------------------------------- */

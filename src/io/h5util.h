@@ -40,6 +40,13 @@ typedef struct mrn_h5w {
   char what[256]; /* the object that could not be written */
 } mrn_h5w;
 
+/* Remember the first failure, naming obj/name ("attribute 'cell' of
+ * /grid", "/particles/x"), with errno at that moment. */
+void mrn_h5w_fail(mrn_h5w *w, hid_t obj, const char *name, int is_attr);
+/* the first failure as moraine's message for `path`: the system's reason
+ * when there is one (a full disk), else HDF5's innermost; MRN_ERR_IO */
+int mrn_h5w_report(const mrn_h5w *w, const char *path);
+
 /* a new group (close it with H5Gclose); H5I_INVALID_HID once failed */
 hid_t mrn_h5w_group(mrn_h5w *w, hid_t parent, const char *name);
 /* attributes on a group or dataset */

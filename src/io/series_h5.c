@@ -2,6 +2,7 @@
 
 #include <errno.h>
 #include <hdf5.h>
+#include <hdf5_hl.h>
 #include <math.h>
 #include <stdint.h>
 #include <stdio.h>
@@ -43,6 +44,7 @@ struct mrn_series {
   int dirty;                   /* appended or declared since the last publication */
   double last_end, last_cost;  /* wall clock at the end of the last publication, and its cost (s) */
   int broken;                  /* a publication failed: no more writes */
+  char *run_name, *deck;       /* root attributes, or NULL */
 };
 
 static double wall_seconds(void) {
@@ -69,23 +71,14 @@ static int begin(mrn_h5w *w) {
   return 1;
 }
 
-/* the moraine message for a failed write, in the checkpoint writer's words */
-static int report(const mrn_h5w *w, const char *path) {
-  if (w->err) return mrn_error_code(MRN_ERR_IO, "cannot write '%s': %s (writing %s)", path, strerror(w->err), w->what);
-  char detail[256];
-  mrn_h5_error_detail(detail, sizeof detail);
-  return mrn_error_code(MRN_ERR_IO, "cannot write '%s': HDF5 could not write %s%s%s%s", path, w->what,
-                        detail[0] ? " (" : "", detail, detail[0] ? ")" : "");
-}
-
 /* ---- datasets ----------------------------------------------------------------- */
 
 /* A 1D dataset of `rows` entries holding `data`, chunked with an unlimited
  * maximum size (a reader may extend or append to a copy) and NaN as the fill
  * value of the float columns. */
-static void write_dataset(mrn_h5w *w, hid_t file, const char *name, hid_t type, hid_t mem_type, hsize_t rows,
-                          const void *data, const char *units, const char *description) {
-  if (!begin(w)) return;
+static hid_t write_dataset(mrn_h5w *w, hid_t file, const char *name, hid_t type, hid_t mem_type, hsize_t rows,
+                           const void *data, const char *units, const char *description) {
+  if (!begin(w)) return H5I_INVALID_HID;
   hsize_t maxdims = H5S_UNLIMITED, chunk = CHUNK_ROWS;
   hid_t space = H5Screate_simple(1, &rows, &maxdims);
   hid_t dcpl = H5Pcreate(H5P_DATASET_CREATE);
@@ -102,8 +95,18 @@ static void write_dataset(mrn_h5w *w, hid_t file, const char *name, hid_t type, 
   if (ds >= 0) {
     mrn_h5w_string(w, ds, "units", units ? units : "");
     mrn_h5w_string(w, ds, "description", description ? description : "");
-    H5Dclose(ds);
   }
+  return ds;
+}
+
+/* Every dataset is indexed by the row: /time becomes the dimension scale of
+ * that axis (HDF5's H5DS, the form netCDF-4 gives a coordinate variable), so
+ * xarray and netCDF readers see one dimension `time` with its values instead
+ * of an anonymous axis per dataset. The dataset is closed here. */
+static void attach_time(mrn_h5w *w, hid_t time, hid_t ds, const char *name) {
+  if (ds < 0) return;
+  if (!w->failed && time >= 0 && H5DSattach_scale(ds, time, 0) < 0) note_fail(w, "dimension scale of /%s", name);
+  H5Dclose(ds);
 }
 
 /* ---- publishing the file ------------------------------------------------------ */
@@ -126,12 +129,18 @@ static void *build_image(mrn_h5w *w, const mrn_series *s, size_t *size) {
   mrn_h5w_string(w, w->file, "moraine_version", MORAINE_VERSION " (" MORAINE_GIT_COMMIT ")");
   mrn_h5w_string(w, w->file, "description",
                  "time series: one entry per row in every dataset; NaN where a column had no value");
+  if (s->run_name) mrn_h5w_string(w, w->file, "run_name", s->run_name);
+  if (s->deck) mrn_h5w_string(w, w->file, "deck", s->deck);
   const hsize_t rows = (hsize_t)s->rows;
-  write_dataset(w, w->file, "time", H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, rows, s->time, "s", "model time of the row");
-  write_dataset(w, w->file, "step", H5T_STD_I64LE, H5T_NATIVE_INT64, rows, s->step, "", "step number of the row");
+  hid_t time = write_dataset(w, w->file, "time", H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, rows, s->time, "s",
+                             "model time of the row");
+  if (time >= 0 && !w->failed && H5DSset_scale(time, "time") < 0) note_fail(w, "%s", "dimension scale /time");
+  attach_time(w, time, write_dataset(w, w->file, "step", H5T_STD_I64LE, H5T_NATIVE_INT64, rows, s->step, "",
+                                     "step number of the row"), "step");
   for (int i = 0; i < s->ncol; i++)
-    write_dataset(w, w->file, s->cols[i].name, H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, rows, s->cols[i].values,
-                  s->cols[i].units, s->cols[i].description);
+    attach_time(w, time, write_dataset(w, w->file, s->cols[i].name, H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, rows,
+                                       s->cols[i].values, s->cols[i].units, s->cols[i].description), s->cols[i].name);
+  if (time >= 0) H5Dclose(time);
   void *bytes;
   errno = 0;
   if (mrn_h5_image_close(&img, w->file, &bytes, size) != 0) note_fail(w, "%s", "the file (closing it)");
@@ -152,7 +161,7 @@ static int publish(mrn_series *s) {
   mrn_h5w w = {.file = H5I_INVALID_HID};
   size_t size;
   void *bytes = build_image(&w, s, &size);
-  int rc = bytes ? mrn_atomic_write_file(s->path, bytes, size) : report(&w, s->path);
+  int rc = bytes ? mrn_atomic_write_file(s->path, bytes, size) : mrn_h5w_report(&w, s->path);
   free(bytes);
   if (rc != MRN_OK) {
     s->broken = 1;
@@ -183,6 +192,8 @@ static void release(mrn_series *s) {
   free(s->time);
   free(s->step);
   free(s->path);
+  free(s->run_name);
+  free(s->deck);
   free(s);
 }
 
@@ -323,6 +334,18 @@ int mrn_series_append(mrn_series *s, long step, double time) {
 int mrn_series_flush(mrn_series *s) {
   if (!s || (!s->dirty && !s->broken)) return MRN_OK;
   return publish_quietly(s);
+}
+
+int mrn_series_describe(mrn_series *s, const char *run_name, const char *deck) {
+  char *n = run_name ? strdup(run_name) : NULL, *d = deck ? strdup(deck) : NULL;
+  if ((run_name && !n) || (deck && !d)) {
+    free(n), free(d);
+    return mrn_error_code(MRN_ERR_IO, "cannot write '%s': out of memory", s->path);
+  }
+  free(s->run_name), free(s->deck);
+  s->run_name = n, s->deck = d;
+  s->dirty = 1;
+  return MRN_OK;
 }
 
 /* ---- queries and closing ---------------------------------------------------------- */

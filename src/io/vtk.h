@@ -1,8 +1,9 @@
 /* moraine: VTK XML writers for ParaView.
  *
  *  - particles as PolyData (.vtp): points plus one vertex cell per point,
- *    point-data arrays in raw-binary appended form (header_type UInt64, so
- *    arrays larger than 4 GiB are fine) or ASCII for debugging;
+ *    point-data arrays in appended binary form, raw or zlib-compressed
+ *    (header_type UInt64, so arrays larger than 4 GiB are fine), in Float64
+ *    or Float32, or ASCII for debugging; the model time as TimeValue;
  *  - collections (.pvd) listing each file with its model time, rewritten
  *    atomically after every new file so ParaView can open a running series.
  * All files are written through mrn_atomic_file (temporary name + rename). */
@@ -28,13 +29,38 @@ typedef struct mrn_vtk_array {
   const void *ctx;
 } mrn_vtk_array;
 
+/* 0, or MRN_ERR_IO when the arrays could not be described in a file
+ * (no name, no data, an unknown type, too many components) */
+int mrn_vtk_check_arrays(const char *path, size_t npoints, const double *points, const mrn_vtk_array *arrays,
+                         int narrays);
+
 /* values asked of a `fill` at a time (a 512 KB buffer of 8-byte values) */
 #define MRN_VTK_FILL_VALUES 65536
 #define MRN_VTK_FILL_POINTS(ncomp) (MRN_VTK_FILL_VALUES / (size_t)(ncomp))
 
 typedef enum { MRN_VTK_BINARY = 0, MRN_VTK_ASCII } mrn_vtk_encoding;
 
+/* How a .vtp is written. The zero value is the plain form: appended raw
+ * binary, Float64 kept, no time. */
+typedef struct mrn_vtp_options {
+  mrn_vtk_encoding encoding;
+  /* 1..9: zlib level of the appended data (vtkZLibDataCompressor, blocks of
+   * MRN_VTK_ZLIB_BLOCK bytes); 0: raw. The compressed arrays are held in
+   * memory until the file is written (the offsets precede the data).
+   * Ignored for ASCII. */
+  int compress;
+  int float32;  /* write the Float64 arrays and the points as Float32 */
+  int has_time; /* add `time` (s) as the TimeValue field data ParaView reads */
+  double time;
+} mrn_vtp_options;
+
+/* uncompressed bytes per zlib block */
+#define MRN_VTK_ZLIB_BLOCK 65536
+
 /* points: 3 doubles per point (z = 0 in 2D). Returns 0 or MRN_ERR_IO. */
+int mrn_vtp_write_with(const char *path, size_t npoints, const double *points, const mrn_vtk_array *arrays,
+                       int narrays, const mrn_vtp_options *options);
+/* the plain form in `encoding` */
 int mrn_vtp_write(const char *path, size_t npoints, const double *points, const mrn_vtk_array *arrays,
                   int narrays, mrn_vtk_encoding encoding);
 

@@ -12,8 +12,11 @@ is a failure), and checks that:
     any other header -> the dataset of that name) and no dataset is missing
     from the CSV (with --extra-columns the series may hold more: values
     recorded from Lua that the CSV does not carry);
-  - every value agrees to round-off (NaN where the CSV says nan).
-Run with Debian's /usr/bin/python3 (python3-h5py, numpy)."""
+  - every value agrees to round-off (NaN where the CSV says nan);
+  - xarray (engine h5netcdf) reads the file as variables over one dimension
+    `time`, the /time dataset being its coordinate (HDF5 dimension scales).
+Run with Debian's /usr/bin/python3 (python3-h5py, numpy, python3-xarray,
+python3-h5netcdf)."""
 
 import csv
 import math
@@ -88,6 +91,20 @@ def check_h5py(h5_path, columns, label, extra_ok):
         return names
 
 
+def check_xarray(h5_path, columns, label):
+    """xarray (engine h5netcdf) sees one dimension `time` whose coordinate is
+    /time, every other dataset a variable over it, no phony dimensions"""
+    import xarray  # noqa: E402  (python3-xarray, python3-h5netcdf)
+    with xarray.open_dataset(h5_path, engine="h5netcdf") as ds:
+        check(list(ds.dims) == ["time"], f"{label}: xarray dimensions {list(ds.dims)}")
+        check("time" in ds.coords, f"{label}: time is a coordinate")
+        for name in ds.data_vars:
+            check(ds[name].dims == ("time",), f"{label}: {name} is over time, not {ds[name].dims}")
+        for header, values in columns.items():
+            if header in ds.variables:
+                check(agree(ds[header].values, values), f"{label}: {header} (xarray) differs from the CSV")
+
+
 def h5dump_values(h5_path, name):
     """the values of dataset /name as h5dump prints them, with 17 digits"""
     out = subprocess.run(["h5dump", "-d", "/" + name, "-m", "%.17g", "-y", "-w0", h5_path],
@@ -131,6 +148,7 @@ def main(argv):
             names = check_h5py(h5_path, columns, label, extra_ok)
             if have_h5dump:
                 check_h5dump(h5_path, columns, names, label)
+            check_xarray(h5_path, columns, label)
         except (OSError, KeyError, ValueError, IndexError) as e:
             check(False, f"{label}: {e}")
     return check.report()

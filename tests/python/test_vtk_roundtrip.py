@@ -54,6 +54,49 @@ def check_file(path, exp, label):
           f"{label}: summary {summary}")
 
 
+def check_forms(d, exp):
+    """the zlib, Float32 and time forms read back as the raw file, or as its
+    values rounded to Float32"""
+    check_file(os.path.join(d, "roundtrip_zlib.vtp"), exp, "zlib")
+    check_file(os.path.join(d, "roundtrip_time.vtp"), exp, "zlib level 9 with a time")
+    f32 = dict(exp)
+    for k in ("points", "stress", "mass"):
+        f32[k] = exp[k].astype(np.float32)
+    for name in ("roundtrip_f32.vtp", "roundtrip_f32_zlib.vtp", "roundtrip_f32_ascii.vtp"):
+        points, arrays = vtk_read.read_vtp(os.path.join(d, name))
+        check(points.dtype == np.float32 and np.array_equal(points, f32["points"]), f"{name}: Float32 points")
+        for k in ("stress", "mass"):
+            a = arrays.get(k)
+            check(a is not None and a.dtype == np.float32 and np.array_equal(a.reshape(f32[k].shape), f32[k]),
+                  f"{name}: Float32 {k}")
+        check(np.array_equal(arrays.get("id"), exp["id"]) and np.array_equal(arrays.get("material"), exp["material"]),
+              f"{name}: integers kept")
+    check(vtk_read.time_value(os.path.join(d, "roundtrip_time.vtp")) == 0.125, "TimeValue field data")
+    check(vtk_read.time_value(os.path.join(d, "roundtrip_zlib.vtp")) is None, "no TimeValue unless asked")
+    points, arrays = vtk_read.read_vtp(os.path.join(d, "roundtrip_empty_zlib.vtp"))
+    check(points.shape == (0, 3) and all(a.shape[0] == 0 for a in arrays.values()), "empty zlib file")
+    # several zlib blocks
+    pr, ar = vtk_read.read_vtp(os.path.join(d, "big.vtp"))
+    pz, az = vtk_read.read_vtp(os.path.join(d, "big_zlib.vtp"))
+    check(pr.shape == (20000, 3) and np.array_equal(pr, pz) and np.array_equal(ar["stress"], az["stress"]),
+          "a file of 15 zlib blocks reads back as the raw one")
+    sr, sz = os.path.getsize(os.path.join(d, "big.vtp")), os.path.getsize(os.path.join(d, "big_zlib.vtp"))
+    print(f"zlib: {sr} -> {sz} bytes ({sr / sz:.2f}x)")
+
+
+def check_vtkhdf(d, exp):
+    """the VTKHDF files hold what the raw .vtp holds, and their time"""
+    points, arrays, t = vtk_read.read_vtkhdf(os.path.join(d, "roundtrip.vtkhdf"))
+    check(np.array_equal(points, exp["points"]), "vtkhdf: point coordinates")
+    check(sorted(arrays) == ["id", "mass", "material", "stress"], f"vtkhdf: array names {sorted(arrays)}")
+    for k in ("stress", "mass", "id", "material"):
+        a = arrays.get(k)
+        check(a is not None and a.dtype == exp[k].dtype and np.array_equal(a, exp[k]), f"vtkhdf: {k}")
+    check(t == 0.125, f"vtkhdf: TimeValue {t}")
+    points, arrays, t = vtk_read.read_vtkhdf(os.path.join(d, "roundtrip_empty.vtkhdf"))
+    check(points.shape == (0, 3) and t is None, "vtkhdf: an empty file, no time")
+
+
 def main():
     if len(sys.argv) != 2:
         print("usage: test_vtk_roundtrip.py DIR", file=sys.stderr)
@@ -63,6 +106,8 @@ def main():
     try:
         check_file(os.path.join(d, "roundtrip.vtp"), exp, "binary")
         check_file(os.path.join(d, "roundtrip_ascii.vtp"), exp, "ascii")
+        check_forms(d, exp)
+        check_vtkhdf(d, exp)
 
         points, arrays = vtk_read.read_vtp(os.path.join(d, "roundtrip_empty.vtp"))
         check(points.shape == (0, 3), f"empty: points shape {points.shape}")

@@ -5,6 +5,8 @@ Run with Debian's /usr/bin/python3 (python3-vtk9 and numpy). As a library:
 
     points, arrays = read_vtp("out/p_000010.vtp")   # (N, 3), {name: (N,) or (N, ncomp)}
     series = read_pvd("out/p.pvd")                  # [(time, absolute .vtp path), ...]
+    t = time_value("out/p_000010.vtp")              # its TimeValue field data, or None
+    points, arrays, t = read_vtkhdf("out/p_000010.vtkhdf")
 
 As a command:
 
@@ -76,6 +78,36 @@ def read_vtp(path):
         a = pd.GetAbstractArray(i)
         arrays[a.GetName()] = _to_numpy(a, a.GetNumberOfComponents())
     return points, arrays
+
+
+def time_value(path):
+    """the TimeValue field data of a .vtp as VTK reads it, or None"""
+    fd = _read_polydata(path).GetFieldData()
+    a = fd.GetArray("TimeValue") if fd is not None else None
+    return None if a is None else float(a.GetValue(0))
+
+
+def read_vtkhdf(path):
+    """(points, arrays, TimeValue or None) of a .vtkhdf read by vtkHDFReader"""
+    if not os.path.isfile(path):
+        raise VtkReadError(f"{path}: no such file")
+    reader = vtk.vtkHDFReader()
+    reader.SetFileName(path)
+    reader.Update()
+    grid = reader.GetOutput()
+    if grid is None:
+        raise VtkReadError(f"{path}: vtkHDFReader could not read the file")
+    n = grid.GetNumberOfPoints()
+    pts = grid.GetPoints()
+    points = _to_numpy(pts.GetData(), 3).reshape(n, 3) if pts is not None and n else np.zeros((0, 3))
+    pd = grid.GetPointData()
+    arrays = {pd.GetArrayName(i): _to_numpy(pd.GetArray(i), pd.GetArray(i).GetNumberOfComponents())
+              for i in range(pd.GetNumberOfArrays())}
+    cells = [grid.GetCellType(i) for i in range(grid.GetNumberOfCells())]
+    if any(c != vtk.VTK_VERTEX for c in cells) or len(cells) != n:
+        raise VtkReadError(f"{path}: expected one vertex cell per point")
+    t = grid.GetFieldData().GetArray("TimeValue")
+    return points, arrays, (None if t is None else float(t.GetValue(0)))
 
 
 def read_pvd(path):

@@ -5,6 +5,7 @@
  * argv[1] it also leaves roundtrip files there for
  * tests/python/test_vtk_roundtrip.py, which reads them with VTK itself. */
 #include <inttypes.h>
+#include <math.h>
 #include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
@@ -16,6 +17,7 @@
 #include "core/error.h"
 #include "io/atomic_file.h"
 #include "io/vtk.h"
+#include "io/vtkhdf.h"
 
 /* ---- deterministic test data (mirrored in test_vtk_roundtrip.py) -------- */
 
@@ -212,6 +214,25 @@ static void test_path_join(void) {
   free(p);
 }
 
+/* A file of several zlib blocks: 20,000 points with a 6-component field
+ * (960,000 bytes, 15 blocks of MRN_VTK_ZLIB_BLOCK), raw and compressed. */
+static int write_big(const char *dir) {
+  enum { N = 20000 };
+  double *points = malloc(3 * N * sizeof(double)), *stress = malloc(6 * N * sizeof(double));
+  int rc = points && stress ? MRN_OK : MRN_ERR_IO;
+  for (size_t i = 0; rc == MRN_OK && i < N; i++) {
+    for (int c = 0; c < 3; c++) points[3 * i + c] = 1e-3 * (double)i + c;
+    for (int c = 0; c < 6; c++) stress[6 * i + c] = sin(1e-3 * (double)i * (c + 1)); /* smooth, not exact */
+  }
+  const mrn_vtk_array a = {.name = "stress", .ncomp = 6, .type = MRN_VTK_FLOAT64, .data = stress};
+  const mrn_vtp_options raw = {0}, zlib = {.compress = 6};
+  char *pr = mrn_path_join(dir, "big.vtp"), *pz = mrn_path_join(dir, "big_zlib.vtp");
+  if (rc == MRN_OK) rc = mrn_vtp_write_with(pr, N, points, &a, 1, &raw);
+  if (rc == MRN_OK) rc = mrn_vtp_write_with(pz, N, points, &a, 1, &zlib);
+  free(pr), free(pz), free(points), free(stress);
+  return rc;
+}
+
 /* files for the Python check with the real VTK reader */
 static int write_roundtrip(const char *dir, const sample *s) {
   if (mrn_mkdir_p(dir) != MRN_OK) return MRN_ERR_IO;
@@ -222,6 +243,25 @@ static int write_roundtrip(const char *dir, const sample *s) {
   int rc = mrn_vtp_write(bin, NPTS, s->points, s->arrays, 4, MRN_VTK_BINARY);
   if (rc == MRN_OK) rc = mrn_vtp_write(asc, NPTS, s->points, s->arrays, 4, MRN_VTK_ASCII);
   if (rc == MRN_OK) rc = mrn_vtp_write(empty, 0, NULL, s->arrays, 4, MRN_VTK_BINARY);
+  /* the other forms: zlib, Float32 (raw, zlib, ASCII), a time, and an empty compressed file */
+  const struct { const char *name; mrn_vtp_options o; size_t n; } forms[] = {
+      {"roundtrip_zlib.vtp", {.compress = 6}, NPTS},
+      {"roundtrip_f32.vtp", {.float32 = 1}, NPTS},
+      {"roundtrip_f32_zlib.vtp", {.float32 = 1, .compress = 1}, NPTS},
+      {"roundtrip_f32_ascii.vtp", {.encoding = MRN_VTK_ASCII, .float32 = 1}, NPTS},
+      {"roundtrip_time.vtp", {.compress = 9, .has_time = 1, .time = 0.125}, NPTS},
+      {"roundtrip_empty_zlib.vtp", {.compress = 6}, 0},
+  };
+  for (size_t k = 0; k < sizeof forms / sizeof forms[0] && rc == MRN_OK; k++) {
+    char *path = mrn_path_join(dir, forms[k].name);
+    rc = mrn_vtp_write_with(path, forms[k].n, forms[k].n ? s->points : NULL, s->arrays, 4, &forms[k].o);
+    free(path);
+  }
+  if (rc == MRN_OK) rc = write_big(dir);
+  char *hdf = mrn_path_join(dir, "roundtrip.vtkhdf"), *hdf_empty = mrn_path_join(dir, "roundtrip_empty.vtkhdf");
+  if (rc == MRN_OK) rc = mrn_vtkhdf_write(hdf, NPTS, s->points, s->arrays, 4, 1, 0.125);
+  if (rc == MRN_OK) rc = mrn_vtkhdf_write(hdf_empty, 0, NULL, s->arrays, 4, 0, 0.0);
+  free(hdf), free(hdf_empty);
   mrn_pvd pvd;
   mrn_pvd_init(&pvd, pvd_path);
   if (rc == MRN_OK) rc = mrn_pvd_add(&pvd, 0.0, "roundtrip.vtp");
@@ -264,23 +304,26 @@ static void test_fill(const char *dir) {
     for (int c = 0; c < 6; c++) stress[6 * i + c] = 1.0 / (double)(i + 1) + c;
     mass[i] = 0.5 + 1e-3 * (double)i;
   }
-  for (int enc = 0; enc < 2; enc++) {
-    const mrn_vtk_encoding e = enc ? MRN_VTK_ASCII : MRN_VTK_BINARY;
+  static const char *const form_names[] = {"binary", "ASCII", "zlib"};
+  for (int enc = 0; enc < 3; enc++) {
+    const mrn_vtp_options e = {.encoding = enc == 1 ? MRN_VTK_ASCII : MRN_VTK_BINARY, .compress = enc == 2 ? 6 : 0};
     mrn_vtk_array held[2] = {{.name = "stress", .ncomp = 6, .type = MRN_VTK_FLOAT64, .data = stress},
                              {.name = "mass", .ncomp = 1, .type = MRN_VTK_FLOAT64, .data = mass}};
     fill_log ls = {stress, 6, 0, 0, 0, 1}, lm = {mass, 1, 0, 0, 0, 1};
     mrn_vtk_array made[2] = {{.name = "stress", .ncomp = 6, .type = MRN_VTK_FLOAT64, .fill = fill_doubles, .ctx = &ls},
                              {.name = "mass", .ncomp = 1, .type = MRN_VTK_FLOAT64, .fill = fill_doubles, .ctx = &lm}};
     char *a = mrn_path_join(dir, "held.vtp"), *b = mrn_path_join(dir, "made.vtp");
-    CHECK(mrn_vtp_write(a, BIG, points, held, 2, e) == MRN_OK);
-    CHECK(mrn_vtp_write(b, BIG, points, made, 2, e) == MRN_OK);
+    CHECK(mrn_vtp_write_with(a, BIG, points, held, 2, &e) == MRN_OK);
+    CHECK(mrn_vtp_write_with(b, BIG, points, made, 2, &e) == MRN_OK);
     size_t la = 0, lb = 0;
     char *fa = read_all(a, &la), *fb = read_all(b, &lb);
-    CHECK(fa && fb && la == lb && la > BIG * 7 * sizeof(double) && memcmp(fa, fb, la) == 0);
+    /* raw and ASCII hold every value; zlib packs these smooth arrays */
+    CHECK(fa && fb && la == lb && memcmp(fa, fb, la) == 0);
+    CHECK(enc == 2 ? la < BIG * 7 * sizeof(double) : la > BIG * 7 * sizeof(double));
     CHECK(ls.ok && lm.ok);
     CHECK(ls.calls == 3 && lm.calls == 1);
     printf("on-demand arrays, %s: %zu bytes, the same as held arrays: %s (fills: stress %zu, mass %zu)\n",
-           enc ? "ASCII" : "binary", lb, fa && fb && la == lb && memcmp(fa, fb, la) == 0 ? "yes" : "no", ls.calls,
+           form_names[enc], lb, fa && fb && la == lb && memcmp(fa, fb, la) == 0 ? "yes" : "no", ls.calls,
            lm.calls);
     free(fa), free(fb), free(a), free(b);
   }
