@@ -14,4 +14,4 @@ cd "$(dirname "$0")/.."
 out=${1:-out/validate}
 cmake -S . -B build -DCMAKE_BUILD_TYPE=Release > /dev/null
 cmake --build build -j "$(nproc 2>/dev/null || echo 2)" > /dev/null
-exec /usr/bin/python3 scripts/validation/report.py --moraine build/moraine --build build --out "$out"
+exec "${PYTHON:-python3}" scripts/validation/report.py --moraine build/moraine --build build --out "$out"

@@ -31,13 +31,10 @@
  * static ones, split the indices into the same shares to within a chunk).
  * P2G, which goes block by block, gives each block to the thread that owns
  * the block's first particle (mrn_chunk_owner). So from P2G to G2P and the
- * material update a particle's cache lines stay on one core: when P2G
- * handed blocks out first come, first served, half the particles were read
- * in P2G by the core that did not then write them in G2P, and every such
- * write first had to take the line back from the other core's cache (two
- * threads ran the 2D column at 1.2x - 1.7x one thread; see
- * doc/performance.md, change 43). Which thread does what never changes a
- * result. */
+ * material update a particle's cache lines stay on one core: a block
+ * handed out first come, first served would often be read in P2G by one core
+ * and written in G2P by another, which must first take each line back from
+ * the first core's cache. Which thread does what never changes a result. */
 enum { MRN_PARTICLE_CHUNK = 256 };
 
 /* chunks of MRN_PARTICLE_CHUNK needed for n particles */

@@ -17,10 +17,9 @@
  * every axis for the colouring to hold). Blocks are long along x, the axis
  * along which both the nodes and (in seeding or sorted order) the particles
  * lie next to each other in memory: 32 x 4 cells in 2D, 16 x 4 x 4 in 3D.
- * Measured on one thread against square 8 x 8 and cubic 4^3 blocks: P2G
- * 30 % faster with 4 particles per cell (a640k), 30 % in 3D (c32), the same
- * with 16 per cell (a160k); still some 25 blocks per colour for two threads
- * on the smallest benchmark problems. */
+ * A block long along x keeps a P2G's stencils on few cache lines of the
+ * nodal arrays; small enough that even the smallest bench problems have many
+ * blocks of each colour for the threads to share (doc/performance.md). */
 static int block_shift(int dim, int axis) {
   if (dim == 2) return axis == 0 ? 5 : 2;
   return axis == 0 ? 4 : 2;

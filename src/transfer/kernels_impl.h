@@ -248,7 +248,7 @@ typedef double mrn_v2 __attribute__((vector_size(16), aligned(8), may_alias));
  *   -V sigma grad N         = -(r dw_x + q w_x), r = V sigma_x w_y,      q = V sigma_y dw_y
  * so a node costs two multiply-adds per term, on the node's (x, y) pair as
  * one 2-wide vector. (Short vectors over a whole row, as in 3D, waste a
- * third of every vector on the z components in 2D and measured slower.) */
+ * third of every vector on the z components in 2D.) */
 MRN_INLINE void KNAME(p2g_fast)(const KNAME(p2g_args) *ar, const KNAME(axes) *ax, size_t p, const int sup,
                                 const int momentum, const int force, const int affine) {
   mrn_grid *g = ar->g;
