@@ -41,6 +41,9 @@ int mrn_output_free(mrn_output *o) {
   if (o->pvd.path) mrn_pvd_free(&o->pvd);
   if (o->grid_pvd.path) mrn_pvd_free(&o->grid_pvd);
   free(o->series_name);
+  free(o->run_name);
+  free(o->deck_path);
+  free(o->deck_text);
   memset(o, 0, sizeof *o);
   o->csv_fd = -1;
   return rc;
@@ -101,21 +104,31 @@ static char *unused_series_path(mrn_output *o) {
   return path;
 }
 
-static int open_series(mrn_output *o) {
+/* the series of a `dim`-dimensional simulation, its columns declared */
+static int open_series(mrn_output *o, int dim) {
   char *path = unused_series_path(o);
   int rc = mrn_series_create(&o->series, path);
   free(path);
   if (rc != MRN_OK) return rc;
-  rc = mrn_series_add_column(o->series, "dt", "s", "size of the last step");
+  rc = mrn_series_describe(o->series, o->run_name, o->deck_path, o->deck_text);
+  if (rc == MRN_OK) rc = mrn_series_add_column(o->series, "dt", "s", "size of the last step");
   for (int i = 0; rc == MRN_OK && i < mrn_diagnostics_column_count(); i++)
-    rc = mrn_series_add_column(o->series, mrn_diagnostics_column_name(i), mrn_diagnostics_column_unit(i),
+    rc = mrn_series_add_column(o->series, mrn_diagnostics_column_name(i), mrn_diagnostics_column_unit_in(i, dim),
                                "diagnostics, as in the CSV");
   return rc;
 }
 
-int mrn_output_record(mrn_output *o, const char *name, double value) {
+int mrn_output_describe(mrn_output *o, const char *run_name, const char *deck_path, const char *deck_text) {
+  free(o->run_name), free(o->deck_path), free(o->deck_text);
+  o->run_name = dup_or_null(run_name), o->deck_path = dup_or_null(deck_path), o->deck_text = dup_or_null(deck_text);
+  if ((run_name && !o->run_name) || (deck_path && !o->deck_path) || (deck_text && !o->deck_text))
+    return mrn_error_code(MRN_ERR_IO, "cannot describe the run: out of memory");
+  return o->series ? mrn_series_describe(o->series, run_name, deck_path, deck_text) : MRN_OK;
+}
+
+int mrn_output_record(mrn_output *o, int dim, const char *name, double value) {
   if (!o->series_name) return mrn_error("record: the simulation writes no HDF5 series (series = false)");
-  if (!o->series && open_series(o) != MRN_OK) return MRN_ERR_IO;
+  if (!o->series && open_series(o, dim) != MRN_OK) return MRN_ERR_IO;
   return mrn_series_set(o->series, name, value);
 }
 
@@ -362,7 +375,7 @@ int mrn_output_maybe_csv(mrn_output *o, const mrn_sim *sim, const mrn_diagnostic
   double values[64];
   mrn_diagnostics_values(d, values);
   if (o->series_name) {
-    if (!o->series && open_series(o) != MRN_OK) return MRN_ERR_IO;
+    if (!o->series && open_series(o, sim->dim) != MRN_OK) return MRN_ERR_IO;
     int rc = mrn_series_set_at(o->series, 0, sim->dt);
     for (int i = 0; rc == MRN_OK && i < mrn_diagnostics_column_count(); i++)
       rc = mrn_series_set_at(o->series, i + 1, values[i]);

@@ -40,6 +40,7 @@ typedef struct mrn_output {
    * written at the CSV's rows; disabled when series_name is NULL */
   char *series_name;
   mrn_series *series;
+  char *run_name, *deck_path, *deck_text; /* its root attributes, or NULL */
 
   /* diagnostics CSV; disabled when csv_name is NULL */
   char *csv_name;
@@ -59,8 +60,13 @@ int mrn_output_free(mrn_output *o);
 int mrn_output_set_vtk(mrn_output *o, const char *name, double every_time, long every_steps);
 int mrn_output_set_csv(mrn_output *o, const char *name, long every);
 int mrn_output_set_series(mrn_output *o, const char *name);
-/* a value for the next row of the HDF5 series (a new name adds a column) */
-int mrn_output_record(mrn_output *o, const char *name, double value);
+/* The run's name, its deck's path and text for the HDF5 series' root
+ * attributes (mrn_series_describe), now or when the series opens; NULL:
+ * none. 0 or MRN_ERR_IO. */
+int mrn_output_describe(mrn_output *o, const char *run_name, const char *deck_path, const char *deck_text);
+/* a value for the next row of the HDF5 series (a new name adds a column);
+ * dim: the simulation's, for the units of the diagnostics columns */
+int mrn_output_record(mrn_output *o, int dim, const char *name, double value);
 
 /* forget which CSV files this process has written (they are appended to
  * when a second output names the same file); called when a deck ends */

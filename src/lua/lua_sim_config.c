@@ -2,6 +2,7 @@
  * and the output options it shares with run{}, output() and mpm.load(). */
 #include <math.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include "core/error.h"
@@ -100,6 +101,44 @@ void mrn_lua_read_output(lua_State *L, int idx, const char *where, sim_box *b) {
     }
     lua_pop(L, 1);
   }
+}
+
+/* the whole text of the file at path, or NULL (free it) */
+static char *read_text(const char *path) {
+  FILE *f = fopen(path, "rb");
+  if (!f) return NULL;
+  char *text = NULL;
+  size_t len = 0, cap = 0;
+  for (;;) {
+    if (cap - len < 4096) {
+      char *grown = realloc(text, cap = 2 * cap + 4096);
+      if (!grown) break;
+      text = grown;
+    }
+    size_t n = fread(text + len, 1, cap - len - 1, f);
+    len += n;
+    if (n == 0) {
+      text[len] = '\0';
+      if (ferror(f)) break;
+      fclose(f);
+      return text;
+    }
+  }
+  fclose(f);
+  free(text);
+  return NULL;
+}
+
+void mrn_lua_describe_run(lua_State *L, const char *where, sim_box *b) {
+  lua_getfield(L, LUA_REGISTRYINDEX, MRN_LUA_DECK_KEY);
+  const char *deck = lua_tostring(L, -1);
+  /* read again here: the deck is loaded before any simulation exists */
+  char *text = deck ? read_text(deck) : NULL, *full = deck ? realpath(deck, NULL) : NULL;
+  int rc = mrn_output_describe(&b->out, b->name, full ? full : deck, text);
+  free(text);
+  free(full);
+  lua_pop(L, 1);
+  if (rc != MRN_OK) mrn_lua_engine_error(L, where);
 }
 
 /* on_leave = "stop" | "delete" in the table at idx (absent: unchanged) */
@@ -217,6 +256,7 @@ int l_simulation(lua_State *L) {
     lua_pop(L, 1);
   }
   mrn_lua_check_outputs(L, where, &b->out, b->name);
+  mrn_lua_describe_run(L, where, b);
   read_integrator(L, where, self);
   lua_pushvalue(L, self);
   return 1;
