@@ -1,6 +1,7 @@
 /* moraine: what a simulation writes while it runs (an observer of mrn_run).
  *
  *   OUTDIR/<vtk>_NNNNNN.vtp + OUTDIR/<vtk>.pvd   particle snapshots (ParaView)
+ *   or OUTDIR/<vtk>_NNNNNN.vtkhdf + OUTDIR/<vtk>.vtkhdf.series
  *   OUTDIR/<diagnostics>                          CSV of the diagnostics
  * Every path is relative to the output directory (the -o option). */
 #ifndef MRN_IO_OUTPUT_H
@@ -26,6 +27,9 @@ typedef struct mrn_output {
   long vtk_last_step;      /* step of the last snapshot (-1: none yet) */
   int vtk_count;
   mrn_vtk_encoding encoding;
+  int vtk_compress; /* 0: raw; 1..9: zlib level of the snapshots */
+  int vtk_float32;  /* Float64 arrays and points stored as Float32 */
+  int vtkhdf;       /* .vtkhdf files in a .vtkhdf.series instead of .vtp in a .pvd */
   int nfields;
   /* names listed by the deck: built-in fields or fields it registered
    * (checked when a snapshot is written); none: every field */
@@ -59,6 +63,9 @@ int mrn_output_free(mrn_output *o);
 /* (re)configure the VTK series; name NULL disables it. A new name starts a new .pvd */
 int mrn_output_set_vtk(mrn_output *o, const char *name, double every_time, long every_steps);
 int mrn_output_set_csv(mrn_output *o, const char *name, long every);
+/* .vtkhdf snapshots (vtkhdf set) or .vtp ones; a change starts the series
+ * afresh, as a new name does */
+void mrn_output_set_vtkhdf(mrn_output *o, int vtkhdf);
 int mrn_output_set_series(mrn_output *o, const char *name);
 /* The run's name, its deck's path and text for the HDF5 series' root
  * attributes (mrn_series_describe), now or when the series opens; NULL:
