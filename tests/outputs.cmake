@@ -16,6 +16,10 @@
 #   python.png                every PNG drawn is a valid, non-empty image
 #   python.outputs_roundtrip  every .vtp/.vti/.pvd of a 2D and a 3D run equals the
 #                             checkpoint of the same state; Lua reductions = numpy
+#   python.vtk_forms          a collapse snapshot in every form of output{} (zlib,
+#                             Float32, VTKHDF) equals the raw .vtp, TimeValue =
+#                             the collection's time, zlib + Float32 >= 3x smaller;
+#                             the deck's HDF5 series in xarray with 2D units
 #   robust.sigkill            files left by runs killed with SIGKILL are whole
 #   python.example_pngs       the examples' own PNG plots are valid images
 set(MORAINE_OUTPUTS_DIR ${MORAINE_TEST_OUT}/outputs)
@@ -93,6 +97,14 @@ set_tests_properties(python.outputs_roundtrip PROPERTIES LABELS python FIXTURES_
 # and grid probes (tests/decks/particle_fields.lua); the storage itself is
 # unit.test_user_fields
 moraine_deck_test(particle_fields particle_fields.lua)
+
+# ---- the forms of a snapshot and the series' record (tests/decks/vtk_forms.lua) --
+moraine_deck_test(vtk_forms vtk_forms.lua)
+set_tests_properties(deck.vtk_forms PROPERTIES FIXTURES_SETUP vtk_forms)
+add_test(NAME python.vtk_forms
+         COMMAND ${Python3_EXECUTABLE} ${CMAKE_CURRENT_SOURCE_DIR}/python/check_vtk_forms.py
+                 ${MORAINE_TEST_OUT}/vtk_forms ${MORAINE_DECK_DIR}/vtk_forms.lua)
+set_tests_properties(python.vtk_forms PROPERTIES LABELS python FIXTURES_REQUIRED vtk_forms)
 
 # ---- SIGKILL in the middle of writing (must-show 5) ----------------------------
 # 14 kills at random moments of a run writing 11 MB .vtp files, .vti, .pvd, an

@@ -1,6 +1,7 @@
 /* moraine: what a simulation writes while it runs (an observer of mrn_run).
  *
  *   OUTDIR/<vtk>_NNNNNN.vtp + OUTDIR/<vtk>.pvd   particle snapshots (ParaView)
+ *   or OUTDIR/<vtk>_NNNNNN.vtkhdf + OUTDIR/<vtk>.vtkhdf.series
  *   OUTDIR/<diagnostics>                          CSV of the diagnostics
  * Every path is relative to the output directory (the -o option). */
 #ifndef MRN_IO_OUTPUT_H
@@ -26,6 +27,9 @@ typedef struct mrn_output {
   long vtk_last_step;      /* step of the last snapshot (-1: none yet) */
   int vtk_count;
   mrn_vtk_encoding encoding;
+  int vtk_compress; /* 0: raw; 1..9: zlib level of the snapshots */
+  int vtk_float32;  /* Float64 arrays and points stored as Float32 */
+  int vtkhdf;       /* .vtkhdf files in a .vtkhdf.series instead of .vtp in a .pvd */
   int nfields;
   /* names listed by the deck: built-in fields or fields it registered
    * (checked when a snapshot is written); none: every field */
@@ -40,6 +44,7 @@ typedef struct mrn_output {
    * written at the CSV's rows; disabled when series_name is NULL */
   char *series_name;
   mrn_series *series;
+  char *run_name, *deck_path, *deck_text; /* its root attributes, or NULL */
 
   /* diagnostics CSV; disabled when csv_name is NULL */
   char *csv_name;
@@ -58,9 +63,17 @@ int mrn_output_free(mrn_output *o);
 /* (re)configure the VTK series; name NULL disables it. A new name starts a new .pvd */
 int mrn_output_set_vtk(mrn_output *o, const char *name, double every_time, long every_steps);
 int mrn_output_set_csv(mrn_output *o, const char *name, long every);
+/* .vtkhdf snapshots (vtkhdf set) or .vtp ones; a change starts the series
+ * afresh, as a new name does */
+void mrn_output_set_vtkhdf(mrn_output *o, int vtkhdf);
 int mrn_output_set_series(mrn_output *o, const char *name);
-/* a value for the next row of the HDF5 series (a new name adds a column) */
-int mrn_output_record(mrn_output *o, const char *name, double value);
+/* The run's name, its deck's path and text for the HDF5 series' root
+ * attributes (mrn_series_describe), now or when the series opens; NULL:
+ * none. 0 or MRN_ERR_IO. */
+int mrn_output_describe(mrn_output *o, const char *run_name, const char *deck_path, const char *deck_text);
+/* a value for the next row of the HDF5 series (a new name adds a column);
+ * dim: the simulation's, for the units of the diagnostics columns */
+int mrn_output_record(mrn_output *o, int dim, const char *name, double value);
 
 /* forget which CSV files this process has written (they are appended to
  * when a second output names the same file); called when a deck ends */

@@ -44,7 +44,7 @@ struct mrn_series {
   int dirty;                   /* appended or declared since the last publication */
   double last_end, last_cost;  /* wall clock at the end of the last publication, and its cost (s) */
   int broken;                  /* a publication failed: no more writes */
-  char *run_name, *deck;       /* root attributes, or NULL */
+  char *run_name, *deck_path, *deck; /* root attributes, or NULL */
 };
 
 static double wall_seconds(void) {
@@ -130,6 +130,7 @@ static void *build_image(mrn_h5w *w, const mrn_series *s, size_t *size) {
   mrn_h5w_string(w, w->file, "description",
                  "time series: one entry per row in every dataset; NaN where a column had no value");
   if (s->run_name) mrn_h5w_string(w, w->file, "run_name", s->run_name);
+  if (s->deck_path) mrn_h5w_string(w, w->file, "deck_path", s->deck_path);
   if (s->deck) mrn_h5w_string(w, w->file, "deck", s->deck);
   const hsize_t rows = (hsize_t)s->rows;
   hid_t time = write_dataset(w, w->file, "time", H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, rows, s->time, "s",
@@ -193,6 +194,7 @@ static void release(mrn_series *s) {
   free(s->step);
   free(s->path);
   free(s->run_name);
+  free(s->deck_path);
   free(s->deck);
   free(s);
 }
@@ -336,15 +338,20 @@ int mrn_series_flush(mrn_series *s) {
   return publish_quietly(s);
 }
 
-int mrn_series_describe(mrn_series *s, const char *run_name, const char *deck) {
-  char *n = run_name ? strdup(run_name) : NULL, *d = deck ? strdup(deck) : NULL;
-  if ((run_name && !n) || (deck && !d)) {
-    free(n), free(d);
-    return mrn_error_code(MRN_ERR_IO, "cannot write '%s': out of memory", s->path);
-  }
-  free(s->run_name), free(s->deck);
-  s->run_name = n, s->deck = d;
+/* a copy of text into *slot (NULL: none); 0, or -1 out of memory */
+static int replace_text(char **slot, const char *text) {
+  char *copy = text ? strdup(text) : NULL;
+  if (text && !copy) return -1;
+  free(*slot);
+  *slot = copy;
+  return 0;
+}
+
+int mrn_series_describe(mrn_series *s, const char *run_name, const char *deck_path, const char *deck) {
   s->dirty = 1;
+  if (replace_text(&s->run_name, run_name) != 0 || replace_text(&s->deck_path, deck_path) != 0 ||
+      replace_text(&s->deck, deck) != 0)
+    return mrn_error_code(MRN_ERR_IO, "cannot write '%s': out of memory", s->path);
   return MRN_OK;
 }
 

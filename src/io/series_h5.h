@@ -16,7 +16,8 @@
  * Every dataset carries `units` and `description` attributes (fixed-length
  * UTF-8 strings; h5py gives bytes, .decode() gives the text); the root group
  * carries `format` = "moraine-series", `version`, `moraine_version`,
- * `description`, and `run_name` and `deck` when given (mrn_series_describe). The datasets are chunked (512 rows) with an unlimited
+ * `description`, and `run_name`, `deck_path` and `deck` when given
+ * (mrn_series_describe). The datasets are chunked (512 rows) with an unlimited
  * maximum size and a fill value of NaN.
  *
  * Rows are staged and then appended: mrn_series_set() gives a value for the
@@ -73,10 +74,10 @@ int mrn_series_append(mrn_series *s, long step, double time);
  * appended row is then on disk. 0 or MRN_ERR_IO. */
 int mrn_series_flush(mrn_series *s);
 
-/* The run's name and the text of its deck, stored as the root attributes
- * `run_name` and `deck` from the next rewrite on (NULL: none). 0 or
- * MRN_ERR_IO (out of memory). */
-int mrn_series_describe(mrn_series *s, const char *run_name, const char *deck);
+/* The run's name, its deck's path and the deck's text, stored as the root
+ * attributes `run_name`, `deck_path` and `deck` from the next rewrite on
+ * (NULL: none). 0 or MRN_ERR_IO (out of memory). */
+int mrn_series_describe(mrn_series *s, const char *run_name, const char *deck_path, const char *deck);
 
 /* rows appended so far; columns and their names in order */
 long mrn_series_rows(const mrn_series *s);

@@ -401,10 +401,42 @@ void mrn_pvd_free(mrn_pvd *pvd) {
   memset(pvd, 0, sizeof *pvd);
 }
 
+void mrn_file_series_init(mrn_pvd *pvd, const char *path) {
+  mrn_pvd_init(pvd, path);
+  pvd->json = 1;
+}
+
+/* a JSON string: quotes, backslashes and control characters escaped */
+static void json_string(mrn_xml_writer *w, const char *s) {
+  mrn_xw_printf(w, "\"");
+  for (const unsigned char *c = (const unsigned char *)s; *c; c++) {
+    if (*c == '"' || *c == '\\') mrn_xw_printf(w, "\\%c", *c);
+    else if (*c < 0x20) mrn_xw_printf(w, "\\u%04x", *c);
+    else mrn_xw_bytes(w, c, 1);
+  }
+  mrn_xw_printf(w, "\"");
+}
+
+/* ParaView's file-series reader (vtkFileSeriesReader) takes the time of
+ * each file from this list */
+static void series_json(mrn_xml_writer *w, const mrn_pvd *pvd) {
+  mrn_xw_printf(w, "{\n  \"file-series-version\": \"1.0\",\n  \"files\": [");
+  for (int i = 0; i < pvd->count; i++) {
+    mrn_xw_printf(w, "%s\n    { \"name\": ", i ? "," : "");
+    json_string(w, pvd->files[i]);
+    mrn_xw_printf(w, ", \"time\": %.17g }", pvd->times[i]);
+  }
+  mrn_xw_printf(w, "\n  ]\n}\n");
+}
+
 static int pvd_rewrite(const mrn_pvd *pvd) {
   mrn_xml_writer w;
   int rc = mrn_xw_open(&w, pvd->path);
   if (rc != MRN_OK) return rc;
+  if (pvd->json) {
+    series_json(&w, pvd);
+    return mrn_xw_finish(&w);
+  }
   mrn_xw_printf(&w, "<?xml version=\"1.0\"?>\n");
   mrn_xw_printf(&w, "<VTKFile type=\"Collection\" version=\"1.0\" byte_order=\"LittleEndian\" header_type=\"UInt64\">\n");
   mrn_xw_printf(&w, "  <Collection>\n");

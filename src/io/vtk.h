@@ -4,8 +4,10 @@
  *    point-data arrays in appended binary form, raw or zlib-compressed
  *    (header_type UInt64, so arrays larger than 4 GiB are fine), in Float64
  *    or Float32, or ASCII for debugging; the model time as TimeValue;
- *  - collections (.pvd) listing each file with its model time, rewritten
- *    atomically after every new file so ParaView can open a running series.
+ *  - collections listing each file with its model time, rewritten
+ *    atomically after every new file so ParaView can open a running series:
+ *    a .pvd (VTK XML), or ParaView's JSON file series (NAME.vtkhdf.series)
+ *    for files a .pvd cannot list (VTK 9.1 reads only XML files from one).
  * All files are written through mrn_atomic_file (temporary name + rename). */
 #ifndef MRN_IO_VTK_H
 #define MRN_IO_VTK_H
@@ -64,15 +66,18 @@ int mrn_vtp_write_with(const char *path, size_t npoints, const double *points, c
 int mrn_vtp_write(const char *path, size_t npoints, const double *points, const mrn_vtk_array *arrays,
                   int narrays, mrn_vtk_encoding encoding);
 
-/* a .pvd collection kept in memory and rewritten on each addition */
+/* a collection kept in memory and rewritten on each addition */
 typedef struct mrn_pvd {
   char *path;
+  int json; /* ParaView's file series: {"file-series-version": "1.0", "files": [{"name", "time"}]} */
   int count, cap;
   double *times;
   char **files; /* relative to the .pvd's directory */
 } mrn_pvd;
 
 void mrn_pvd_init(mrn_pvd *pvd, const char *path);
+/* the same collection as a ParaView .series JSON file */
+void mrn_file_series_init(mrn_pvd *pvd, const char *path);
 void mrn_pvd_free(mrn_pvd *pvd);
 /* append (time, file) and rewrite the collection atomically; 0 or MRN_ERR_IO */
 int mrn_pvd_add(mrn_pvd *pvd, double time, const char *relative_file);

@@ -11,6 +11,9 @@
 #define MRN_LUA_SIM "moraine.simulation"
 #define MRN_LUA_MATERIAL "moraine.material"
 #define MRN_LUA_REGION "moraine.region"
+/* registry key of the path of the deck that runs (absent when the module is
+ * used without moraine's runner) */
+#define MRN_LUA_DECK_KEY "moraine.deck"
 
 /* Engine callbacks into Lua (region predicates, hooks, dt functions) run on
  * the Lua thread that called into the engine; the binding records it here

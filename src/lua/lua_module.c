@@ -207,6 +207,8 @@ int mrn_lua_run_deck(const char *path, const mrn_deck_options *opt) {
     lua_getglobal(L, "mpm");
     lua_pushstring(L, path);
     lua_setfield(L, -2, "deck");
+    lua_pushstring(L, path); /* for the outputs' records, whatever the deck does to mpm.deck */
+    lua_setfield(L, LUA_REGISTRYINDEX, MRN_LUA_DECK_KEY);
     const char *slash = strrchr(path, '/');
     if (slash) lua_pushlstring(L, path, (size_t)(slash - path));
     else lua_pushstring(L, ".");

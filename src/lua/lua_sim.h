@@ -62,6 +62,10 @@ void mrn_lua_push_vector(lua_State *L, const double *v, int n);
 
 /* ---- readers shared between the files */
 
+/* the simulation's name and the deck's path and text into its HDF5 series'
+ * attributes (lua_sim_config.c) */
+void mrn_lua_describe_run(lua_State *L, const char *where, sim_box *b);
+
 /* output = {vtk, every, every_steps, fields, format, grid} at idx (lua_sim_config.c) */
 void mrn_lua_read_output(lua_State *L, int idx, const char *where, sim_box *b);
 /* on_leave = "stop" | "delete" in the table at idx (absent: unchanged) */

@@ -91,6 +91,7 @@ int l_load(lua_State *L) {
       mrn_sim_set_sort_every(b->sim, mrn_lua_get_integer(L, 2, where, load_specs, MRN_COUNT(load_specs), "sort_every"));
   }
   mrn_lua_check_outputs(L, where, &b->out, b->name);
+  mrn_lua_describe_run(L, where, b);
   lua_pushvalue(L, self);
   return 1;
 }

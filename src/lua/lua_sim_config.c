@@ -2,6 +2,7 @@
  * and the output options it shares with run{}, output() and mpm.load(). */
 #include <math.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include "core/error.h"
@@ -48,15 +49,36 @@ static const mrn_spec grid_specs[] = {
     {"cell", MRN_SPEC_NUMBER, 1, 0, 0, HUGE_VAL, 1, 0, "m", "cell size (square/cubic cells)", NULL},
 };
 
-static const char *const format_choices[] = {"binary", "ascii", NULL};
+static const char *const format_choices[] = {"binary", "ascii", "vtkhdf", NULL};
 static const mrn_spec output_specs[] = {
-    {"vtk", MRN_SPEC_ANY, 0, 0, 0, 0, 0, 0, NULL, "series name (files <vtk>_NNNNNN.vtp and <vtk>.pvd), or false", NULL},
+    {"vtk", MRN_SPEC_ANY, 0, 0, 0, 0, 0, 0, NULL,
+     "series name (files <vtk>_NNNNNN.vtp and <vtk>.pvd, or .vtkhdf and .vtkhdf.series), or false", NULL},
     {"every", MRN_SPEC_NUMBER, 0, 0, 0, HUGE_VAL, 1, 0, "s", "write every this much model time", NULL},
     {"every_steps", MRN_SPEC_INTEGER, 0, 0, 1, 1e12, 0, 0, "steps", "write every N steps", NULL},
     {"fields", MRN_SPEC_TABLE, 0, 0, 0, 0, 0, 0, NULL, "list of particle fields (default all)", NULL},
-    {"format", MRN_SPEC_STRING, 0, 0, 0, 0, 0, 0, NULL, "binary (default) or ascii", format_choices},
+    {"format", MRN_SPEC_STRING, 0, 0, 0, 0, 0, 0, NULL,
+     "binary (.vtp, default), ascii (.vtp as text) or vtkhdf (.vtkhdf files in a .vtkhdf.series)", format_choices},
+    {"compress", MRN_SPEC_INTEGER, 0, 0, 0, 9, 0, 0, "", "zlib level of the particle files, 1 to 9 (0: raw, default)",
+     NULL},
+    {"float32", MRN_SPEC_BOOLEAN, 0, 0, 0, 0, 0, 0, NULL,
+     "store the Float64 fields and the positions as Float32 (default false)", NULL},
     {"grid", MRN_SPEC_BOOLEAN, 0, 0, 0, 0, 0, 0, NULL, "also write the grid (.vti: nodal mass, velocity, force)", NULL},
 };
+
+#define OUTPUT_SPECS output_specs, MRN_COUNT(output_specs)
+
+/* format, compress, float32 and grid: how each snapshot is written (absent: unchanged) */
+static void read_vtk_form(lua_State *L, int idx, const char *sub, mrn_output *o) {
+  if (mrn_lua_has(L, idx, "grid")) o->grid_vtk = mrn_lua_get_boolean(L, idx, sub, OUTPUT_SPECS, "grid", 0);
+  const char *format = mrn_lua_get_string(L, idx, sub, OUTPUT_SPECS, "format");
+  if (format) {
+    /* the grid's .vti files stay binary beside .vtkhdf particle files */
+    o->encoding = strcmp(format, "ascii") == 0 ? MRN_VTK_ASCII : MRN_VTK_BINARY;
+    mrn_output_set_vtkhdf(o, strcmp(format, "vtkhdf") == 0);
+  }
+  if (mrn_lua_has(L, idx, "compress")) o->vtk_compress = (int)mrn_lua_get_integer(L, idx, sub, OUTPUT_SPECS, "compress");
+  if (mrn_lua_has(L, idx, "float32")) o->vtk_float32 = mrn_lua_get_boolean(L, idx, sub, OUTPUT_SPECS, "float32", 0);
+}
 
 void mrn_lua_read_output(lua_State *L, int idx, const char *where, sim_box *b) {
   idx = lua_absindex(L, idx);
@@ -79,10 +101,7 @@ void mrn_lua_read_output(lua_State *L, int idx, const char *where, sim_box *b) {
   else if (o->vtk_name) mrn_output_set_vtk(o, o->vtk_name, every > 0 ? every : o->vtk_every_time,
                                            every_steps > 0 ? every_steps : o->vtk_every_steps);
   lua_pop(L, 1);
-  if (mrn_lua_has(L, idx, "grid"))
-    o->grid_vtk = mrn_lua_get_boolean(L, idx, sub, output_specs, MRN_COUNT(output_specs), "grid", 0);
-  const char *format = mrn_lua_get_string(L, idx, sub, output_specs, MRN_COUNT(output_specs), "format");
-  if (format) o->encoding = strcmp(format, "ascii") == 0 ? MRN_VTK_ASCII : MRN_VTK_BINARY;
+  read_vtk_form(L, idx, sub, o);
   if (mrn_lua_has(L, idx, "fields")) {
     lua_getfield(L, idx, "fields");
     int n = (int)luaL_len(L, -1);
@@ -100,6 +119,44 @@ void mrn_lua_read_output(lua_State *L, int idx, const char *where, sim_box *b) {
     }
     lua_pop(L, 1);
   }
+}
+
+/* the whole text of the file at path, or NULL (free it) */
+static char *read_text(const char *path) {
+  FILE *f = fopen(path, "rb");
+  if (!f) return NULL;
+  char *text = NULL;
+  size_t len = 0, cap = 0;
+  for (;;) {
+    if (cap - len < 4096) {
+      char *grown = realloc(text, cap = 2 * cap + 4096);
+      if (!grown) break;
+      text = grown;
+    }
+    size_t n = fread(text + len, 1, cap - len - 1, f);
+    len += n;
+    if (n == 0) {
+      text[len] = '\0';
+      if (ferror(f)) break;
+      fclose(f);
+      return text;
+    }
+  }
+  fclose(f);
+  free(text);
+  return NULL;
+}
+
+void mrn_lua_describe_run(lua_State *L, const char *where, sim_box *b) {
+  lua_getfield(L, LUA_REGISTRYINDEX, MRN_LUA_DECK_KEY);
+  const char *deck = lua_tostring(L, -1);
+  /* read again here: the deck is loaded before any simulation exists */
+  char *text = deck ? read_text(deck) : NULL, *full = deck ? realpath(deck, NULL) : NULL;
+  int rc = mrn_output_describe(&b->out, b->name, full ? full : deck, text);
+  free(text);
+  free(full);
+  lua_pop(L, 1);
+  if (rc != MRN_OK) mrn_lua_engine_error(L, where);
 }
 
 /* on_leave = "stop" | "delete" in the table at idx (absent: unchanged) */
@@ -217,6 +274,7 @@ int l_simulation(lua_State *L) {
     lua_pop(L, 1);
   }
   mrn_lua_check_outputs(L, where, &b->out, b->name);
+  mrn_lua_describe_run(L, where, b);
   read_integrator(L, where, self);
   lua_pushvalue(L, self);
   return 1;

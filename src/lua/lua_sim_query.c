@@ -110,7 +110,7 @@ int l_sim_record(lua_State *L) {
   const char *name = luaL_checkstring(L, 2);
   double v = luaL_checknumber(L, 3);
   if (!name[0] || strchr(name, '/')) mrn_lua_error(L, "record()", "'%s' is not a valid series name", name);
-  if (mrn_output_record(&b->out, name, v) != MRN_OK) mrn_lua_engine_output_error(L, "record()");
+  if (mrn_output_record(&b->out, b->sim->dim, name, v) != MRN_OK) mrn_lua_engine_output_error(L, "record()");
   return 0;
 }
 

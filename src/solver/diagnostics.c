@@ -1,5 +1,7 @@
 #include "solver/diagnostics.h"
 
+#include <string.h>
+
 typedef struct column {
   const char *name;
   const char *unit;
@@ -17,6 +19,16 @@ enum { COLUMN_COUNT = sizeof columns / sizeof columns[0] };
 int mrn_diagnostics_column_count(void) { return COLUMN_COUNT; }
 const char *mrn_diagnostics_column_name(int i) { return columns[i].name; }
 const char *mrn_diagnostics_column_unit(int i) { return columns[i].unit; }
+
+/* a 2D simulation is a slab of unit thickness: its extensive quantities
+ * (energies, masses, momenta) are per metre of it, the others as in 3D */
+const char *mrn_diagnostics_column_unit_in(int i, int dim) {
+  static const char *const per_metre[][2] = {
+      {"J", "J/m"}, {"kg", "kg/m"}, {"kg m/s", "kg m/s/m"}, {"kg m^2/s", "kg m^2/s/m"}};
+  for (int k = 0; dim == 2 && k < (int)(sizeof per_metre / sizeof per_metre[0]); k++)
+    if (strcmp(columns[i].unit, per_metre[k][0]) == 0) return per_metre[k][1];
+  return columns[i].unit;
+}
 
 void mrn_diagnostics_values(const mrn_diagnostics *d, double *v) {
   int k = 0;

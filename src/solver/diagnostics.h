@@ -26,6 +26,9 @@ typedef struct mrn_diagnostics {
 int mrn_diagnostics_column_count(void);
 const char *mrn_diagnostics_column_name(int i);
 const char *mrn_diagnostics_column_unit(int i);
+/* the unit in a `dim`-dimensional simulation: per metre of thickness in 2D
+ * for the extensive columns ("J/m", "kg/m", "kg m/s/m", "kg m^2/s/m") */
+const char *mrn_diagnostics_column_unit_in(int i, int dim);
 void mrn_diagnostics_values(const mrn_diagnostics *d, double *values);
 
 #endif

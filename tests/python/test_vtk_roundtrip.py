@@ -5,6 +5,7 @@
 
 The expected values mirror make_sample() in tests/unit/test_vtk.c."""
 
+import json
 import os
 import sys
 
@@ -95,6 +96,26 @@ def check_vtkhdf(d, exp):
     check(t == 0.125, f"vtkhdf: TimeValue {t}")
     points, arrays, t = vtk_read.read_vtkhdf(os.path.join(d, "roundtrip_empty.vtkhdf"))
     check(points.shape == (0, 3) and t is None, "vtkhdf: an empty file, no time")
+    # compressed (shuffle + deflate) and Float32
+    points, arrays, t = vtk_read.read_vtkhdf(os.path.join(d, "roundtrip_zlib_f32.vtkhdf"))
+    check(points.dtype == np.float32 and np.array_equal(points, exp["points"].astype(np.float32)),
+          "vtkhdf zlib f32: Float32 points")
+    for k in ("stress", "mass"):
+        a = arrays.get(k)
+        check(a is not None and a.dtype == np.float32 and np.array_equal(a, exp[k].astype(np.float32)),
+              f"vtkhdf zlib f32: {k}")
+    for k in ("id", "material"):
+        check(np.array_equal(arrays.get(k), exp[k]) and arrays[k].dtype == exp[k].dtype, f"vtkhdf zlib f32: {k} kept")
+    check(t == 0.25, f"vtkhdf zlib f32: TimeValue {t}")
+    points, arrays, t = vtk_read.read_vtkhdf(os.path.join(d, "roundtrip_zlib_empty.vtkhdf"))
+    check(points.shape == (0, 3) and all(a.shape[0] == 0 for a in arrays.values()), "vtkhdf zlib: an empty file")
+    # ParaView's file series: JSON, names escaped, times exact
+    with open(os.path.join(d, "roundtrip.vtkhdf.series")) as f:
+        doc = json.load(f)
+    check(doc == {"file-series-version": "1.0",
+                  "files": [{"name": "roundtrip.vtkhdf", "time": 0.125},
+                            {"name": "roundtrip_zlib_f32.vtkhdf", "time": 0.25},
+                            {"name": 'odd "name"\\\t.vtkhdf', "time": 1e-300}]}, f"vtkhdf.series: {doc}")
 
 
 def main():

@@ -233,6 +233,32 @@ static int write_big(const char *dir) {
   return rc;
 }
 
+/* VTKHDF files in the plain and the compressed Float32 forms, and a
+ * ParaView file series listing them under names JSON must escape */
+static int write_vtkhdf(const char *dir, const sample *s) {
+  const struct { const char *name; mrn_vtp_options o; size_t n; } forms[] = {
+      {"roundtrip.vtkhdf", {.has_time = 1, .time = 0.125}, NPTS},
+      {"roundtrip_empty.vtkhdf", {0}, 0},
+      {"roundtrip_zlib_f32.vtkhdf", {.compress = 6, .float32 = 1, .has_time = 1, .time = 0.25}, NPTS},
+      {"roundtrip_zlib_empty.vtkhdf", {.compress = 6}, 0},
+  };
+  int rc = MRN_OK;
+  for (size_t k = 0; k < sizeof forms / sizeof forms[0] && rc == MRN_OK; k++) {
+    char *path = mrn_path_join(dir, forms[k].name);
+    rc = mrn_vtkhdf_write(path, forms[k].n, forms[k].n ? s->points : NULL, s->arrays, 4, &forms[k].o);
+    free(path);
+  }
+  char *series_path = mrn_path_join(dir, "roundtrip.vtkhdf.series");
+  mrn_pvd series;
+  mrn_file_series_init(&series, series_path);
+  if (rc == MRN_OK) rc = mrn_pvd_add(&series, 0.125, "roundtrip.vtkhdf");
+  if (rc == MRN_OK) rc = mrn_pvd_add(&series, 0.25, "roundtrip_zlib_f32.vtkhdf");
+  if (rc == MRN_OK) rc = mrn_pvd_add(&series, 1e-300, "odd \"name\"\\\t.vtkhdf");
+  mrn_pvd_free(&series);
+  free(series_path);
+  return rc;
+}
+
 /* files for the Python check with the real VTK reader */
 static int write_roundtrip(const char *dir, const sample *s) {
   if (mrn_mkdir_p(dir) != MRN_OK) return MRN_ERR_IO;
@@ -258,10 +284,7 @@ static int write_roundtrip(const char *dir, const sample *s) {
     free(path);
   }
   if (rc == MRN_OK) rc = write_big(dir);
-  char *hdf = mrn_path_join(dir, "roundtrip.vtkhdf"), *hdf_empty = mrn_path_join(dir, "roundtrip_empty.vtkhdf");
-  if (rc == MRN_OK) rc = mrn_vtkhdf_write(hdf, NPTS, s->points, s->arrays, 4, 1, 0.125);
-  if (rc == MRN_OK) rc = mrn_vtkhdf_write(hdf_empty, 0, NULL, s->arrays, 4, 0, 0.0);
-  free(hdf), free(hdf_empty);
+  if (rc == MRN_OK) rc = write_vtkhdf(dir, s);
   mrn_pvd pvd;
   mrn_pvd_init(&pvd, pvd_path);
   if (rc == MRN_OK) rc = mrn_pvd_add(&pvd, 0.0, "roundtrip.vtp");
