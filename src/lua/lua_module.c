@@ -104,29 +104,6 @@ static void push_executable(lua_State *L) {
   }
 }
 
-static int l_param(lua_State *L) {
-  const char *name = luaL_checkstring(L, 1);
-  int has_default = !lua_isnone(L, 2);
-  lua_settop(L, 2);
-  lua_getfield(L, LUA_REGISTRYINDEX, "moraine.args");
-  lua_getfield(L, -1, name);
-  if (lua_isnil(L, -1)) {
-    if (!has_default) return luaL_error(L, "param('%s'): not given with --set and no default", name);
-    lua_settop(L, 2);
-    return 1;
-  }
-  /* convert to the default's type when it is a number or boolean */
-  if (lua_type(L, 2) == LUA_TNUMBER) {
-    if (!lua_isnumber(L, -1))
-      return luaL_error(L, "param('%s'): --set %s=%s is not a number", name, name, lua_tostring(L, -1));
-    lua_pushnumber(L, lua_tonumber(L, -1));
-  } else if (lua_type(L, 2) == LUA_TBOOLEAN) {
-    const char *s = lua_tostring(L, -1);
-    lua_pushboolean(L, strcmp(s, "true") == 0 || strcmp(s, "1") == 0 || strcmp(s, "yes") == 0);
-  }
-  return 1;
-}
-
 /* registry[key] = the value on top, unless it is set already (pops it) */
 static void registry_default(lua_State *L, const char *key) {
   if (lua_getfield(L, LUA_REGISTRYINDEX, key) == LUA_TNIL) {
@@ -234,6 +211,47 @@ static int open_protected(lua_State *L) {
   return 0;
 }
 
+/* The deck as a function on the stack: the file at path, or standard input
+ * for "-" (its text kept in the registry for the provenance). With --safe
+ * it too must be source text. A status of lua_load. */
+static int load_deck(lua_State *L, const char *path, const mrn_deck_options *opt) {
+  const char *mode = opt && opt->safe ? "t" : NULL;
+  if (strcmp(path, "-") != 0) return mode ? mrn_lua_load_text(L, path) : luaL_loadfile(L, path);
+  luaL_Buffer b;
+  luaL_buffinit(L, &b);
+  size_t got;
+  while ((got = fread(luaL_prepbuffer(&b), 1, LUAL_BUFFERSIZE, stdin)) > 0) luaL_addsize(&b, got);
+  luaL_pushresult(&b);
+  if (ferror(stdin)) {
+    lua_pushfstring(L, "cannot read the deck from standard input: %s", strerror(errno));
+    return LUA_ERRFILE;
+  }
+  lua_pushvalue(L, -1);
+  lua_setfield(L, LUA_REGISTRYINDEX, "moraine.deck_text");
+  size_t len;
+  const char *text = lua_tolstring(L, -1, &len);
+  /* a first line "#!..." is skipped, as luaL_loadfile does; its newline stays, so the line numbers do */
+  size_t skip = text[0] == '#' ? strcspn(text, "\n") : 0;
+  int status = luaL_loadbufferx(L, text + skip, len - skip, "=stdin", mode);
+  if (status != LUA_OK && mode) { /* Lua's refusal of a binary chunk names no file */
+    lua_pushfstring(L, "stdin: %s", lua_tostring(L, -1));
+    lua_remove(L, -2);
+  }
+  lua_remove(L, -2);
+  return status;
+}
+
+/* the deck, the command line and the version beside the outputs (io/provenance.h) */
+static int write_provenance(lua_State *L, const char *path, const mrn_deck_options *opt) {
+  if (strcmp(path, "-") != 0) return mrn_provenance_write(opt->outdir, path, opt->argc, opt->argv, opt->sets, opt->nsets);
+  lua_getfield(L, LUA_REGISTRYINDEX, "moraine.deck_text");
+  size_t len;
+  const char *text = lua_tolstring(L, -1, &len);
+  int rc = mrn_provenance_write_text(opt->outdir, text, len, opt->argc, opt->argv, opt->sets, opt->nsets);
+  lua_pop(L, 1);
+  return rc;
+}
+
 int mrn_lua_run_deck(const char *path, const mrn_deck_options *opt) {
   lua_State *L = luaL_newstate();
   if (!L) {
@@ -247,13 +265,11 @@ int mrn_lua_run_deck(const char *path, const mrn_deck_options *opt) {
   lua_pushcfunction(L, open_protected);
   lua_pushlightuserdata(L, (void *)opt);
   int status = lua_pcall(L, 1, 0, handler);
-  /* with --safe the deck too must be source text */
-  if (status == LUA_OK) status = opt && opt->safe ? mrn_lua_load_text(L, path) : luaL_loadfile(L, path);
+  if (status == LUA_OK) status = load_deck(L, path, opt);
   /* provenance: the deck, the command line and the version beside the
    * outputs; a run whose record cannot be written is not started */
   int rc = 0;
-  if (status == LUA_OK && opt && opt->outdir &&
-      mrn_provenance_write(opt->outdir, path, opt->argc, opt->argv, opt->sets, opt->nsets) != MRN_OK) {
+  if (status == LUA_OK && opt && opt->outdir && write_provenance(L, path, opt) != MRN_OK) {
     fprintf(stderr, "moraine: %s\n", mrn_error_message());
     rc = MRN_EXIT_OUTPUT;
   }
@@ -268,6 +284,7 @@ int mrn_lua_run_deck(const char *path, const mrn_deck_options *opt) {
     lua_setfield(L, -2, "deck_dir");
     lua_pop(L, 1);
     status = lua_pcall(L, 0, 0, handler);
+    if (status == LUA_OK && opt) mrn_lua_warn_unused_sets(L, opt->sets, opt->nsets);
   }
   if (status != LUA_OK) {
     fprintf(stderr, "moraine: %s\n", lua_tostring(L, -1));
