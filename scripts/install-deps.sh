@@ -5,7 +5,8 @@ set -euo pipefail
 
 packages=(
   build-essential cmake pkg-config git
-  liblua5.4-dev lua5.4            # the embedded Lua 5.4 (C API) and a stand-alone interpreter
+  help2man                        # the man page, made from moraine --help at build time
+  liblua5.4-dev lua5.4            # the embedded Lua 5.4 (C API) and a stock interpreter (the C module's test)
   libhdf5-dev hdf5-tools          # HDF5 (checkpoints, time series) and h5dump
   zlib1g-dev                      # CRC-32 of the checkpoint checksums
   libsuitesparse-dev              # UMFPACK sparse LU for the implicit integrator

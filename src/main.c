@@ -1,9 +1,15 @@
 /* moraine: the command line.
  *
- *   moraine DECK.lua [-o OUTDIR] [--set NAME=VALUE ...] [--threads N] [--quiet] [--safe]
+ *   moraine [OPTION]... DECK.lua        (DECK "-": the deck on stdin)
  *   moraine --help | --version | --list-options
  *   moraine --sign-checkpoint FILE...
+ *
+ * GNU long options through getopt_long: --output=DIR or --output DIR, any
+ * unambiguous abbreviation, options before or after the deck, "--" ends
+ * them. Every option is one entry of the table `options` below, which also
+ * writes --help (and so the man page help2man makes from it).
  */
+#include <getopt.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -24,42 +30,78 @@
 #include <lauxlib.h>
 #include <lualib.h>
 
-static void usage(FILE *f) {
-  fprintf(f,
-          "usage: moraine DECK.lua [options]\n"
-          "\n"
-          "Runs a Material Point Method simulation described by a Lua deck.\n"
-          "\n"
-          "options:\n"
-          "  -o, --output DIR     directory for every output file (default: out)\n"
-          "  --set NAME=VALUE     a parameter the deck reads with mpm.param(\"NAME\", default);\n"
-          "                       may be repeated\n"
-          "  --threads N          number of OpenMP threads (default: all cores)\n"
-          "  -q, --quiet          no thermo lines, progress bar or information messages\n"
-          "  --ignore-warning ID  silence one kind of warning (or 'all'); may be repeated\n"
-          "  --safe               restrict the deck: no os.execute, io.popen, C modules,\n"
-          "                       binary chunks or debug library, and writes only inside\n"
-          "                       the output directory (what it does not stop: doc/security.md)\n"
-          "  --list-options       print every deck option with its type, default and unit\n"
-          "  --sign-checkpoint FILE...  write the checksum table of checkpoints changed on\n"
-          "                       purpose with another program (h5py) anew (doc/checkpoint-format.md)\n"
-          "  -h, --help           this text\n"
-          "  -v, --version        the version\n"
-          "\n"
-          "Exit status: 0 on success, 1 on any error (the message names the deck file\n"
-          "and line), 2 on a command-line error, 3 when an output file could not be\n"
-          "written (disk full, quota, permission: the message names the file; every\n"
-          "earlier output stays complete), 130 when SIGINT or SIGTERM stopped the run\n"
-          "(after writing a checkpoint; a second signal exits at once).\n"
-          "Documentation (doc/ in the source tree; installed in share/doc/moraine):\n"
-          "  doc/getting-started.md            install, a first deck, outputs, ParaView\n"
-          "  doc/tutorial-column-collapse.md   a complete study step by step\n"
-          "  doc/lua-api.md                    every function, option, default, unit and error\n"
-          "  doc/validation.md                 how moraine compares with the references\n"
-          "  doc/README.md                     the index of all of them\n");
+/* what the command line asks for */
+typedef struct cli {
+  const char *deck;
+  mrn_deck_options opt;
+  const char **sets; /* the NAME=VALUE of every --set */
+  int nsets;
+  int sign;          /* --sign-checkpoint: the operands are checkpoints */
+} cli;
+
+#define GO_ON (-1) /* a parsing step's answer when moraine is not done yet */
+
+/* An option's action, with its value (NULL for an option without one): GO_ON,
+ * or the exit status when moraine is done (an informational option, or 2
+ * with the message printed). */
+typedef int (*option_fn)(cli *c, const char *value);
+
+typedef struct cli_option {
+  const char *name; /* the long name */
+  char short_name;  /* 0: none */
+  const char *arg;  /* the value's name in --help; NULL: the option takes none */
+  option_fn apply;
+  const char *help; /* lines of --help, '\n' between them */
+} cli_option;
+
+static void usage(FILE *f);
+
+static int opt_output(cli *c, const char *value) {
+  c->opt.outdir = value;
+  return GO_ON;
 }
 
-static void list_options(void) {
+static int opt_set(cli *c, const char *value) {
+  if (!strchr(value, '=') || value[0] == '=') {
+    fprintf(stderr, "moraine: --set expects NAME=VALUE, got '%s'\n", value);
+    return 2;
+  }
+  c->sets[c->nsets++] = value;
+  return GO_ON;
+}
+
+static int opt_threads(cli *c, const char *value) {
+  char *end;
+  long n = strtol(value, &end, 10);
+  if (end == value || *end || n < 1 || n > 4096) {
+    fprintf(stderr, "moraine: --threads expects a positive whole number, got '%s'\n", value);
+    return 2;
+  }
+#ifdef _OPENMP
+  omp_set_num_threads((int)n);
+#endif
+  return GO_ON;
+}
+
+static int opt_quiet(cli *c, const char *value) {
+  mrn_log_set_quiet(1);
+  return GO_ON;
+}
+
+static int opt_ignore_warning(cli *c, const char *value) {
+  if (mrn_warning_ignore(value) == MRN_OK) return GO_ON;
+  fprintf(stderr, "moraine: --ignore-warning: %s (known: ", mrn_error_message());
+  for (const char *const *id = mrn_warning_ids(); *id; id++) fprintf(stderr, "%s, ", *id);
+  fprintf(stderr, "all)\n");
+  return 2;
+}
+
+static int opt_safe(cli *c, const char *value) {
+  c->opt.safe = 1;
+  return GO_ON;
+}
+
+static int opt_list_options(cli *c, const char *value) {
   /* the registry fills up as the Lua module opens */
   lua_State *L = luaL_newstate();
   luaL_openlibs(L);
@@ -73,6 +115,78 @@ static void list_options(void) {
       printf("%s\t%s\t%s\t%s\t%s\n", grp->name, s->key, mrn_spec_type_name(s->type), s->unit ? s->unit : "", s->doc);
     }
   }
+  return 0;
+}
+
+static int opt_sign_checkpoint(cli *c, const char *value) {
+  c->sign = 1;
+  return GO_ON;
+}
+
+static int opt_help(cli *c, const char *value) {
+  usage(stdout);
+  return 0;
+}
+
+static int opt_version(cli *c, const char *value) {
+  printf("moraine %s (commit %s)\n", MORAINE_VERSION, MORAINE_GIT_COMMIT);
+  return 0;
+}
+
+static const cli_option options[] = {
+    {"output", 'o', "DIR", opt_output, "directory for every output file (default: out)"},
+    {"set", 0, "NAME=VALUE", opt_set,
+     "a parameter the deck reads with mpm.param(\"NAME\", default);\nmay be repeated; a NAME the deck never "
+     "reads is\nwarned about at the end"},
+    {"threads", 0, "N", opt_threads, "number of OpenMP threads (default: all cores)"},
+    {"quiet", 'q', NULL, opt_quiet, "no thermo lines, progress bar or information messages"},
+    {"ignore-warning", 0, "ID", opt_ignore_warning, "silence one kind of warning (or 'all'); may be repeated"},
+    {"safe", 0, NULL, opt_safe,
+     "restrict the deck: no os.execute, io.popen, C modules,\nbinary chunks or debug library, and writes only inside\n"
+     "the output directory (what it does not stop: doc/security.md)"},
+    {"list-options", 0, NULL, opt_list_options, "print every deck option with its type, default and unit"},
+    {"sign-checkpoint", 0, NULL, opt_sign_checkpoint,
+     "write the checksum table of the checkpoints given in place\nof the deck anew, for files changed on purpose with "
+     "another\nprogram (h5py) (doc/checkpoint-format.md)"},
+    {"help", 'h', NULL, opt_help, "this text"},
+    {"version", 'v', NULL, opt_version, "the version"},
+};
+#define NOPTIONS ((int)(sizeof options / sizeof options[0]))
+
+static void usage(FILE *f) {
+  fprintf(f, "Usage: moraine [OPTION]... DECK.lua\n"
+             "  or:  moraine --sign-checkpoint FILE...\n"
+             "Runs a Material Point Method simulation described by a Lua deck;\n"
+             "DECK '-' reads the deck from standard input.\n"
+             "\n"
+             "Options (a long option's value follows '=' or comes as the next word):\n");
+  for (int i = 0; i < NOPTIONS; i++) {
+    const cli_option *o = &options[i];
+    char head[64], letter[8] = "    "; /* the long names in one column */
+    if (o->short_name) snprintf(letter, sizeof letter, "-%c, ", o->short_name);
+    snprintf(head, sizeof head, "%s--%s%s%s", letter, o->name, o->arg ? " " : "", o->arg ? o->arg : "");
+    fprintf(f, "  %-26s ", head);
+    for (const char *line = o->help; *line;) {
+      size_t n = strcspn(line, "\n");
+      fprintf(f, "%.*s\n", (int)n, line);
+      line += n + (line[n] == '\n');
+      if (*line) fprintf(f, "%29s", "");
+    }
+  }
+  fprintf(f, "\n"
+             "Exit status: 0 on success, 1 on any error (the message names the deck file\n"
+             "and line), 2 on a command-line error, 3 when an output file could not be\n"
+             "written (disk full, quota, permission: the message names the file; every\n"
+             "earlier output stays complete), 130 when SIGINT or SIGTERM stopped the run\n"
+             "(after writing a checkpoint; a second signal exits at once).\n"
+             "\n"
+             "Documentation (doc/ in the source tree; installed in share/doc/moraine):\n"
+             "  doc/getting-started.md            install, a first deck, outputs, ParaView\n"
+             "  doc/tutorial-column-collapse.md   a complete study step by step\n"
+             "  doc/lua-api.md                    every function, option, default, unit and error\n"
+             "  doc/c-api.md                      the engine from C, without Lua\n"
+             "  doc/validation.md                 how moraine compares with the references\n"
+             "  doc/README.md                     the index of all of them\n");
 }
 
 /* --sign-checkpoint FILE...: 0, or 1 when a file could not be signed */
@@ -95,101 +209,96 @@ static int sign_checkpoints(int count, char **files) {
   return rc;
 }
 
-/* what the command line asks for */
-typedef struct cli {
-  const char *deck;
-  mrn_deck_options opt;
-  const char **sets; /* the NAME=VALUE of every --set */
-  int nsets;
-} cli;
-
-#define GO_ON (-1) /* a parsing step's answer when moraine is not done yet */
-
-/* the options that print something and exit: their exit status, or GO_ON for any other */
-static int informational_option(const char *a, int argc, char **argv, int i) {
-  if (!strcmp(a, "-h") || !strcmp(a, "--help")) {
-    usage(stdout);
-    return 0;
+/* getopt_long's tables from `options`: a short option is its letter, a long
+ * one alone is 256 + its index */
+static void getopt_tables(struct option *longs, char *shorts) {
+  char *s = shorts;
+  *s++ = ':'; /* a missing value answers ':', not '?' */
+  for (int i = 0; i < NOPTIONS; i++) {
+    const cli_option *o = &options[i];
+    int val = o->short_name ? o->short_name : 256 + i;
+    longs[i] = (struct option){o->name, o->arg ? required_argument : no_argument, NULL, val};
+    if (o->short_name) {
+      *s++ = o->short_name;
+      if (o->arg) *s++ = ':';
+    }
   }
-  if (!strcmp(a, "-v") || !strcmp(a, "--version")) {
-    printf("moraine %s (commit %s)\n", MORAINE_VERSION, MORAINE_GIT_COMMIT);
-    return 0;
-  }
-  if (!strcmp(a, "--list-options")) {
-    list_options();
-    return 0;
-  }
-  if (!strcmp(a, "--sign-checkpoint")) return sign_checkpoints(argc - i - 1, argv + i + 1);
-  return GO_ON;
+  longs[NOPTIONS] = (struct option){NULL, 0, NULL, 0};
+  *s = '\0';
 }
 
-/* the value of option `a`: GO_ON when valid, else 2 with the message printed */
-static int value_option(const char *a, const char *value, cli *c) {
-  if (!strcmp(a, "-o") || !strcmp(a, "--output")) {
-    c->opt.outdir = value;
-  } else if (!strcmp(a, "--set")) {
-    if (!strchr(value, '=') || value[0] == '=') {
-      fprintf(stderr, "moraine: --set expects NAME=VALUE, got '%s'\n", value);
-      return 2;
-    }
-    c->sets[c->nsets++] = value;
-  } else if (!strcmp(a, "--ignore-warning")) {
-    if (mrn_warning_ignore(value) != MRN_OK) {
-      fprintf(stderr, "moraine: --ignore-warning: %s (known: ", mrn_error_message());
-      for (const char *const *id = mrn_warning_ids(); *id; id++) fprintf(stderr, "%s, ", *id);
-      fprintf(stderr, "all)\n");
-      return 2;
-    }
-  } else { /* --threads */
-    char *end;
-    long n = strtol(value, &end, 10);
-    if (*end || n < 1 || n > 4096) {
-      fprintf(stderr, "moraine: --threads expects a positive whole number, got '%s'\n", value);
-      return 2;
-    }
-#ifdef _OPENMP
-    omp_set_num_threads((int)n);
-#endif
+static const cli_option *option_of(int val) {
+  if (val <= 0) return NULL;
+  if (val >= 256) return &options[val - 256];
+  for (int i = 0; i < NOPTIONS; i++)
+    if (options[i].short_name == val) return &options[i];
+  return NULL;
+}
+
+/* an unknown or ambiguous long option `word` (--NAME or --NAME=VALUE): exit status 2 */
+static int unknown_long(const char *word) {
+  const char *names[NOPTIONS + 1];
+  char given[64], matches[256] = "";
+  snprintf(given, sizeof given, "%.*s", (int)strcspn(word + 2, "="), word + 2);
+  int nmatch = 0;
+  for (int i = 0; i < NOPTIONS; i++) {
+    names[i] = options[i].name;
+    if (!strncmp(names[i], given, strlen(given)) && ++nmatch)
+      snprintf(matches + strlen(matches), sizeof matches - strlen(matches), "%s--%s", nmatch > 1 ? ", " : "", names[i]);
   }
-  return GO_ON;
+  names[NOPTIONS] = NULL;
+  if (nmatch > 1) {
+    fprintf(stderr, "moraine: option '%s' is ambiguous: %s\n", word, matches);
+  } else {
+    const char *near = mrn_suggest_from(names, given);
+    char hint[96] = "";
+    if (near) snprintf(hint, sizeof hint, " (did you mean '--%s'?)", near);
+    fprintf(stderr, "moraine: unknown option '%s'%s (see moraine --help)\n", word, hint);
+  }
+  return 2;
 }
 
-static int takes_value(const char *a) {
-  return !strcmp(a, "-o") || !strcmp(a, "--output") || !strcmp(a, "--set") || !strcmp(a, "--ignore-warning") ||
-         !strcmp(a, "--threads");
+/* the message of what getopt_long refused in `word`: exit status 2 */
+static int refused(int answer, const char *word) {
+  const cli_option *o = option_of(optopt);
+  char letter[3] = {'-', (char)optopt, '\0'}; /* a short option, which may sit inside a cluster such as -qx */
+  const int is_long = !strncmp(word, "--", 2);
+  if (answer == ':') {
+    fprintf(stderr, "moraine: option '%s' needs a value (see moraine --help)\n", is_long ? word : letter);
+  } else if (is_long) {
+    if (!o) return unknown_long(word);
+    fprintf(stderr, "moraine: option '--%s' takes no value, got '%s'\n", o->name, word);
+  } else {
+    fprintf(stderr, "moraine: unknown option '%s' (see moraine --help)\n", letter);
+  }
+  return 2;
 }
 
-/* The arguments in order, each option applied as it comes. GO_ON, or the
- * exit status when moraine is done (an informational option, an error). */
+/* The options in order, each applied as it comes, then the operands: the
+ * deck, or the checkpoints of --sign-checkpoint. GO_ON, or the exit status
+ * when moraine is done (an informational option, an error). */
 static int parse_args(int argc, char **argv, cli *c) {
-  for (int i = 1; i < argc; i++) {
-    const char *a = argv[i];
-    int rc = informational_option(a, argc, argv, i);
+  struct option longs[NOPTIONS + 1];
+  char shorts[2 * NOPTIONS + 2];
+  getopt_tables(longs, shorts);
+  opterr = 0; /* moraine's own messages */
+  int answer;
+  while ((answer = getopt_long(argc, argv, shorts, longs, NULL)) != -1) {
+    const cli_option *o = answer == '?' || answer == ':' ? NULL : option_of(answer);
+    if (!o) return refused(answer, argv[optind - 1]);
+    int rc = o->apply(c, o->arg ? optarg : NULL);
     if (rc != GO_ON) return rc;
-    if (!strcmp(a, "--safe")) {
-      c->opt.safe = 1;
-    } else if (!strcmp(a, "-q") || !strcmp(a, "--quiet")) {
-      mrn_log_set_quiet(1);
-    } else if (takes_value(a)) {
-      if (++i >= argc) {
-        fprintf(stderr, "moraine: option '%s' needs a value\n", argv[argc - 1]);
-        return 2;
-      }
-      if ((rc = value_option(a, argv[i], c)) != GO_ON) return rc;
-    } else if (a[0] == '-' && a[1]) {
-      fprintf(stderr, "moraine: unknown option '%s' (see moraine --help)\n", a);
-      return 2;
-    } else if (!c->deck) {
-      c->deck = a;
-    } else {
-      fprintf(stderr, "moraine: more than one deck given ('%s' and '%s')\n", c->deck, a);
-      return 2;
-    }
   }
-  if (!c->deck) {
+  if (c->sign) return sign_checkpoints(argc - optind, argv + optind);
+  if (optind == argc) {
     usage(stderr);
     return 2;
   }
+  if (argc - optind > 1) {
+    fprintf(stderr, "moraine: more than one deck given ('%s' and '%s')\n", argv[optind], argv[optind + 1]);
+    return 2;
+  }
+  c->deck = argv[optind];
   return GO_ON;
 }
 
@@ -221,8 +330,17 @@ int main(int argc, char **argv) {
   cli c = {0};
   c.opt.outdir = "out";
   c.sets = calloc((size_t)argc + 1, sizeof *c.sets);
-  int rc = parse_args(argc, argv, &c);
+  /* getopt_long reorders what it is given: the provenance records the
+   * command line as typed */
+  char **args = calloc((size_t)argc + 1, sizeof *args);
+  if (!c.sets || !args) {
+    fprintf(stderr, "moraine: out of memory\n");
+    return 1;
+  }
+  memcpy(args, argv, (size_t)argc * sizeof *args);
+  int rc = parse_args(argc, args, &c);
   if (rc == GO_ON) rc = run(argc, argv, &c);
+  free(args);
   free(c.sets);
   return rc;
 }

@@ -12,6 +12,7 @@ static const mrn_warning_kind kinds[] = {
     {"courant_above_one", "a CFL policy with a Courant number above 1"},
     {"one_particle_per_cell", "particles seeded one per cell (per_axis = 1)"},
     {"checkpoint_no_checksums", "a checkpoint of format version 1, which has no checksums, loaded or imported"},
+    {"unused_set", "a --set NAME=VALUE whose NAME the deck never read with mpm.param"},
 };
 #define NKINDS ((int)(sizeof kinds / sizeof kinds[0]))
 

@@ -117,8 +117,9 @@ static void put_paths(mrn_atomic_file *f, const char *deck_path) {
     put_line(f, "deck", "(none given; no copy)");
     return;
   }
-  put_line(f, "deck", deck_path);
-  if (realpath(deck_path, buf)) put_line(f, "deck_absolute", buf);
+  int from_stdin = !strcmp(deck_path, "-");
+  put_line(f, "deck", from_stdin ? "- (standard input)" : deck_path);
+  if (!from_stdin && realpath(deck_path, buf)) put_line(f, "deck_absolute", buf);
   put_line(f, "deck_copy", PROVENANCE_DIR "/deck.lua");
 }
 
@@ -152,8 +153,9 @@ static int write_run_txt(const char *dest, const char *deck_path, int argc, cons
 
 /* ---- entry point ------------------------------------------------------------- */
 
-int mrn_provenance_write(const char *outdir, const char *deck_path, int argc, const char *const *argv,
-                         const char *const *sets, int nsets) {
+/* the deck copied from deck_path, or `text` (len bytes) when not NULL */
+static int write_all(const char *outdir, const char *deck_path, const char *text, size_t len, int argc,
+                     const char *const *argv, const char *const *sets, int nsets) {
   char *dir = mrn_path_join(outdir ? outdir : ".", PROVENANCE_DIR);
   char *deck_dest = dir ? mrn_path_join(dir, "deck.lua") : NULL;
   char *run_dest = dir ? mrn_path_join(dir, "run.txt") : NULL;
@@ -162,10 +164,21 @@ int mrn_provenance_write(const char *outdir, const char *deck_path, int argc, co
     rc = mrn_error_code(MRN_ERR_IO, "cannot write the provenance into '%s': out of memory", outdir ? outdir : ".");
   if (rc == MRN_OK) rc = mrn_mkdir_p(dir);
   /* the copy first: run.txt names it */
-  if (rc == MRN_OK && deck_path) rc = copy_deck(deck_path, deck_dest);
+  if (rc == MRN_OK && text) rc = mrn_atomic_write_file(deck_dest, text, len);
+  else if (rc == MRN_OK && deck_path) rc = copy_deck(deck_path, deck_dest);
   if (rc == MRN_OK) rc = write_run_txt(run_dest, deck_path, argc, argv, sets, nsets);
   free(dir);
   free(deck_dest);
   free(run_dest);
   return rc;
+}
+
+int mrn_provenance_write(const char *outdir, const char *deck_path, int argc, const char *const *argv,
+                         const char *const *sets, int nsets) {
+  return write_all(outdir, deck_path, NULL, 0, argc, argv, sets, nsets);
+}
+
+int mrn_provenance_write_text(const char *outdir, const char *text, size_t len, int argc, const char *const *argv,
+                              const char *const *sets, int nsets) {
+  return write_all(outdir, "-", text, len, argc, argv, sets, nsets);
 }

@@ -16,6 +16,8 @@
 #ifndef MRN_IO_PROVENANCE_H
 #define MRN_IO_PROVENANCE_H
 
+#include <stddef.h>
+
 /* Write OUTDIR/provenance/{deck.lua,run.txt}, making the directories as
  * needed; call it once when the run starts (the start time is the time of
  * the call, the thread count is OpenMP's at that moment). `deck_path` may be
@@ -24,5 +26,9 @@
  * --set. 0 or MRN_ERR_IO with the file in the message. */
 int mrn_provenance_write(const char *outdir, const char *deck_path, int argc, const char *const *argv,
                          const char *const *sets, int nsets);
+/* The same for a deck read from standard input (moraine -): `text`, `len`
+ * bytes, is the copy and run.txt says "deck: - (standard input)". */
+int mrn_provenance_write_text(const char *outdir, const char *text, size_t len, int argc, const char *const *argv,
+                              const char *const *sets, int nsets);
 
 #endif

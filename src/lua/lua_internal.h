@@ -50,6 +50,10 @@ void mrn_lua_open_regions(lua_State *L, int module);
 void mrn_lua_open_materials(lua_State *L, int module);
 void mrn_lua_open_simulation(lua_State *L, int module);
 void mrn_lua_open_warnings(lua_State *L, int module);
+/* mpm.param (lua_param.c), and the warning, once a deck has ended, about
+ * each of the --set NAME=VALUE `sets` whose NAME it never asked for */
+int l_param(lua_State *L);
+void mrn_lua_warn_unused_sets(lua_State *L, const char *const *sets, int nsets);
 /* sim:implicit{...} and the integrator object (lua_implicit.c) */
 void mrn_lua_open_implicit(lua_State *L, int module);
 /* simulation{ integrator = "implicit", implicit = {...} }: check the options

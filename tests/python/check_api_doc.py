@@ -152,8 +152,10 @@ def source_lists(root):
     lists["diagnostics column"] = (columns, "src/solver/diagnostics.c")
     sim = read(root, "src/lua/lua_sim.c")
     lists["metamethod"] = (re.findall(r'\{\s*"(__\w+)"\s*,', block_of_array(sim, "meta")), "src/lua/lua_sim.c")
-    options = re.findall(r'strcmp\(a,\s*"(-[\w-]+)"\)', read(root, "src/main.c"))
-    lists["command-line option"] = (list(dict.fromkeys(options)), "src/main.c")
+    options = []  # the entries {"name", 'x' or 0, ...} of main.c's table
+    for name, letter in re.findall(r'\{\s*"([\w-]+)"\s*,\s*(?:\'(\w)\'|0)\s*,', block_of_array(read(root, "src/main.c"), "options")):
+        options += (["-" + letter] if letter else []) + ["--" + name]
+    lists["command-line option"] = (options, "src/main.c")
     return lists
 
 

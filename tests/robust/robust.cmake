@@ -9,6 +9,8 @@ add_test(NAME robust.sigterm_twice COMMAND ${MORAINE_ROBUST_DIR}/sigterm_twice.s
 add_test(NAME robust.sigint_lua COMMAND ${MORAINE_ROBUST_DIR}/sigint_lua.sh $<TARGET_FILE:moraine> ${MORAINE_TEST_OUT}/robust_sigint_lua)
 set_tests_properties(robust.sigint_lua PROPERTIES LABELS robust ENVIRONMENT OMP_WAIT_POLICY=PASSIVE)
 add_test(NAME robust.warnings COMMAND ${MORAINE_ROBUST_DIR}/warnings.sh $<TARGET_FILE:moraine> ${MORAINE_TEST_OUT}/robust_warnings)
+# long options, a deck on stdin, the warning about a --set never read
+add_test(NAME robust.cli COMMAND ${MORAINE_ROBUST_DIR}/cli.sh $<TARGET_FILE:moraine> ${MORAINE_TEST_OUT}/robust_cli)
 add_test(NAME robust.unstable_cfl
          COMMAND $<TARGET_FILE:moraine> ${MORAINE_ROBUST_DIR}/unstable_cfl.lua -q -o ${MORAINE_TEST_OUT}/robust_unstable_cfl)
 # every output file failing once (tests/robust/faults.py): faultfs, the LD_PRELOAD
@@ -29,7 +31,7 @@ add_test(NAME robust.watchdog_legit
 # one damaged byte in a checkpoint, older checkpoints without checksums, no HDF5 printing
 add_test(NAME robust.checkpoint_damage
          COMMAND ${MORAINE_ROBUST_DIR}/checkpoint_damage.sh $<TARGET_FILE:moraine> ${MORAINE_TEST_OUT}/robust_checkpoint_damage ${Python3_EXECUTABLE})
-set_tests_properties(robust.disk_full robust.permission robust.sigterm_twice robust.warnings robust.unstable_cfl
+set_tests_properties(robust.disk_full robust.permission robust.sigterm_twice robust.warnings robust.cli robust.unstable_cfl
                      robust.watchdog robust.watchdog_legit robust.checkpoint_damage robust.faults PROPERTIES LABELS robust)
 
 # --safe (doc/security.md): the refusals are tests/bad/safe_*.lua; these check
