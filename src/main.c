@@ -7,6 +7,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <time.h>
 #ifdef _OPENMP
 #include <omp.h>
 #endif
@@ -18,6 +19,7 @@
 #include "io/atomic_file.h"
 #include "io/checkpoint.h"
 #include "io/h5util.h"
+#include "io/summary.h"
 #include "core/spec.h"
 #include "lua/moraine_lua.h"
 
@@ -193,6 +195,57 @@ static int parse_args(int argc, char **argv, cli *c) {
   return GO_ON;
 }
 
+/* The run log OUTDIR/log.txt, opened before the deck runs: everything moraine
+ * and the deck print, up to the summary. `append`: a run that continues
+ * another adds to that run's log. GO_ON, or the exit status. */
+static int open_run_log(const cli *c, int argc, char **argv, int append) {
+  char *path = mrn_path_join(c->opt.outdir, "log.txt");
+  int rc = path ? mrn_log_open(path, append) : mrn_error_code(MRN_ERR_IO, "out of memory");
+  free(path);
+  if (rc != MRN_OK) {
+    mrn_log_error("%s", mrn_error_message());
+    return MRN_EXIT_OUTPUT;
+  }
+  char date[32];
+  time_t t = time(NULL);
+  strftime(date, sizeof date, "%Y-%m-%d %H:%M:%S UTC", gmtime(&t));
+  mrn_log_printf(NULL, "moraine %s (commit %s), %s:", MORAINE_VERSION, MORAINE_GIT_COMMIT, date);
+  for (int i = 0; i < argc; i++) mrn_log_printf(NULL, " %s", argv[i]);
+  mrn_log_printf(NULL, "\n");
+  return GO_ON;
+}
+
+/* how the run ended, in words, for the summary */
+static const char *status_text(int rc, char *buf, size_t len) {
+  const char *msg = mrn_log_last_error();
+  if (rc == 0) return "ok";
+  const char *how = rc == MRN_EXIT_INTERRUPTED ? "interrupted"
+                    : rc == MRN_EXIT_OUTPUT    ? "an output could not be written"
+                    : strstr(msg, "the watchdog stopped the run") ? "stopped by the watchdog"
+                                                                  : "failed";
+  snprintf(buf, len, "%s: %s", how, msg);
+  return buf;
+}
+
+/* A log that could not be written is an output error (exit status 3) for a
+ * run that would otherwise succeed or stop on a signal; its message is
+ * printed unless the run already did. */
+static int log_failure_status(int rc) {
+  if (!mrn_log_failed()) return rc;
+  if (!strstr(mrn_log_last_error(), mrn_log_failure())) mrn_log_error("%s", mrn_log_failure());
+  return rc == 0 || rc == MRN_EXIT_INTERRUPTED ? MRN_EXIT_OUTPUT : rc;
+}
+
+/* the summary, and the log closed: the exit status */
+static int close_run_log(int rc) {
+  rc = log_failure_status(rc);
+  char status[2200];
+  mrn_summary_print(status_text(rc, status, sizeof status), rc);
+  mrn_summary_end();
+  mrn_log_close();
+  return log_failure_status(rc); /* its last sync or close */
+}
+
 /* the deck, once the command line is read; the exit status */
 static int run(int argc, char **argv, cli *c) {
   /* the output directory exists before the deck runs, so decks can write there too */
@@ -200,6 +253,9 @@ static int run(int argc, char **argv, cli *c) {
     fprintf(stderr, "moraine: %s\n", mrn_error_message());
     return 1;
   }
+  int rc = open_run_log(c, argc, argv, 0);
+  if (rc != GO_ON) return rc;
+  mrn_summary_start();
   c->opt.sets = c->sets;
   c->opt.nsets = c->nsets;
   c->opt.argv = (const char *const *)argv;
@@ -211,10 +267,10 @@ static int run(int argc, char **argv, cli *c) {
    * damaged file of format version 1, which has no checksums */
   mrn_h5_quiet hdf5;
   mrn_h5_silence(&hdf5);
-  int rc = mrn_lua_run_deck(c->deck, &c->opt);
+  rc = mrn_lua_run_deck(c->deck, &c->opt);
   /* a signal stopped the run; unless what it leaves could not be written */
   if (rc && rc != MRN_EXIT_OUTPUT && mrn_interrupt_pending()) rc = MRN_EXIT_INTERRUPTED;
-  return rc;
+  return close_run_log(rc);
 }
 
 int main(int argc, char **argv) {

@@ -11,6 +11,7 @@
 
 #include "core/error.h"
 #include "core/interrupt.h"
+#include "core/log.h"
 #include "core/spec.h"
 #include "io/output.h"
 #include "io/provenance.h"
@@ -175,6 +176,7 @@ static int traceback_handler(lua_State *L) {
 static int open_protected(lua_State *L) {
   const mrn_deck_options *opt = lua_touserdata(L, 1);
   mrn_lua_open(L, opt);
+  mrn_lua_log_prints(L);
   if (opt && opt->safe) mrn_lua_safe_open(L, opt->outdir ? opt->outdir : "out");
   return 0;
 }
@@ -182,7 +184,7 @@ static int open_protected(lua_State *L) {
 int mrn_lua_run_deck(const char *path, const mrn_deck_options *opt) {
   lua_State *L = luaL_newstate();
   if (!L) {
-    fprintf(stderr, "moraine: cannot create a Lua state (out of memory)\n");
+    mrn_log_error("cannot create a Lua state (out of memory)");
     return 1;
   }
   luaL_openlibs(L);
@@ -199,7 +201,7 @@ int mrn_lua_run_deck(const char *path, const mrn_deck_options *opt) {
   int rc = 0;
   if (status == LUA_OK && opt && opt->outdir &&
       mrn_provenance_write(opt->outdir, path, opt->argc, opt->argv, opt->sets, opt->nsets) != MRN_OK) {
-    fprintf(stderr, "moraine: %s\n", mrn_error_message());
+    mrn_log_error("%s", mrn_error_message());
     rc = MRN_EXIT_OUTPUT;
   }
   if (status == LUA_OK && rc == 0) {
@@ -215,7 +217,7 @@ int mrn_lua_run_deck(const char *path, const mrn_deck_options *opt) {
     status = lua_pcall(L, 0, 0, handler);
   }
   if (status != LUA_OK) {
-    fprintf(stderr, "moraine: %s\n", lua_tostring(L, -1));
+    mrn_log_error("%s", lua_tostring(L, -1));
     rc = mrn_lua_exit_status(L);
   }
   mrn_lua_watch_interrupts(NULL);
