@@ -209,21 +209,24 @@ static int open_run_log(const cli *c, int argc, char **argv, int append) {
   char date[32];
   time_t t = time(NULL);
   strftime(date, sizeof date, "%Y-%m-%d %H:%M:%S UTC", gmtime(&t));
-  mrn_log_printf(NULL, "moraine %s (commit %s), %s:", MORAINE_VERSION, MORAINE_GIT_COMMIT, date);
-  for (int i = 0; i < argc; i++) mrn_log_printf(NULL, " %s", argv[i]);
-  mrn_log_printf(NULL, "\n");
+  /* the first line, one message: the version, the date and the command */
+  char head[4096];
+  size_t len = (size_t)snprintf(head, sizeof head, "moraine %s (commit %s), %s:", MORAINE_VERSION, MORAINE_GIT_COMMIT, date);
+  for (int i = 0; i < argc && len < sizeof head; i++)
+    len += (size_t)snprintf(head + len, sizeof head - len, " %s", argv[i]);
+  mrn_log_printf(NULL, "%s\n", head);
   return GO_ON;
 }
 
 /* how the run ended, in words, for the summary */
 static const char *status_text(int rc, char *buf, size_t len) {
   const char *msg = mrn_log_last_error();
-  if (rc == 0) return "ok";
+  if (rc == 0) return "ok (exit status 0)";
   const char *how = rc == MRN_EXIT_INTERRUPTED ? "interrupted"
                     : rc == MRN_EXIT_OUTPUT    ? "an output could not be written"
                     : strstr(msg, "the watchdog stopped the run") ? "stopped by the watchdog"
                                                                   : "failed";
-  snprintf(buf, len, "%s: %s", how, msg);
+  snprintf(buf, len, "%s (exit status %d): %s", how, rc, msg);
   return buf;
 }
 
@@ -240,7 +243,7 @@ static int log_failure_status(int rc) {
 static int close_run_log(int rc) {
   rc = log_failure_status(rc);
   char status[2200];
-  mrn_summary_print(status_text(rc, status, sizeof status), rc);
+  mrn_summary_print(status_text(rc, status, sizeof status));
   mrn_summary_end();
   mrn_log_close();
   return log_failure_status(rc); /* its last sync or close */

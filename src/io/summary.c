@@ -170,14 +170,14 @@ static void print_phases(double run_wall) {
   mrn_info("  time per phase    %s", line);
 }
 
-void mrn_summary_print(const char *status, int exit_status) {
+void mrn_summary_print(const char *status) {
   const double wall = now() - sum.wall_start;
   const long secs = (long)(wall + 0.5);
   double run_wall, particle_steps, bytes;
   long nfiles;
   char size[32];
   mrn_info("summary:");
-  mrn_info("  status            %s (exit status %d)", status, exit_status);
+  mrn_info("  status            %s", status);
   print_sims(&run_wall, &particle_steps);
   mrn_info("  wall time         %ld:%02ld:%02ld (%.3g s), %.3g particle-steps/s", secs / 3600, secs / 60 % 60,
            secs % 60, wall, run_wall > 0 ? particle_steps / run_wall : 0.0);

@@ -27,7 +27,7 @@ void mrn_summary_add_run(const char *name, long step0, double t0, const mrn_sim 
 void mrn_summary_note_file(const char *path);
 /* print it (an information message: the log always, the screen unless quiet);
  * `status` says how the run ended, with the exit status */
-void mrn_summary_print(const char *status, int exit_status);
+void mrn_summary_print(const char *status);
 /* free what it holds and turn the phase timers off */
 void mrn_summary_end(void);
 
