@@ -197,6 +197,8 @@ static int parse_args(int argc, char **argv, cli *c) {
   return GO_ON;
 }
 
+static int log_open; /* from open_run_log to close_run_log */
+
 /* The run log OUTDIR/log.txt, opened before the deck runs: everything moraine
  * and the deck print, up to the summary. `append`: a run that continues
  * another adds to that run's log. GO_ON, or the exit status. */
@@ -217,6 +219,7 @@ static int open_run_log(const cli *c, int argc, char **argv, int append) {
   for (int i = 0; i < argc && len < sizeof head; i++)
     len += (size_t)snprintf(head + len, sizeof head - len, " %s", argv[i]);
   mrn_log_printf(NULL, "%s\n", head);
+  log_open = 1;
   return GO_ON;
 }
 
@@ -243,12 +246,21 @@ static int log_failure_status(int rc) {
 
 /* the summary, and the log closed: the exit status */
 static int close_run_log(int rc) {
+  log_open = 0;
   rc = log_failure_status(rc);
   char status[2200];
   mrn_summary_print(status_text(rc, status, sizeof status));
   mrn_summary_end();
   mrn_log_close();
   return log_failure_status(rc); /* its last sync or close */
+}
+
+/* a deck that calls os.exit() ends the process here, with its summary */
+static void close_run_log_at_exit(void) {
+  if (!log_open) return;
+  mrn_summary_print("ended by os.exit() in the deck");
+  mrn_summary_end();
+  mrn_log_close();
 }
 
 /* the deck, once the command line is read; the exit status */
@@ -261,6 +273,7 @@ static int run(int argc, char **argv, cli *c) {
   int rc = open_run_log(c, argc, argv, 0);
   if (rc != GO_ON) return rc;
   mrn_summary_start();
+  atexit(close_run_log_at_exit);
   c->opt.sets = c->sets;
   c->opt.nsets = c->nsets;
   c->opt.argv = (const char *const *)argv;

@@ -33,9 +33,9 @@ static double now(void) {
   return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
 }
 
-static sim_record *record_of(const char *name) {
-  for (int i = 0; i < sum.nsims; i++)
-    if (!strcmp(sum.sims[i].name, name)) return &sum.sims[i];
+/* the record *id (from 1), or a new one */
+static sim_record *record_of(int *id, const char *name) {
+  if (*id > 0 && *id <= sum.nsims) return &sum.sims[*id - 1];
   if (sum.nsims == sum.cap) {
     int cap = sum.cap ? 2 * sum.cap : 8;
     sim_record *grown = realloc(sum.sims, (size_t)cap * sizeof *grown);
@@ -47,11 +47,13 @@ static sim_record *record_of(const char *name) {
   memset(r, 0, sizeof *r);
   snprintf(r->name, sizeof r->name, "%s", name);
   r->step0 = -1;
+  *id = sum.nsims;
   return r;
 }
 
-void mrn_summary_add_run(const char *name, long step0, double t0, const mrn_sim *sim, const mrn_run_stats *st) {
-  sim_record *r = record_of(name);
+void mrn_summary_add_run(int *record, const char *name, long step0, double t0, const mrn_sim *sim,
+                         const mrn_run_stats *st) {
+  sim_record *r = record_of(record, name);
   if (!r) return;
   if (r->step0 < 0) {
     r->step0 = step0;

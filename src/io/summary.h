@@ -20,9 +20,11 @@
 
 /* start the wall clock and the phase timers; forget what an earlier start saw */
 void mrn_summary_start(void);
-/* what a run of simulation `name` did: from step0 at time t0 to sim's state.
- * A simulation is known by its name: two runs of one name are one line. */
-void mrn_summary_add_run(const char *name, long step0, double t0, const mrn_sim *sim, const mrn_run_stats *st);
+/* What a run of simulation `name` did: from step0 at time t0 to sim's state.
+ * `*record` is 0 for a simulation that has not run yet, and is then set to
+ * its record: the runs of one simulation make one line of the summary. */
+void mrn_summary_add_run(int *record, const char *name, long step0, double t0, const mrn_sim *sim,
+                         const mrn_run_stats *st);
 /* a file written whole (or opened, for a file that is appended to) */
 void mrn_summary_note_file(const char *path);
 /* print it (an information message: the log always, the screen unless quiet);

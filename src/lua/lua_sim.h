@@ -46,6 +46,7 @@ typedef struct sim_box {
   const char *busy; /* "run{}" or "add_particles()" while deck callbacks can run inside it */
   long invalid_step; /* > 0: a run stopped keeping an invalid state (a particle outside the grid) at this step */
   int interrupted;   /* a run stopped on a signal and wrote <name>_interrupted.h5 */
+  int summary_record; /* its line of the end-of-run summary (io/summary.h), 0 before its first run */
 } sim_box;
 
 /* ---- the userdata (lua_sim.c) */

@@ -119,7 +119,7 @@ int l_sim_run(lua_State *L) {
   const long step0 = b->sim->step;
   const double t0 = b->sim->time;
   int rc = mrn_run(b->sim, &opt);
-  mrn_summary_add_run(b->name, step0, t0, b->sim, &opt.stats);
+  mrn_summary_add_run(&b->summary_record, b->name, step0, t0, b->sim, &opt.stats);
   b->busy = NULL;
   mrn_lua_callback_release(stop_cb);
   if (rc != MRN_OK) return raise_engine_error(L, rc, where, b);

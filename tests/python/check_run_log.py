@@ -5,7 +5,8 @@ columns and the progress bar.
   check_run_log.py MORAINE WORKDIR
 
 Runs small decks that end well, fail, are interrupted by SIGINT, are stopped
-by the watchdog, run quietly or run two simulations, and checks that
+by the watchdog, call os.exit(), run quietly or run two simulations (of one
+name), and checks that
   - log.txt holds everything printed (moraine's messages, the thermo lines,
     the deck's print, io.write, io.stdout:write and io.stderr:write), in order;
   - the summary (screen and log) gives the status, the steps, the simulated
@@ -62,7 +63,8 @@ sim:run{ steps = 10, thermo = { columns = { "step", "com_y" } } }
 sim:run{ steps = 10, thermo = 5 }
 """,
     "two": HEAD % "0" + """
-local other = mpm.simulation{ dim = 2, grid = { size = { 1, 0.5 }, cell = 0.05 }, name = "other", thermo = 0,
+-- of the same name, but another simulation: a line of its own
+local other = mpm.simulation{ dim = 2, grid = { size = { 1, 0.5 }, cell = 0.05 }, name = "block", thermo = 0,
   diagnostics = false, series = false }
 other:add_particles(mpm.box{ min = { 0.5, 0.0 }, max = { 0.6, 0.1 } }, { material = mat })
 sim:run{ steps = 10 }
@@ -216,7 +218,15 @@ def case_two():
     check(proc.returncode == 0, f"two: exit status {proc.returncode}")
     sims = summary(log).get("simulation", [])
     check(len(sims) == 2 and sims[0].startswith("'block': 15 steps (0 -> 15)") and
-          sims[1].startswith("'other': 7 steps (0 -> 7)"), f"two: {sims}")
+          sims[1].startswith("'block': 7 steps (0 -> 7)"), f"two: {sims}")
+
+
+def case_os_exit():
+    proc, log, out = run("os_exit", HEAD % "10" + "sim:run{ steps = 10 }\nos.exit(4)\n")
+    check(proc.returncode == 4, f"os_exit: exit status {proc.returncode}")
+    s = summary(log)
+    check(s.get("status") == "ended by os.exit() in the deck", f"os_exit: status {s.get('status')!r}")
+    check(s.get("simulation", [""])[0].startswith("'block': 10 steps"), f"os_exit: {s.get('simulation')}")
 
 
 def case_unwritable_log():
@@ -316,7 +326,7 @@ sim:run{ steps = 60 }
 def main():
     os.makedirs(WORK, exist_ok=True)
     for case in (case_ok, case_failed, case_interrupted, case_watchdog, case_quiet, case_columns, case_two,
-                 case_unwritable_log, case_terminal):
+                 case_os_exit, case_unwritable_log, case_terminal):
         before = len(problems)
         case()
         print(("ok   " if len(problems) == before else "FAIL ") + case.__name__[5:])
