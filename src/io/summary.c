@@ -149,8 +149,8 @@ static void print_sims(double *run_wall, double *particle_steps) {
   if (sum.nsims == 0) mrn_info("  simulations       none ran");
   for (int i = 0; i < sum.nsims; i++) {
     const sim_record *r = &sum.sims[i];
-    mrn_info("  simulation        '%s': %ld steps (%ld -> %ld), t = %g -> %g s, %ld particles", r->name,
-             r->total.steps, r->step0, r->step1, r->t0, r->t1, r->particles);
+    mrn_info("  simulation        '%s': %ld step%s (%ld -> %ld), t = %g -> %g s, %ld particles", r->name,
+             r->total.steps, r->total.steps == 1 ? "" : "s", r->step0, r->step1, r->t0, r->t1, r->particles);
     *run_wall += r->total.wall;
     *particle_steps += r->total.particle_steps;
   }
