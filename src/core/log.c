@@ -51,7 +51,8 @@ static void file_write(const char *text, size_t len) {
 int mrn_log_open(const char *path, int append) {
   mrn_log_close();
   file.failure[0] = '\0';
-  const int flags = O_WRONLY | O_CREAT | O_NOFOLLOW | O_CLOEXEC | (append ? O_APPEND : O_TRUNC);
+  /* O_APPEND also when new: each message lands at the end, whatever else wrote there */
+  const int flags = O_WRONLY | O_CREAT | O_APPEND | O_NOFOLLOW | O_CLOEXEC | (append ? 0 : O_TRUNC);
   int fd = open(path, flags, 0644);
   if (fd < 0) return mrn_error_code(MRN_ERR_IO, "cannot write '%s': %s", path, strerror(errno));
   struct stat st;
