@@ -215,7 +215,8 @@ static int open_run_log(const cli *c, int argc, char **argv, int append) {
   strftime(date, sizeof date, "%Y-%m-%d %H:%M:%S UTC", gmtime(&t));
   /* the first line, one message: the version, the date and the command */
   char head[4096];
-  size_t len = (size_t)snprintf(head, sizeof head, "moraine %s (commit %s), %s:", MORAINE_VERSION, MORAINE_GIT_COMMIT, date);
+  size_t len =
+      (size_t)snprintf(head, sizeof head, "moraine %s (commit %s), %s:", MORAINE_VERSION, MORAINE_GIT_COMMIT, date);
   for (int i = 0; i < argc && len < sizeof head; i++)
     len += (size_t)snprintf(head + len, sizeof head - len, " %s", argv[i]);
   mrn_log_printf(NULL, "%s\n", head);

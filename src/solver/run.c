@@ -37,25 +37,26 @@ int mrn_thermo_default_columns(int *columns) {
   return n;
 }
 
-/* the width of a column: the step and the particle count as whole numbers */
+/* the width of a column: those of the default line, which has always had them */
 static int column_width(int c) { return c == THERMO_DT || c == THERMO_RATE ? 11 : c == THERMO_STEP ? 10 : 13; }
 
-static int thermo_columns(const mrn_run_options *opt, const int **columns) {
-  static int defaults[MRN_THERMO_MAX_COLUMNS];
+/* the run's columns: its own, or the defaults written into `buf` */
+static int thermo_columns(const mrn_run_options *opt, int *buf, const int **columns) {
   if (opt->thermo_ncolumns > 0) {
     *columns = opt->thermo_columns;
     return opt->thermo_ncolumns;
   }
-  *columns = defaults;
-  return mrn_thermo_default_columns(defaults);
+  *columns = buf;
+  return mrn_thermo_default_columns(buf);
 }
 
 /* the screen's stream for thermo output: none with --quiet (the log still gets it) */
 static FILE *thermo_screen(void) { return mrn_log_quiet() ? NULL : stdout; }
 
 static void thermo_header(const mrn_run_options *opt) {
+  int buf[MRN_THERMO_MAX_COLUMNS];
   const int *columns;
-  const int n = thermo_columns(opt, &columns);
+  const int n = thermo_columns(opt, buf, &columns);
   char line[MRN_THERMO_MAX_COLUMNS * 24 + 2];
   size_t len = 0;
   for (int i = 0; i < n; i++)
@@ -80,8 +81,9 @@ static int thermo_value(char *out, size_t size, int c, const mrn_sim *sim, const
 }
 
 static void thermo_line(const mrn_run_options *opt, const mrn_sim *sim, const mrn_diagnostics *d, double rate) {
+  int buf[MRN_THERMO_MAX_COLUMNS];
   const int *columns;
-  const int n = thermo_columns(opt, &columns);
+  const int n = thermo_columns(opt, buf, &columns);
   double diag[64];
   mrn_diagnostics_values(d, diag);
   char line[MRN_THERMO_MAX_COLUMNS * 40 + 2];

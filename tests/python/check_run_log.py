@@ -229,6 +229,18 @@ def case_os_exit():
     check(s.get("simulation", [""])[0].startswith("'block': 10 steps"), f"os_exit: {s.get('simulation')}")
 
 
+def case_no_outdir():
+    """without -o the log goes where every output goes: ./out"""
+    cwd = os.path.join(WORK, "cwd")
+    shutil.rmtree(cwd, ignore_errors=True)
+    os.makedirs(cwd)
+    proc = subprocess.run([MORAINE, os.path.join(WORK, "ok.lua"), "-q"], cwd=cwd, capture_output=True, text=True,
+                          timeout=300)
+    check(proc.returncode == 0, f"no_outdir: exit status {proc.returncode}")
+    log = os.path.join(cwd, "out", "log.txt")
+    check(os.path.exists(log) and "\nsummary:\n" in open(log).read(), "no_outdir: no out/log.txt with a summary")
+
+
 def case_unwritable_log():
     out = os.path.join(WORK, "link")
     shutil.rmtree(out, ignore_errors=True)
@@ -326,7 +338,7 @@ sim:run{ steps = 60 }
 def main():
     os.makedirs(WORK, exist_ok=True)
     for case in (case_ok, case_failed, case_interrupted, case_watchdog, case_quiet, case_columns, case_two,
-                 case_os_exit, case_unwritable_log, case_terminal):
+                 case_os_exit, case_no_outdir, case_unwritable_log, case_terminal):
         before = len(problems)
         case()
         print(("ok   " if len(problems) == before else "FAIL ") + case.__name__[5:])
