@@ -128,8 +128,10 @@ def check_output(text, log):
         found = next((k for k in candidates if not same_line(line, have[k])), None)
         if found is None:
             # the line the doc most likely means: of the same words, the most numbers alike
-            near = max((have[k] for k in candidates if NUMBER.sub("#", have[k]).split() == NUMBER.sub("#", line).split()),
-                       key=lambda h: sum(a == b for a, b in zip(NUMBER.findall(h), NUMBER.findall(line))), default=None)
+            words = NUMBER.sub("#", line).split()
+            alike = [have[k] for k in candidates if NUMBER.sub("#", have[k]).split() == words]
+            near = max(alike, key=lambda h: sum(a == b for a, b in zip(NUMBER.findall(h), NUMBER.findall(line))),
+                       default=None)
             if near is None:
                 return f"printed {line.strip()!r}: no such line in the run's log (in order)"
             return f"printed {line.strip()!r}: the run printed {near.strip()!r} ({same_line(line, near)})"
@@ -177,7 +179,8 @@ def check_after(checks, outdir, state):
         elif kind == "claim":
             _, n, name = arg
             cols = state.get("header", [])
-            why = "" if n <= len(cols) and cols[n - 1] == name else f"column {n} is {cols[n - 1] if n <= len(cols) else 'absent'!r}"
+            there = cols[n - 1] if n <= len(cols) else "absent"
+            why = "" if there == name else f"column {n} is {there!r}"
         elif kind == "awk":
             used = {int(k) for k in re.findall(r"\$(\d+)", text) if int(k) > 2}
             why = "" if used <= {arg[1]} else f"the code uses columns {sorted(used)}, the text says {arg[1]}"
