@@ -13,6 +13,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <time.h>
 #ifdef _OPENMP
 #include <omp.h>
 #endif
@@ -24,6 +25,7 @@
 #include "io/atomic_file.h"
 #include "io/checkpoint.h"
 #include "io/h5util.h"
+#include "io/summary.h"
 #include "core/spec.h"
 #include "lua/moraine_lua.h"
 
@@ -134,12 +136,12 @@ static int opt_version(cli *c, const char *value) {
 }
 
 static const cli_option options[] = {
-    {"output", 'o', "DIR", opt_output, "directory for every output file (default: out)"},
+    {"output", 'o', "DIR", opt_output, "directory for every output file and the run log log.txt\n(default: out)"},
     {"set", 0, "NAME=VALUE", opt_set,
      "a parameter the deck reads with mpm.param(\"NAME\", default);\nmay be repeated; a NAME the deck never "
      "reads is\nwarned about at the end"},
     {"threads", 0, "N", opt_threads, "number of OpenMP threads (default: all cores)"},
-    {"quiet", 'q', NULL, opt_quiet, "no thermo lines, progress bar or information messages"},
+    {"quiet", 'q', NULL, opt_quiet, "no thermo lines, progress bar, summary or information\nmessages on the screen (log.txt still gets them)"},
     {"ignore-warning", 0, "ID", opt_ignore_warning, "silence one kind of warning (or 'all'); may be repeated"},
     {"safe", 0, NULL, opt_safe,
      "restrict the deck: no os.execute, io.popen, C modules,\nbinary chunks or debug library, and writes only inside\n"
@@ -302,6 +304,73 @@ static int parse_args(int argc, char **argv, cli *c) {
   return GO_ON;
 }
 
+static int log_open; /* from open_run_log to close_run_log */
+
+/* The run log OUTDIR/log.txt, opened before the deck runs: everything moraine
+ * and the deck print, up to the summary. `append`: a run that continues
+ * another adds to that run's log. GO_ON, or the exit status. */
+static int open_run_log(const cli *c, int argc, char **argv, int append) {
+  char *path = mrn_path_join(c->opt.outdir, "log.txt");
+  int rc = path ? mrn_log_open(path, append) : mrn_error_code(MRN_ERR_IO, "out of memory");
+  free(path);
+  if (rc != MRN_OK) {
+    mrn_log_error("%s", mrn_error_message());
+    return MRN_EXIT_OUTPUT;
+  }
+  char date[32];
+  time_t t = time(NULL);
+  strftime(date, sizeof date, "%Y-%m-%d %H:%M:%S UTC", gmtime(&t));
+  /* the first line, one message: the version, the date and the command */
+  char head[4096];
+  size_t len =
+      (size_t)snprintf(head, sizeof head, "moraine %s (commit %s), %s:", MORAINE_VERSION, MORAINE_GIT_COMMIT, date);
+  for (int i = 0; i < argc && len < sizeof head; i++)
+    len += (size_t)snprintf(head + len, sizeof head - len, " %s", argv[i]);
+  mrn_log_printf(NULL, "%s\n", head);
+  log_open = 1;
+  return GO_ON;
+}
+
+/* how the run ended, in words, for the summary */
+static const char *status_text(int rc, char *buf, size_t len) {
+  const char *msg = mrn_log_last_error();
+  if (rc == 0) return "ok (exit status 0)";
+  const char *how = rc == MRN_EXIT_INTERRUPTED ? "interrupted"
+                    : rc == MRN_EXIT_OUTPUT    ? "an output could not be written"
+                    : strstr(msg, "the watchdog stopped the run") ? "stopped by the watchdog"
+                                                                  : "failed";
+  snprintf(buf, len, "%s (exit status %d): %s", how, rc, msg);
+  return buf;
+}
+
+/* A log that could not be written is an output error (exit status 3) for a
+ * run that would otherwise succeed or stop on a signal; its message is
+ * printed unless the run already did. */
+static int log_failure_status(int rc) {
+  if (!mrn_log_failed()) return rc;
+  if (!strstr(mrn_log_last_error(), mrn_log_failure())) mrn_log_error("%s", mrn_log_failure());
+  return rc == 0 || rc == MRN_EXIT_INTERRUPTED ? MRN_EXIT_OUTPUT : rc;
+}
+
+/* the summary, and the log closed: the exit status */
+static int close_run_log(int rc) {
+  log_open = 0;
+  rc = log_failure_status(rc);
+  char status[2200];
+  mrn_summary_print(status_text(rc, status, sizeof status));
+  mrn_summary_end();
+  mrn_log_close();
+  return log_failure_status(rc); /* its last sync or close */
+}
+
+/* a deck that calls os.exit() ends the process here, with its summary */
+static void close_run_log_at_exit(void) {
+  if (!log_open) return;
+  mrn_summary_print("ended by os.exit() in the deck");
+  mrn_summary_end();
+  mrn_log_close();
+}
+
 /* the deck, once the command line is read; the exit status */
 static int run(int argc, char **argv, cli *c) {
   /* the output directory exists before the deck runs, so decks can write there too */
@@ -309,6 +378,10 @@ static int run(int argc, char **argv, cli *c) {
     fprintf(stderr, "moraine: %s\n", mrn_error_message());
     return 1;
   }
+  int rc = open_run_log(c, argc, argv, 0);
+  if (rc != GO_ON) return rc;
+  mrn_summary_start();
+  atexit(close_run_log_at_exit);
   c->opt.sets = c->sets;
   c->opt.nsets = c->nsets;
   c->opt.argv = (const char *const *)argv;
@@ -320,10 +393,10 @@ static int run(int argc, char **argv, cli *c) {
    * damaged file of format version 1, which has no checksums */
   mrn_h5_quiet hdf5;
   mrn_h5_silence(&hdf5);
-  int rc = mrn_lua_run_deck(c->deck, &c->opt);
+  rc = mrn_lua_run_deck(c->deck, &c->opt);
   /* a signal stopped the run; unless what it leaves could not be written */
   if (rc && rc != MRN_EXIT_OUTPUT && mrn_interrupt_pending()) rc = MRN_EXIT_INTERRUPTED;
-  return rc;
+  return close_run_log(rc);
 }
 
 int main(int argc, char **argv) {

@@ -134,3 +134,12 @@ add_test(NAME python.example_pngs
          COMMAND ${Python3_EXECUTABLE} ${CMAKE_CURRENT_SOURCE_DIR}/python/check_png.py ${collapse_pngs}
                  ${example_plot_dir}/bouncing_cube/energies.png ${example_plot_dir}/bouncing_cube/momentum.png)
 set_tests_properties(python.example_pngs PROPERTIES LABELS "python;plot" FIXTURES_REQUIRED example_plots)
+
+# ---- the run log, the summary, the thermo columns and the progress bar -------
+# python.run_log: log.txt holds everything printed for runs that end well, fail,
+# are interrupted or stopped by the watchdog; the summary's fields; thermo
+# columns by name against diagnostics.csv; the bar on a pseudo-terminal
+add_test(NAME python.run_log
+         COMMAND ${Python3_EXECUTABLE} ${CMAKE_CURRENT_SOURCE_DIR}/python/check_run_log.py $<TARGET_FILE:moraine>
+                 ${MORAINE_OUTPUTS_DIR}/run_log)
+set_tests_properties(python.run_log PROPERTIES LABELS python ENVIRONMENT OMP_WAIT_POLICY=PASSIVE)

@@ -4,6 +4,8 @@
 #include <string.h>
 #include <unistd.h>
 
+#include "core/log.h"
+
 static volatile sig_atomic_t received = 0;
 static void (*volatile notify)(int sig);
 
@@ -11,6 +13,8 @@ static void on_signal(int sig) {
   if (received) {
     static const char msg[] = "\nmoraine: second signal, exiting at once\n";
     (void)!write(2, msg, sizeof msg - 1);
+    int log = mrn_log_fd(); /* the run log ends with it too */
+    if (log >= 0) (void)!write(log, msg + 1, sizeof msg - 2);
     _exit(MRN_EXIT_INTERRUPTED);
   }
   received = sig;

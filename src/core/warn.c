@@ -5,6 +5,7 @@
 #include <string.h>
 
 #include "core/error.h"
+#include "core/log.h"
 
 /* every kind of warning moraine prints; doc/lua-api.md (mpm.warnings) lists them */
 static const mrn_warning_kind kinds[] = {
@@ -47,8 +48,8 @@ int mrn_warning(const char *id, const char *fmt, ...) {
   va_start(ap, fmt);
   vsnprintf(msg, sizeof msg, fmt, ap);
   va_end(ap);
-  fprintf(stderr, "moraine: warning [%s]: %s (silence: mpm.warnings{ignore = {\"%s\"}} or --ignore-warning %s)\n", id,
-          msg, id, id);
+  mrn_log_printf(stderr, "moraine: warning [%s]: %s (silence: mpm.warnings{ignore = {\"%s\"}} or --ignore-warning %s)\n",
+                 id, msg, id, id);
   return 1;
 }
 

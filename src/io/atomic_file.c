@@ -10,6 +10,7 @@
 #include <unistd.h>
 
 #include "core/error.h"
+#include "io/summary.h"
 
 /* ---- temporary name ---------------------------------------------------- */
 
@@ -134,6 +135,7 @@ int mrn_atomic_commit(mrn_atomic_file *f) {
     return rc;
   }
   sync_parent_dir(f->final_path);
+  mrn_summary_note_file(f->final_path);
   release(f);
   return MRN_OK;
 }

@@ -13,6 +13,7 @@
 #include "core/spec.h"
 #include "io/atomic_file.h"
 #include "io/particle_fields.h"
+#include "io/summary.h"
 #include "io/vti.h"
 #include "io/vtkhdf.h"
 #include "solver/simulation.h"
@@ -380,6 +381,7 @@ static int open_csv(mrn_output *o) {
     close_csv(o);
     return rc;
   }
+  mrn_summary_note_file(path);
   o->csv_size = append ? lseek(o->csv_fd, 0, SEEK_END) : 0;
   int rc = o->csv_size < 0 ? csv_error(o, errno, "") : append ? MRN_OK : csv_header(o);
   if (rc != MRN_OK) close_csv(o);

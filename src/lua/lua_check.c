@@ -1,5 +1,6 @@
 #include "lua/lua_check.h"
 #include "core/error.h"
+#include "core/log.h"
 #include "lua/moraine_lua.h"
 
 #include <lauxlib.h>
@@ -48,12 +49,12 @@ int mrn_lua_engine_output_error(lua_State *L, const char *where) {
 static int late_output_failure;
 
 void mrn_lua_late_output_error(const char *fmt, ...) {
+  char message[2048];
   va_list ap;
   va_start(ap, fmt);
-  fprintf(stderr, "moraine: ");
-  vfprintf(stderr, fmt, ap);
-  fputc('\n', stderr);
+  vsnprintf(message, sizeof message, fmt, ap);
   va_end(ap);
+  mrn_log_error("%s", message);
   late_output_failure = 1;
 }
 

@@ -70,6 +70,9 @@ struct mrn_sim *mrn_lua_check_sim(lua_State *L, int idx);
 void mrn_lua_add_field_methods(lua_State *L, int methods);
 /* point_force, load_factor, clear_forces (lua_loads.c) into the methods table at idx */
 void mrn_lua_add_load_methods(lua_State *L, int methods);
+/* print(), io.write() and the write method of the terminal's files through
+ * the run log, in a state whose standard libraries are open (lua_print.c) */
+void mrn_lua_log_prints(lua_State *L);
 /* set_watchdog, watchdog (lua_watchdog.c) into the methods table at idx */
 void mrn_lua_add_watchdog_methods(lua_State *L, int methods);
 /* simulation{ watchdog = {...} | false } and set_watchdog{}: the table or boolean at idx */

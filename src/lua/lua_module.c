@@ -14,6 +14,7 @@
 
 #include "core/error.h"
 #include "core/interrupt.h"
+#include "core/log.h"
 #include "core/spec.h"
 #include "io/output.h"
 #include "io/provenance.h"
@@ -207,6 +208,7 @@ static int traceback_handler(lua_State *L) {
 static int open_protected(lua_State *L) {
   const mrn_deck_options *opt = lua_touserdata(L, 1);
   mrn_lua_open(L, opt);
+  mrn_lua_log_prints(L);
   if (opt && opt->safe) mrn_lua_safe_open(L, opt->outdir ? opt->outdir : "out");
   return 0;
 }
@@ -255,7 +257,7 @@ static int write_provenance(lua_State *L, const char *path, const mrn_deck_optio
 int mrn_lua_run_deck(const char *path, const mrn_deck_options *opt) {
   lua_State *L = luaL_newstate();
   if (!L) {
-    fprintf(stderr, "moraine: cannot create a Lua state (out of memory)\n");
+    mrn_log_error("cannot create a Lua state (out of memory)");
     return 1;
   }
   luaL_openlibs(L);
@@ -270,7 +272,7 @@ int mrn_lua_run_deck(const char *path, const mrn_deck_options *opt) {
    * outputs; a run whose record cannot be written is not started */
   int rc = 0;
   if (status == LUA_OK && opt && opt->outdir && write_provenance(L, path, opt) != MRN_OK) {
-    fprintf(stderr, "moraine: %s\n", mrn_error_message());
+    mrn_log_error("%s", mrn_error_message());
     rc = MRN_EXIT_OUTPUT;
   }
   if (status == LUA_OK && rc == 0) {
@@ -289,7 +291,7 @@ int mrn_lua_run_deck(const char *path, const mrn_deck_options *opt) {
     if (status == LUA_OK && opt) mrn_lua_warn_unused_sets(L, opt->sets, opt->nsets);
   }
   if (status != LUA_OK) {
-    fprintf(stderr, "moraine: %s\n", lua_tostring(L, -1));
+    mrn_log_error("%s", lua_tostring(L, -1));
     rc = mrn_lua_exit_status(L);
   }
   mrn_lua_watch_interrupts(NULL);

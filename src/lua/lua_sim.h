@@ -25,6 +25,13 @@
 
 #define MRN_LUA_MAX_HOOKS 32
 
+/* the thermo settings of a simulation or a run (lua_thermo.c) */
+typedef struct mrn_lua_thermo {
+  long every;
+  int ncolumns; /* 0: the default columns */
+  int columns[MRN_THERMO_MAX_COLUMNS];
+} mrn_lua_thermo;
+
 /* the userdata behind a deck's simulation object */
 typedef struct sim_box {
   mrn_sim *sim;
@@ -33,12 +40,13 @@ typedef struct sim_box {
   mrn_hook hooks[MRN_LUA_MAX_HOOKS];
   mrn_lua_callback *hook_cb[MRN_LUA_MAX_HOOKS];
   int nhooks;
-  long thermo_every;
+  mrn_lua_thermo thermo;
   int progress;
   char name[64];
   const char *busy; /* "run{}" or "add_particles()" while deck callbacks can run inside it */
   long invalid_step; /* > 0: a run stopped keeping an invalid state (a particle outside the grid) at this step */
   int interrupted;   /* a run stopped on a signal and wrote <name>_interrupted.h5 */
+  int summary_record; /* its line of the end-of-run summary (io/summary.h), 0 before its first run */
 } sim_box;
 
 /* ---- the userdata (lua_sim.c) */
@@ -75,6 +83,11 @@ void mrn_lua_read_boundary(lua_State *L, int idx, const char *where, mrn_sim *si
 void mrn_lua_read_scheme(lua_State *L, int idx, const char *where, mrn_sim *sim);
 void mrn_lua_read_dt(lua_State *L, int idx, const char *where, mrn_sim *sim);
 void mrn_lua_read_damping(lua_State *L, int idx, const char *where, mrn_sim *sim);
+
+/* thermo = N or {every, columns} at idx: the keys given change t */
+void mrn_lua_read_thermo(lua_State *L, int idx, const char *where, mrn_lua_thermo *t);
+/* t as the thermo options of a run */
+void mrn_lua_thermo_apply(const mrn_lua_thermo *t, mrn_run_options *opt);
 
 /* When a run stops on an invalid state or a signal, the state it reached is
  * kept: a checkpoint OUTDIR/<name>_<why>.h5, when a VTK series is set a last
@@ -121,7 +134,7 @@ int l_sim_info(lua_State *L);
 extern const mrn_spec_group mrn_lua_simulation_group, mrn_lua_grid_group, mrn_lua_output_group; /* config */
 extern const mrn_spec_group mrn_lua_scheme_group, mrn_lua_boundary_group, mrn_lua_face_group; /* options */
 extern const mrn_spec_group mrn_lua_dt_group, mrn_lua_damping_group;                          /* options */
-extern const mrn_spec_group mrn_lua_run_group, mrn_lua_hook_group;                            /* run */
+extern const mrn_spec_group mrn_lua_run_group, mrn_lua_hook_group, mrn_lua_thermo_group;                            /* run */
 extern const mrn_spec_group mrn_lua_particle_group;                                           /* seed */
 extern const mrn_spec_group mrn_lua_load_group, mrn_lua_import_group;                         /* checkpoint */
 extern const mrn_spec_group mrn_lua_constrain_group;                                          /* set */

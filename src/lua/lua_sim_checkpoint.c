@@ -37,7 +37,8 @@ int l_sim_save(lua_State *L) {
 
 static const mrn_spec load_specs[] = {
     {"name", MRN_SPEC_STRING, 0, 0, 0, 0, 0, 0, NULL, "label of the loaded simulation", NULL},
-    {"thermo", MRN_SPEC_INTEGER, 0, 100, 0, 1e12, 0, 0, "steps", "thermo line every N steps", NULL},
+    {"thermo", MRN_SPEC_ANY, 0, 0, 0, 0, 0, 0, "steps",
+     "thermo line every N steps (default 100, 0: none), or {every, columns}", NULL},
     {"diagnostics", MRN_SPEC_ANY, 0, 0, 0, 0, 0, 0, NULL, "CSV file name, or false", NULL},
     {"output", MRN_SPEC_TABLE, 0, 0, 0, 0, 0, 0, NULL, "VTK output settings, as in simulation{}", NULL},
     {"on_leave", MRN_SPEC_STRING, 0, 0, 0, 0, 0, 0, NULL,
@@ -73,7 +74,11 @@ int l_load(lua_State *L) {
   if (has_opts) {
     const char *name = mrn_lua_get_string(L, 2, where, load_specs, MRN_COUNT(load_specs), "name");
     if (name) snprintf(b->name, sizeof b->name, "%s", name);
-    b->thermo_every = mrn_lua_get_integer(L, 2, where, load_specs, MRN_COUNT(load_specs), "thermo");
+    if (mrn_lua_has(L, 2, "thermo")) {
+      lua_getfield(L, 2, "thermo");
+      mrn_lua_read_thermo(L, -1, where, &b->thermo);
+      lua_pop(L, 1);
+    }
     lua_getfield(L, 2, "diagnostics");
     if (lua_type(L, -1) == LUA_TSTRING) mrn_output_set_csv(&b->out, lua_tostring(L, -1), 10);
     else if (lua_type(L, -1) == LUA_TBOOLEAN && !lua_toboolean(L, -1)) {

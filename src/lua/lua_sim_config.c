@@ -26,7 +26,8 @@ static const mrn_spec sim_specs[] = {
     {"damping", MRN_SPEC_TABLE, 0, 0, 0, 0, 0, 0, NULL, "grid-force damping {cundall, viscous} (default none)", NULL},
     {"watchdog", MRN_SPEC_ANY, 0, 0, 0, 0, 0, 0, NULL,
      "physical-sanity bounds {energy, dt, speed, every}, or false (default on)", NULL},
-    {"thermo", MRN_SPEC_INTEGER, 0, 100, 0, 1e12, 0, 0, "steps", "thermo line every N steps (0: none)", NULL},
+    {"thermo", MRN_SPEC_ANY, 0, 0, 0, 0, 0, 0, "steps",
+     "thermo line every N steps (default 100, 0: none), or {every, columns}", NULL},
     {"diagnostics", MRN_SPEC_ANY, 0, 0, 0, 0, 0, 0, NULL, "CSV file name in the output directory, or false", NULL},
     {"diagnostics_every", MRN_SPEC_INTEGER, 0, 10, 1, 1e12, 0, 0, "steps", "CSV row every N steps", NULL},
     {"series", MRN_SPEC_ANY, 0, 0, 0, 0, 0, 0, NULL, "HDF5 time-series file name (default diagnostics.h5), or false", NULL},
@@ -264,7 +265,11 @@ int l_simulation(lua_State *L) {
   read_option(L, "dt", where, b->sim, mrn_lua_read_dt);
   read_option(L, "damping", where, b->sim, mrn_lua_read_damping);
   read_option(L, "watchdog", where, b->sim, mrn_lua_read_watchdog);
-  b->thermo_every = mrn_lua_get_integer(L, 1, where, SIM_SPECS, "thermo");
+  if (mrn_lua_has(L, 1, "thermo")) {
+    lua_getfield(L, 1, "thermo");
+    mrn_lua_read_thermo(L, -1, where, &b->thermo);
+    lua_pop(L, 1);
+  }
   b->progress = mrn_lua_get_boolean(L, 1, where, SIM_SPECS, "progress", 1);
   read_diagnostics(L, where, b);
 

@@ -6,6 +6,7 @@
 #include "core/error.h"
 #include "core/log.h"
 #include "io/output.h"
+#include "io/summary.h"
 #include "lua/lua_check.h"
 #include "lua/lua_sim.h"
 #include "solver/suspicious.h"
@@ -13,7 +14,8 @@
 static const mrn_spec run_specs[] = {
     {"time", MRN_SPEC_NUMBER, 0, 0, 0, HUGE_VAL, 1, 0, "s", "model time to advance", NULL},
     {"steps", MRN_SPEC_INTEGER, 0, 0, 1, 1e15, 0, 0, "steps", "number of steps", NULL},
-    {"thermo", MRN_SPEC_INTEGER, 0, 0, 0, 1e12, 0, 0, "steps", "thermo interval for this run", NULL},
+    {"thermo", MRN_SPEC_ANY, 0, 0, 0, 0, 0, 0, "steps",
+     "thermo interval for this run, or {every, columns} (absent keys: the simulation's)", NULL},
     {"stop_when", MRN_SPEC_FUNCTION, 0, 0, 0, 0, 0, 0, NULL, "function(sim) -> true to stop", NULL},
     {"progress", MRN_SPEC_BOOLEAN, 0, 0, 0, 0, 0, 0, NULL, "progress bar for this run", NULL},
     {"output", MRN_SPEC_TABLE, 0, 0, 0, 0, 0, 0, NULL, "VTK output settings from now on (as in simulation{})", NULL},
@@ -88,8 +90,13 @@ int l_sim_run(lua_State *L) {
   memset(&opt, 0, sizeof opt);
   opt.time = mrn_lua_has(L, 2, "time") ? mrn_lua_get_number(L, 2, where, run_specs, MRN_COUNT(run_specs), "time") : 0;
   opt.steps = mrn_lua_has(L, 2, "steps") ? mrn_lua_get_integer(L, 2, where, run_specs, MRN_COUNT(run_specs), "steps") : 0;
-  opt.thermo_every = mrn_lua_has(L, 2, "thermo") ? mrn_lua_get_integer(L, 2, where, run_specs, MRN_COUNT(run_specs), "thermo")
-                                                 : b->thermo_every;
+  mrn_lua_thermo thermo = b->thermo;
+  if (mrn_lua_has(L, 2, "thermo")) {
+    lua_getfield(L, 2, "thermo");
+    mrn_lua_read_thermo(L, -1, where, &thermo);
+    lua_pop(L, 1);
+  }
+  mrn_lua_thermo_apply(&thermo, &opt);
   int progress = mrn_lua_get_boolean(L, 2, where, run_specs, MRN_COUNT(run_specs), "progress", b->progress);
   opt.progress = progress && !mrn_log_quiet() && isatty(2);
   opt.hooks = b->hooks;
@@ -109,7 +116,10 @@ int l_sim_run(lua_State *L) {
   mrn_run_observer writers = mrn_output_observer(&b->out); /* the run knows no file format */
   opt.observers = &writers;
   opt.nobservers = 1;
+  const long step0 = b->sim->step;
+  const double t0 = b->sim->time;
   int rc = mrn_run(b->sim, &opt);
+  mrn_summary_add_run(&b->summary_record, b->name, step0, t0, b->sim, &opt.stats);
   b->busy = NULL;
   mrn_lua_callback_release(stop_cb);
   if (rc != MRN_OK) return raise_engine_error(L, rc, where, b);

@@ -3,12 +3,11 @@
  * mrn_run() steps until the requested model time has passed or the requested
  * number of steps is done (whichever comes first), calling hooks on their
  * schedule, reporting each state to its observers (the writers of io/, which
- * the caller registers), printing thermo lines and a progress bar. The last
+ * the caller registers), printing thermo lines and a progress bar (through
+ * core/log.h: on the screen and in the run log). The last
  * step is shortened so a `time` run ends exactly on time. */
 #ifndef MRN_SOLVER_RUN_H
 #define MRN_SOLVER_RUN_H
-
-#include <stdio.h>
 
 #include "solver/diagnostics.h"
 #include "solver/simulation.h"
@@ -49,24 +48,43 @@ typedef struct mrn_run_observer {
   void *ctx;
 } mrn_run_observer;
 
+#define MRN_THERMO_MAX_COLUMNS 32
+
+/* what a run did, for the end-of-run summary */
+typedef struct mrn_run_stats {
+  long steps;            /* steps taken */
+  double particle_steps; /* the particles of each step, summed over the steps */
+  double wall;           /* seconds of wall time */
+} mrn_run_stats;
+
 typedef struct mrn_run_options {
   double time;        /* > 0: run this much model time */
   long steps;         /* > 0: run this many steps */
   long thermo_every;  /* thermo line every N steps (0: none) */
-  int progress;       /* draw a progress bar on stderr */
+  const int *thermo_columns; /* mrn_thermo_column() of each column (NULL: the default ones) */
+  int thermo_ncolumns;
+  int progress;       /* draw a progress bar on stderr (a terminal) */
   mrn_hook *hooks;
   int nhooks;
   const mrn_run_observer *observers; /* called in this order */
   int nobservers;
   mrn_hook_fn stop_when; /* checked after every step: MRN_STOP ends the run */
   void *stop_ctx;
+  mrn_run_stats stats; /* filled by mrn_run, whatever it returns */
 } mrn_run_options;
 
 /* 0 when the run completed (or a hook/stop_when ended it), otherwise an error
  * code with the message set; the state is left at the last completed step. */
 int mrn_run(mrn_sim *sim, mrn_run_options *opt);
 
-void mrn_thermo_header(FILE *f);
-void mrn_thermo_line(FILE *f, const mrn_sim *sim, const mrn_diagnostics *d);
+/* The thermo columns: "step", "time", "dt", "steps_per_s" (steps per second
+ * of wall time since the previous line) and every column of the diagnostics
+ * table (solver/diagnostics.h), by index from 0 to mrn_thermo_column_count() - 1. */
+int mrn_thermo_column_count(void);
+const char *mrn_thermo_column_name(int i);
+/* the index of a column by name, -1 when there is none */
+int mrn_thermo_column(const char *name);
+/* the default columns into `columns` (MRN_THERMO_MAX_COLUMNS): their count */
+int mrn_thermo_default_columns(int *columns);
 
 #endif
