@@ -29,6 +29,7 @@
 
 #include "core/parallel.h"
 #include "core/tensor.h"
+#include "transfer/affine_fit.h"
 #include "transfer/blocks.h"
 #include "transfer/kernels.h"
 #include "transfer/profile.h"
@@ -999,6 +1000,7 @@ typedef struct KNAME(g2p_args) {
   const double *gstar;
   mrn_velocity_update_kind vu;
   mrn_position_update_kind xu;
+  double mass_floor;
 } KNAME(g2p_args);
 
 /* G2P of one particle; with `fused` the velocity gradient from the updated
@@ -1014,6 +1016,9 @@ MRN_INLINE void KNAME(g2p_particle)(const KNAME(g2p_args) *ar, size_t p, double 
   const double dt = ar->dt, X = ar->X;
   const mrn_velocity_update_kind vu = ar->vu;
   const int want_bd = gvk == MRN_VGRID_AFFINE, want_l = gvk == MRN_VGRID_TAYLOR || fused;
+  /* the multilinear kernel (general stencil only) fits its affine matrix
+   * from the grid instead (transfer/affine_fit.h): no B, D or L for it */
+  const int linear = !sup && gvk != MRN_VGRID_PLAIN && ar->ko->shape == MRN_SHAPE_LINEAR;
   double *x = ps->x + 3 * p;
   double *v = ps->v + 3 * p;
   double v_pic[3] = {0, 0, 0}, v_old[3] = {0, 0, 0}, v_star[3] = {0, 0, 0};
@@ -1042,12 +1047,14 @@ MRN_INLINE void KNAME(g2p_particle)(const KNAME(g2p_args) *ar, size_t p, double 
   } else {
     KNAME(stencil) s;
     KNAME(stencil_build)(g, ar->ko, x, ps->vol0[p], &s);
-    KNAME(gather_general)(&s, g->vel_new, want_dv ? g->vel : NULL, ar->gstar, 1, want_bd, want_l, v_pic, v_old, v_star,
-                          B, D, L);
-    if (gvk == MRN_VGRID_AFFINE) KNAME(apic_matrix)(B, D, ps->affine + TSTRIDE * p);
+    KNAME(gather_general)(&s, g->vel_new, want_dv ? g->vel : NULL, ar->gstar, 1, want_bd && !linear,
+                          fused || (want_l && !linear), v_pic, v_old, v_star, B, D, L);
+    if (gvk == MRN_VGRID_AFFINE && !linear) KNAME(apic_matrix)(B, D, ps->affine + TSTRIDE * p);
   }
   if (fused) KNAME(store_matrix)(L, Lout);
-  if (gvk == MRN_VGRID_TAYLOR) KNAME(store_tensor)(L, ps->affine + TSTRIDE * p); /* (000, Eq. 22), updated V */
+  if (linear) /* its D vanishes on grid lines */
+    mrn_affine_fit(g, ar->ko, DIM, ar->mass_floor, x, ps->affine + TSTRIDE * p);
+  else if (gvk == MRN_VGRID_TAYLOR) KNAME(store_tensor)(L, ps->affine + TSTRIDE * p); /* (000, Eq. 22), updated V */
   double step[3] = {0, 0, 0};
   for (int d = 0; d < DIM; d++) {
     if (!want_dv) {
@@ -1135,7 +1142,8 @@ static long KNAME(g2p_any)(mrn_transfer *tr, double dt, double *dx, const mrn_gr
   const mrn_velocity_update_kind vu = sc->velocity_update;
   KNAME(g2p_args) ar = {tr->grid, tr->particles, &ko, dt,
                         vu == MRN_VUPDATE_FLIP ? 1.0 : vu == MRN_VUPDATE_BLEND ? sc->flip_fraction : 0.0, dx,
-                        vu == MRN_VUPDATE_XPIC ? tr->grid->vel_star : NULL, vu, sc->position_update};
+                        vu == MRN_VUPDATE_XPIC ? tr->grid->vel_star : NULL, vu, sc->position_update,
+                        tr->mass_floor};
   /* the change of the grid velocity, only where the update uses it */
   const int dv = ar.X > 0.0 || vu == MRN_VUPDATE_XPIC || sc->position_update == MRN_XUPDATE_XPIC;
   double spent = 0.0;
