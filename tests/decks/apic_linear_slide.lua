@@ -9,9 +9,9 @@
 -- TPIC's grad v (000, Eq. 22) then took the velocity of a node the block has
 -- only just reached, whose tiny mass turns the stress of the entering point
 -- into an unbounded acceleration; the next P2G carried it back into the
--- strain, and the run stopped with an inverted point at t = 0.046 s whatever
+-- strain, and the run stopped with an inverted point within 0.07 s whatever
 -- the time step, while PIC and FLIP ran (doc/numerics.md, "APIC with linear
--- shape functions").
+-- shape functions"). TFLIP and MLS give AFLIP's and APIC's figures here.
 --
 --   --set strategies=APIC,...  --set a_tau=0.5,0.2,0.05  --set time=0.4
 local T = dofile(mpm.deck_dir .. "/testlib.lua")
