@@ -42,6 +42,11 @@ moraine_deck_test(checkpoint_workflow checkpoint_workflow.lua)
 # sort_every: the same physics by id, changed indices, kept by checkpoints
 moraine_deck_test(sort_every sort_every.lua)
 moraine_deck_test(rotating_cube rotating_cube.lua ARGS --set time=10)
+# linear shapes: APIC, AFLIP and TFLIP keep the angular momentum (mass-weighted affine fit)
+moraine_deck_test(rotating_cube_linear rotating_cube.lua ARGS --set time=10 --set shape=linear
+                  --set transfer=APIC)
+# linear shapes, affine and Taylor transfers: a block sliding on a friction floor at several time steps
+moraine_deck_test(apic_linear_slide apic_linear_slide.lua)
 # the parameter-sweep helper lua/moraine/sweep.lua (runs axial_bar.lua four times)
 moraine_deck_test(sweep sweep.lua LABELS lua)
 # moraine.presets and moraine.geometry

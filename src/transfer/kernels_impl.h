@@ -29,6 +29,7 @@
 
 #include "core/parallel.h"
 #include "core/tensor.h"
+#include "transfer/affine_fit.h"
 #include "transfer/blocks.h"
 #include "transfer/kernels.h"
 #include "transfer/profile.h"
@@ -989,6 +990,13 @@ static inline void KNAME(apic_matrix)(const double B[DIM][DIM], const double D[D
     }
 }
 
+/* the G2P "support" of the multilinear kernel with an affine or Taylor grid
+ * velocity: the general stencil, and the affine matrix fitted from the grid
+ * (transfer/affine_fit.h: the kernel's own B D^-1 vanishes on grid lines) */
+#ifndef MRN_SUP_LINEAR_FIT
+#define MRN_SUP_LINEAR_FIT 2
+#endif
+
 /* what G2P needs that does not change from particle to particle */
 typedef struct KNAME(g2p_args) {
   const mrn_grid *g;
@@ -999,6 +1007,7 @@ typedef struct KNAME(g2p_args) {
   const double *gstar;
   mrn_velocity_update_kind vu;
   mrn_position_update_kind xu;
+  double mass_floor;
 } KNAME(g2p_args);
 
 /* G2P of one particle; with `fused` the velocity gradient from the updated
@@ -1014,6 +1023,7 @@ MRN_INLINE void KNAME(g2p_particle)(const KNAME(g2p_args) *ar, size_t p, double 
   const double dt = ar->dt, X = ar->X;
   const mrn_velocity_update_kind vu = ar->vu;
   const int want_bd = gvk == MRN_VGRID_AFFINE, want_l = gvk == MRN_VGRID_TAYLOR || fused;
+  const int linear = sup == MRN_SUP_LINEAR_FIT; /* no B, D or L for its affine matrix */
   double *x = ps->x + 3 * p;
   double *v = ps->v + 3 * p;
   double v_pic[3] = {0, 0, 0}, v_old[3] = {0, 0, 0}, v_star[3] = {0, 0, 0};
@@ -1028,7 +1038,7 @@ MRN_INLINE void KNAME(g2p_particle)(const KNAME(g2p_args) *ar, size_t p, double 
   }
   if (gvk == MRN_VGRID_AFFINE) __builtin_prefetch(ps->affine + TSTRIDE * p, 1);
   KNAME(axes) ax;
-  if (sup && KNAME(axes_build)(g, sup, ar->ko->boundary, x, &ax)) {
+  if (sup > MRN_SUP_LINEAR_FIT && KNAME(axes_build)(g, sup, ar->ko->boundary, x, &ax)) {
     KNAME(gather_fast)(&ax, g->vel_new, g->vel, g->stride[1], g->stride[2], sup, 1, want_dv, want_bd, want_l, v_pic,
                        v_old, B, L);
     if (gvk == MRN_VGRID_AFFINE) {
@@ -1042,12 +1052,14 @@ MRN_INLINE void KNAME(g2p_particle)(const KNAME(g2p_args) *ar, size_t p, double 
   } else {
     KNAME(stencil) s;
     KNAME(stencil_build)(g, ar->ko, x, ps->vol0[p], &s);
-    KNAME(gather_general)(&s, g->vel_new, want_dv ? g->vel : NULL, ar->gstar, 1, want_bd, want_l, v_pic, v_old, v_star,
-                          B, D, L);
-    if (gvk == MRN_VGRID_AFFINE) KNAME(apic_matrix)(B, D, ps->affine + TSTRIDE * p);
+    KNAME(gather_general)(&s, g->vel_new, want_dv ? g->vel : NULL, ar->gstar, 1, want_bd && !linear,
+                          fused || (want_l && !linear), v_pic, v_old, v_star, B, D, L);
+    if (gvk == MRN_VGRID_AFFINE && !linear) KNAME(apic_matrix)(B, D, ps->affine + TSTRIDE * p);
   }
   if (fused) KNAME(store_matrix)(L, Lout);
-  if (gvk == MRN_VGRID_TAYLOR) KNAME(store_tensor)(L, ps->affine + TSTRIDE * p); /* (000, Eq. 22), updated V */
+  if (linear) /* its D vanishes on grid lines: transfer/affine_fit.h */
+    mrn_affine_fit(g, ar->ko, DIM, ar->mass_floor, x, ps->affine + TSTRIDE * p);
+  else if (gvk == MRN_VGRID_TAYLOR) KNAME(store_tensor)(L, ps->affine + TSTRIDE * p); /* (000, Eq. 22), updated V */
   double step[3] = {0, 0, 0};
   for (int d = 0; d < DIM; d++) {
     if (!want_dv) {
@@ -1081,7 +1093,8 @@ MRN_INLINE void KNAME(g2p_particle)(const KNAME(g2p_args) *ar, size_t p, double 
   }
 }
 
-/* Every G2P instance: support (0: the general stencil), grid velocity
+/* Every G2P instance: support (0: the general stencil; MRN_SUP_LINEAR_FIT:
+ * the general stencil with the fitted affine matrix), grid velocity
  * (mrn_grid_velocity_kind), gradient handed on (fused), change of the grid
  * velocity gathered (dv); one instance each (g2p_particle with these
  * constants in a chunked loop), named and tabled from this list. */
@@ -1089,7 +1102,8 @@ MRN_INLINE void KNAME(g2p_particle)(const KNAME(g2p_args) *ar, size_t p, double 
   X(SUP, PLAIN, 0, 0) X(SUP, AFFINE, 0, 0) X(SUP, TAYLOR, 0, 0) X(SUP, PLAIN, 1, 0) X(SUP, AFFINE, 1, 0) \
   X(SUP, TAYLOR, 1, 0) X(SUP, PLAIN, 0, 1) X(SUP, AFFINE, 0, 1) X(SUP, TAYLOR, 0, 1) X(SUP, PLAIN, 1, 1) \
   X(SUP, AFFINE, 1, 1) X(SUP, TAYLOR, 1, 1)
-#define MRN_G2P_VARIANTS(X) MRN_G2P_VARIANTS_OF(X, 0) MRN_G2P_VARIANTS_OF(X, 3) MRN_G2P_VARIANTS_OF(X, 4)
+#define MRN_G2P_VARIANTS(X) \
+  MRN_G2P_VARIANTS_OF(X, 0) MRN_G2P_VARIANTS_OF(X, 2) MRN_G2P_VARIANTS_OF(X, 3) MRN_G2P_VARIANTS_OF(X, 4)
 
 typedef long (*KNAME(g2p_fn))(const KNAME(g2p_args) *, const mrn_gradient_sink *, double *,
                               const mrn_particle_pass *, long *);
@@ -1129,13 +1143,15 @@ static long KNAME(g2p_any)(mrn_transfer *tr, double dt, double *dx, const mrn_gr
                            const mrn_particle_pass *after, long *after_bad) {
   const double t0 = mrn_phase_begin();
   const mrn_kernel_options ko = tr->kernel;
-  /* XPIC's smoothed velocity is gathered by the general form only */
-  const int sup = tr->scheme->velocity_update == MRN_VUPDATE_XPIC ? 0 : KNAME(fast_support)(&ko);
   const mrn_scheme *sc = tr->scheme;
+  /* XPIC's smoothed velocity is gathered by the general form only */
+  int sup = sc->velocity_update == MRN_VUPDATE_XPIC ? 0 : KNAME(fast_support)(&ko);
+  if (!sup && ko.shape == MRN_SHAPE_LINEAR && sc->grid_velocity != MRN_VGRID_PLAIN) sup = MRN_SUP_LINEAR_FIT;
   const mrn_velocity_update_kind vu = sc->velocity_update;
   KNAME(g2p_args) ar = {tr->grid, tr->particles, &ko, dt,
                         vu == MRN_VUPDATE_FLIP ? 1.0 : vu == MRN_VUPDATE_BLEND ? sc->flip_fraction : 0.0, dx,
-                        vu == MRN_VUPDATE_XPIC ? tr->grid->vel_star : NULL, vu, sc->position_update};
+                        vu == MRN_VUPDATE_XPIC ? tr->grid->vel_star : NULL, vu, sc->position_update,
+                        tr->mass_floor};
   /* the change of the grid velocity, only where the update uses it */
   const int dv = ar.X > 0.0 || vu == MRN_VUPDATE_XPIC || sc->position_update == MRN_XUPDATE_XPIC;
   double spent = 0.0;

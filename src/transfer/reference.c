@@ -12,6 +12,7 @@
 #include <string.h>
 
 #include "core/tensor.h"
+#include "transfer/affine_fit.h"
 #include "transfer/wls.h"
 
 /* ---- the stencil -------------------------------------------------------------- */
@@ -202,10 +203,15 @@ static void gather(const mrn_transfer *t, const mrn_ref_stencil *s, gathered *q)
 }
 
 /* APIC's C = B D^-1 (000, Eq. 25) or TPIC's grad v = L (000, Eq. 22) into
- * the particle's affine matrix (dim x dim stored). A singular D (a linear
- * stencil on a grid line) gives no finite C. */
-static void affine_matrix(const mrn_transfer *t, const gathered *q, double *A) {
+ * the particle's affine matrix (dim x dim stored); with the multilinear
+ * kernel, whose D vanishes on grid lines, either is the mass-weighted fit of
+ * transfer/affine_fit.h. */
+static void affine_matrix(const mrn_transfer *t, const gathered *q, const double *x, double *A) {
   const int dim = t->dim;
+  if (t->kernel.shape == MRN_SHAPE_LINEAR) {
+    mrn_affine_fit(t->grid, &t->kernel, dim, t->mass_floor, x, A);
+    return;
+  }
   if (t->scheme->grid_velocity == MRN_VGRID_TAYLOR) {
     for (int a = 0; a < dim; a++)
       for (int b = 0; b < dim; b++) A[dim * a + b] = q->L[a][b];
@@ -253,7 +259,7 @@ void mrn_ref_g2p(const mrn_transfer *t, double dt, double *dx, double *L) {
   for (size_t p = 0; p < ps->n; p++) {
     mrn_ref_stencil_build(t, p, &s);
     gather(t, &s, &q);
-    if (t->scheme->grid_velocity != MRN_VGRID_PLAIN) affine_matrix(t, &q, ps->affine + (size_t)(dim * dim) * p);
+    if (t->scheme->grid_velocity != MRN_VGRID_PLAIN) affine_matrix(t, &q, ps->x + 3 * p, ps->affine + (size_t)(dim * dim) * p);
     if (L)
       for (int a = 0; a < 3; a++)
         for (int b = 0; b < 3; b++) L[9 * p + 3 * a + b] = q.L[a][b];
