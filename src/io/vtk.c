@@ -205,7 +205,7 @@ static int pack_block(block *b, size_t n, int level, void *buf, unsigned char *c
       uint64_t v = i < 3 ? head[i] : z->sizes[i - 3];
       for (int k = 0; k < 8; k++) b->packed[8 * i + k] = (unsigned char)(v >> (8 * k)); /* little-endian */
     }
-    memcpy(b->packed + header, z->out, z->out_len);
+    if (z->out_len) memcpy(b->packed + header, z->out, z->out_len); /* no particles: nothing packed, out NULL */
     b->packed_size = header + z->out_len;
   }
   free(z->out);
