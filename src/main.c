@@ -1,6 +1,7 @@
 /* moraine: the command line.
  *
  *   moraine DECK.lua [-o OUTDIR] [--set NAME=VALUE ...] [--threads N] [--quiet] [--safe]
+ *                    [--restart CHECKPOINT] [--overwrite]
  *   moraine --help | --version | --list-options
  *   moraine --sign-checkpoint FILE...
  */
@@ -17,6 +18,7 @@
 #include "core/warn.h"
 #include "io/atomic_file.h"
 #include "io/checkpoint.h"
+#include "io/dirlock.h"
 #include "io/h5util.h"
 #include "core/spec.h"
 #include "lua/moraine_lua.h"
@@ -35,6 +37,11 @@ static void usage(FILE *f) {
           "  --set NAME=VALUE     a parameter the deck reads with mpm.param(\"NAME\", default);\n"
           "                       may be repeated\n"
           "  --threads N          number of OpenMP threads (default: all cores)\n"
+          "  --restart FILE       continue the run of a checkpoint (<name>_interrupted.h5,\n"
+          "                       <name>_checkpoint_N.h5): the deck runs again and its run{}\n"
+          "                       the checkpoint was in goes on from it, its outputs appended to\n"
+          "  --overwrite          replace the outputs another run left in the output directory\n"
+          "                       (without it such a run is refused, naming the files)\n"
           "  -q, --quiet          no thermo lines, progress bar or information messages\n"
           "  --ignore-warning ID  silence one kind of warning (or 'all'); may be repeated\n"
           "  --safe               restrict the deck: no os.execute, io.popen, C modules,\n"
@@ -127,6 +134,8 @@ static int informational_option(const char *a, int argc, char **argv, int i) {
 static int value_option(const char *a, const char *value, cli *c) {
   if (!strcmp(a, "-o") || !strcmp(a, "--output")) {
     c->opt.outdir = value;
+  } else if (!strcmp(a, "--restart")) {
+    c->opt.restart = value;
   } else if (!strcmp(a, "--set")) {
     if (!strchr(value, '=') || value[0] == '=') {
       fprintf(stderr, "moraine: --set expects NAME=VALUE, got '%s'\n", value);
@@ -156,7 +165,7 @@ static int value_option(const char *a, const char *value, cli *c) {
 
 static int takes_value(const char *a) {
   return !strcmp(a, "-o") || !strcmp(a, "--output") || !strcmp(a, "--set") || !strcmp(a, "--ignore-warning") ||
-         !strcmp(a, "--threads");
+         !strcmp(a, "--threads") || !strcmp(a, "--restart");
 }
 
 /* The arguments in order, each option applied as it comes. GO_ON, or the
@@ -168,6 +177,8 @@ static int parse_args(int argc, char **argv, cli *c) {
     if (rc != GO_ON) return rc;
     if (!strcmp(a, "--safe")) {
       c->opt.safe = 1;
+    } else if (!strcmp(a, "--overwrite")) {
+      c->opt.overwrite = 1;
     } else if (!strcmp(a, "-q") || !strcmp(a, "--quiet")) {
       mrn_log_set_quiet(1);
     } else if (takes_value(a)) {
@@ -200,6 +211,13 @@ static int run(int argc, char **argv, cli *c) {
     fprintf(stderr, "moraine: %s\n", mrn_error_message());
     return 1;
   }
+  /* one run at a time in a directory: a second one would mix its rows and
+   * snapshots with this one's */
+  mrn_dirlock lock;
+  if (mrn_dirlock_take(&lock, c->opt.outdir) != MRN_OK) {
+    fprintf(stderr, "moraine: %s\n", mrn_error_message());
+    return 1;
+  }
   c->opt.sets = c->sets;
   c->opt.nsets = c->nsets;
   c->opt.argv = (const char *const *)argv;
@@ -212,6 +230,7 @@ static int run(int argc, char **argv, cli *c) {
   mrn_h5_quiet hdf5;
   mrn_h5_silence(&hdf5);
   int rc = mrn_lua_run_deck(c->deck, &c->opt);
+  mrn_dirlock_release(&lock);
   /* a signal stopped the run; unless what it leaves could not be written */
   if (rc && rc != MRN_EXIT_OUTPUT && mrn_interrupt_pending()) rc = MRN_EXIT_INTERRUPTED;
   return rc;

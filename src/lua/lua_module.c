@@ -17,6 +17,7 @@
 #include "lua/lua_check.h"
 #include "lua/lua_internal.h"
 #include "lua/lua_safe.h"
+#include "lua/lua_sim.h"
 #include "lua/moraine_lua.h"
 
 static char library_dir[PATH_MAX + 128];
@@ -136,6 +137,8 @@ void mrn_lua_open(lua_State *L, const mrn_deck_options *opt) {
   mrn_lua_active = L;
   lua_pushstring(L, opt && opt->outdir ? opt->outdir : "out");
   lua_setfield(L, LUA_REGISTRYINDEX, "moraine.outdir");
+  lua_pushboolean(L, opt && opt->overwrite);
+  lua_setfield(L, LUA_REGISTRYINDEX, "moraine.overwrite");
   lua_newtable(L);
   for (int i = 0; opt && i < opt->nsets; i++) {
     const char *eq = strchr(opt->sets[i], '=');
@@ -176,7 +179,14 @@ static int open_protected(lua_State *L) {
   const mrn_deck_options *opt = lua_touserdata(L, 1);
   mrn_lua_open(L, opt);
   if (opt && opt->safe) mrn_lua_safe_open(L, opt->outdir ? opt->outdir : "out");
+  if (opt && opt->restart) mrn_lua_restart_open(L, opt->restart);
   return 0;
+}
+
+/* after the deck ran: --restart's checkpoint must have been continued */
+static int restart_done(lua_State *L) {
+  const char *unfinished = mrn_lua_restart_unfinished(L);
+  return unfinished ? luaL_error(L, "%s", unfinished) : 0;
 }
 
 int mrn_lua_run_deck(const char *path, const mrn_deck_options *opt) {
@@ -213,6 +223,10 @@ int mrn_lua_run_deck(const char *path, const mrn_deck_options *opt) {
     lua_setfield(L, -2, "deck_dir");
     lua_pop(L, 1);
     status = lua_pcall(L, 0, 0, handler);
+    if (status == LUA_OK) {
+      lua_pushcfunction(L, restart_done);
+      status = lua_pcall(L, 0, 0, 0);
+    }
   }
   if (status != LUA_OK) {
     fprintf(stderr, "moraine: %s\n", lua_tostring(L, -1));

@@ -66,6 +66,7 @@ sim_box *mrn_lua_sim_push(lua_State *L) {
   b->out_ready = 1;
   b->thermo_every = 100;
   b->progress = 1;
+  b->ckpt_last_step = -1;
   return b;
 }
 
@@ -190,6 +191,8 @@ void mrn_lua_open_simulation(lua_State *L, int module) {
   lua_setfield(L, module, "simulation");
   lua_pushcfunction(L, l_load);
   lua_setfield(L, module, "load");
+  lua_pushcfunction(L, l_resume);
+  lua_setfield(L, module, "resume");
   for (int i = 0; i < MRN_COUNT(groups); i++)
     mrn_spec_register_group(groups[i]->name, groups[i]->specs, groups[i]->count);
 }

@@ -25,6 +25,20 @@
 
 #define MRN_LUA_MAX_HOOKS 32
 
+/* The run{} calls of a simulation, as a checkpoint keeps them so that a
+ * resume continues the call it was in (lua_resume.c). */
+typedef struct mrn_lua_run_record {
+  long index;        /* run{} calls started: the number of the last one, from 1 */
+  int active;        /* 1 while that call is under way */
+  double start_time; /* the state it started from */
+  long start_step;
+  double time, until; /* its target as the deck gave it (0: not given) */
+  long steps;
+  long ckpt_every;   /* its checkpoint = {every, wall, keep} */
+  double ckpt_wall;
+  long ckpt_keep;
+} mrn_lua_run_record;
+
 /* the userdata behind a deck's simulation object */
 typedef struct sim_box {
   mrn_sim *sim;
@@ -39,6 +53,10 @@ typedef struct sim_box {
   const char *busy; /* "run{}" or "add_particles()" while deck callbacks can run inside it */
   long invalid_step; /* > 0: a run stopped keeping an invalid state (a particle outside the grid) at this step */
   int interrupted;   /* a run stopped on a signal and wrote <name>_interrupted.h5 */
+  mrn_lua_run_record run;
+  int resumed;          /* taken from a checkpoint: its next run{} continues the one saved */
+  double ckpt_next_wall; /* wall clock of the next checkpoint = {wall} */
+  long ckpt_last_step;   /* step of the checkpoint last written or taken */
 } sim_box;
 
 /* ---- the userdata (lua_sim.c) */
@@ -79,10 +97,32 @@ void mrn_lua_read_damping(lua_State *L, int idx, const char *where, mrn_sim *sim
  * something could not (lua_sim_checkpoint.c). */
 int mrn_lua_sim_write_final_state(sim_box *b, const char *why, char *note, size_t len);
 
+/* ---- resuming (lua_resume.c) */
+
+/* the simulation's name, thermo interval, run record and outputs, walked
+ * into or out of a stash (io/stash.h) */
+void mrn_lua_sim_stash(sim_box *b, mrn_stash *s);
+/* a checkpoint of the simulation with what a resume needs (the stash); 0 or MRN_ERR_IO */
+int mrn_lua_sim_save(sim_box *b, const char *path);
+/* --restart FILE (opt: the registry's plan): before each run{} of a
+ * simulation; SKIP for a call the checkpoint is past, HERE when the
+ * checkpoint has just been taken into b, NONE otherwise */
+enum { MRN_LUA_RESTART_NONE, MRN_LUA_RESTART_SKIP, MRN_LUA_RESTART_HERE };
+int mrn_lua_restart_at_run(lua_State *L, sim_box *b, const char *where);
+/* read the plan of --restart FILE before the deck runs; raises on a bad file */
+void mrn_lua_restart_open(lua_State *L, const char *path);
+/* after the deck: an error message when the plan was never carried out, else NULL */
+const char *mrn_lua_restart_unfinished(lua_State *L);
+/* --overwrite was given */
+int mrn_lua_overwrite(lua_State *L);
+/* the periodic checkpoints of run{ checkpoint = ... } as an observer of the run */
+mrn_run_observer mrn_lua_checkpoint_observer(sim_box *b);
+
 /* ---- the methods, one C function each: sim:NAME is l_sim_NAME */
 
 int l_simulation(lua_State *L); /* mpm.simulation{} */
 int l_load(lua_State *L);       /* mpm.load() */
+int l_resume(lua_State *L);     /* mpm.resume() */
 int l_sim_add_particles(lua_State *L);
 int l_sim_run(lua_State *L);
 int l_sim_hook(lua_State *L);

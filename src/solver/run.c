@@ -108,15 +108,20 @@ static int after_step(mrn_sim *sim, mrn_run_options *opt, int first) {
 }
 
 int mrn_run(mrn_sim *sim, mrn_run_options *opt) {
-  if (!(opt->time > 0) && !(opt->steps > 0)) return mrn_error("run: give a positive time or number of steps");
-  const double t_end = opt->time > 0 ? sim->time + opt->time : HUGE_VAL;
-  const long step_end = opt->steps > 0 ? sim->step + opt->steps : -1;
-  const double t_start = sim->time;
-  const long step_start = sim->step;
+  if (!(opt->time > 0) && !(opt->steps > 0) && !(opt->until > 0))
+    return mrn_error("run: give a positive time, end time or number of steps");
+  const double t_start = opt->resume ? opt->start_time : sim->time;
+  const long step_start = opt->resume ? opt->start_step : sim->step;
+  const double t_end = opt->until > 0 ? opt->until : opt->time > 0 ? t_start + opt->time : HUGE_VAL;
+  const long step_end = opt->steps > 0 ? step_start + opt->steps : -1;
   const double wall_start = wall_seconds();
   double last_draw = wall_start;
+  /* every_time hooks from the run's start; a resumed run past the calls made */
   for (int i = 0; i < opt->nhooks; i++)
-    if (opt->hooks[i].every_time > 0) opt->hooks[i].next_time = sim->time;
+    if (opt->hooks[i].every_time > 0) {
+      opt->hooks[i].next_time = t_start;
+      if (opt->resume) due_hook(&opt->hooks[i], sim);
+    }
 
   /* the affine matrices belong to the explicit transfers */
   if (!sim->integrator.step && sim->affine_pending && sim->scheme.grid_velocity != MRN_VGRID_PLAIN)
@@ -124,7 +129,11 @@ int mrn_run(mrn_sim *sim, mrn_run_options *opt) {
   if (!sim->energy_ref_set) mrn_sim_energy_balance_start(sim);
   mrn_watchdog_start(&sim->watch, sim);
   if (opt->thermo_every > 0 && !mrn_log_quiet()) mrn_thermo_header(stdout);
-  int rc = after_step(sim, opt, 1);
+  /* a resumed run's state was reached before the stop, which may have cut
+   * its reports short: the observers get it again as a step (each writes
+   * only what it lacks), the hooks do not */
+  int rc = opt->resume ? report_snapshots(sim, opt) : after_step(sim, opt, 1);
+  if (rc == MRN_OK && opt->resume) rc = report_rows(sim, opt, MRN_RUN_STEP);
   while (rc == MRN_OK) {
     if (step_end >= 0 && sim->step >= step_end) break;
     if (sim->integrator.step) {
@@ -137,7 +146,7 @@ int mrn_run(mrn_sim *sim, mrn_run_options *opt) {
     } else {
       double dt;
       if ((rc = mrn_dt_compute(sim, &dt)) != MRN_OK) break;
-      if (opt->time > 0) {
+      if (t_end < HUGE_VAL) {
         double remaining = t_end - sim->time;
         /* a sliver of time left over by round-off is not worth a step */
         if (remaining <= 1e-9 * dt) break;
@@ -151,7 +160,7 @@ int mrn_run(mrn_sim *sim, mrn_run_options *opt) {
     if (opt->progress) {
       double now = wall_seconds();
       if (now - last_draw > 0.25) {
-        double f_time = opt->time > 0 ? (sim->time - t_start) / opt->time : 0;
+        double f_time = t_end < HUGE_VAL ? (sim->time - t_start) / (t_end - t_start) : 0;
         double f_steps = opt->steps > 0 ? (double)(sim->step - step_start) / opt->steps : 0;
         draw_progress(f_time > f_steps ? f_time : f_steps, now - wall_start);
         last_draw = now;

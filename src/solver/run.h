@@ -52,6 +52,14 @@ typedef struct mrn_run_observer {
 typedef struct mrn_run_options {
   double time;        /* > 0: run this much model time */
   long steps;         /* > 0: run this many steps */
+  double until;       /* > 0: run until this model time (absolute; instead of time) */
+  /* 1: the run continues one that started at (start_time, start_step) and
+   * was stopped (a checkpoint): time and steps count from that start, the
+   * hooks keep its schedule and are not called for the state it continues
+   * from, which the observers get as that of a step (MRN_RUN_STEP) */
+  int resume;
+  double start_time;
+  long start_step;
   long thermo_every;  /* thermo line every N steps (0: none) */
   int progress;       /* draw a progress bar on stderr */
   mrn_hook *hooks;
