@@ -214,9 +214,10 @@ static int run(int argc, char **argv, cli *c) {
   /* one run at a time in a directory: a second one would mix its rows and
    * snapshots with this one's */
   mrn_dirlock lock;
-  if (mrn_dirlock_take(&lock, c->opt.outdir) != MRN_OK) {
+  int locked = mrn_dirlock_take(&lock, c->opt.outdir);
+  if (locked != MRN_OK) {
     fprintf(stderr, "moraine: %s\n", mrn_error_message());
-    return 1;
+    return locked == MRN_ERR_IO ? MRN_EXIT_OUTPUT : 1;
   }
   c->opt.sets = c->sets;
   c->opt.nsets = c->nsets;

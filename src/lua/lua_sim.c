@@ -172,7 +172,7 @@ static const luaL_Reg meta[] = {
 static const mrn_spec_group *const groups[] = {
     &mrn_lua_simulation_group, &mrn_lua_grid_group, &mrn_lua_scheme_group, &mrn_lua_output_group,
     &mrn_lua_boundary_group,   &mrn_lua_face_group, &mrn_lua_dt_group,     &mrn_lua_damping_group,
-    &mrn_lua_run_group,        &mrn_lua_hook_group, &mrn_lua_particle_group, &mrn_lua_load_group,
+    &mrn_lua_run_group,        &mrn_lua_checkpoint_group, &mrn_lua_hook_group, &mrn_lua_particle_group, &mrn_lua_load_group,
     &mrn_lua_constrain_group,  &mrn_lua_reduce_group, &mrn_lua_import_group,
 };
 

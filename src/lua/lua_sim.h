@@ -158,6 +158,7 @@ extern const mrn_spec_group mrn_lua_simulation_group, mrn_lua_grid_group, mrn_lu
 extern const mrn_spec_group mrn_lua_scheme_group, mrn_lua_boundary_group, mrn_lua_face_group; /* options */
 extern const mrn_spec_group mrn_lua_dt_group, mrn_lua_damping_group;                          /* options */
 extern const mrn_spec_group mrn_lua_run_group, mrn_lua_hook_group;                            /* run */
+extern const mrn_spec_group mrn_lua_checkpoint_group;                                         /* run */
 extern const mrn_spec_group mrn_lua_particle_group;                                           /* seed */
 extern const mrn_spec_group mrn_lua_load_group, mrn_lua_import_group;                         /* checkpoint */
 extern const mrn_spec_group mrn_lua_constrain_group;                                          /* set */

@@ -120,7 +120,7 @@ static void read_target(lua_State *L, const char *where, sim_box *b, mrn_run_opt
     r->start_time = b->sim->time;
     r->start_step = b->sim->step;
     if (mrn_lua_has(L, 2, "end_time") && !(r->until > b->sim->time))
-      mrn_lua_error(L, where, "end_time = %.17g is not after the simulation's time t = %.17g s", r->until, b->sim->time);
+      mrn_lua_error(L, where, "end_time = %.10g is not after the simulation's time t = %.10g s", r->until, b->sim->time);
   }
   opt->time = r->time;
   opt->steps = r->steps;
@@ -209,4 +209,5 @@ int l_sim_hook(lua_State *L) {
 }
 
 const mrn_spec_group mrn_lua_run_group = {"run{}", run_specs, MRN_COUNT(run_specs)};
+const mrn_spec_group mrn_lua_checkpoint_group = {"run{} checkpoint", checkpoint_specs, MRN_COUNT(checkpoint_specs)};
 const mrn_spec_group mrn_lua_hook_group = {"hook{}", hook_specs, MRN_COUNT(hook_specs)};

@@ -6,7 +6,7 @@
 -- most 60 s of CPU) for the signal the test script then sends.
 local mat = mpm.material.linear_elastic{ density = 1000, E = 1e6, nu = 0.3 }
 local sim = mpm.simulation{ dim = 2, grid = { size = { 1, 1 }, cell = 0.1 }, gravity = { 0, -9.81 },
-  dt = { fixed = 1e-4 }, damping = { cundall = 0.05 }, thermo = 0, name = "block",
+  dt = { fixed = 1e-4 }, damping = { cundall = 0.05 }, thermo = 0, name = mpm.param("name", "block"),
   diagnostics_every = 7, output = { vtk = "block", every = 0.0013 } }
 sim:add_particles(mpm.box{ min = { 0.3, 0.2 }, max = { 0.7, 0.6 } }, { material = mat,
   velocity = mpm.rigid_rotation{ omega = 1, center = { 0.5, 0.4 } } })
