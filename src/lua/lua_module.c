@@ -116,6 +116,8 @@ int luaopen_moraine(lua_State *L) {
   lua_setfield(L, module, "args");
   lua_getfield(L, LUA_REGISTRYINDEX, "moraine.outdir");
   lua_setfield(L, module, "outdir");
+  lua_getfield(L, LUA_REGISTRYINDEX, "moraine.overwrite");
+  lua_setfield(L, module, "overwrite");
   lua_pushvalue(L, module);
   lua_setfield(L, LUA_REGISTRYINDEX, "moraine.module");
 

@@ -24,6 +24,7 @@
 static void stash_run(mrn_lua_run_record *r, mrn_stash *s) {
   mrn_stash_long(s, "run.index", &r->index);
   mrn_stash_int(s, "run.active", &r->active);
+  mrn_stash_int(s, "run.cut_short", &r->cut_short);
   mrn_stash_real(s, "run.start_time", &r->start_time);
   mrn_stash_long(s, "run.start_step", &r->start_step);
   mrn_stash_real(s, "run.time", &r->time);

@@ -30,6 +30,7 @@
 typedef struct mrn_lua_run_record {
   long index;        /* run{} calls started: the number of the last one, from 1 */
   int active;        /* 1 while that call is under way */
+  int cut_short;     /* it stopped inside the hooks or reports of its last state */
   double start_time; /* the state it started from */
   long start_step;
   double time, until; /* its target as the deck gave it (0: not given) */

@@ -127,6 +127,7 @@ static void read_target(lua_State *L, const char *where, sim_box *b, mrn_run_opt
   opt->until = r->until;
   /* the state a resumed simulation starts from was reported before the checkpoint */
   opt->resume = b->resumed;
+  opt->resume_hooks = continuing && r->cut_short;
   opt->start_time = r->start_time;
   opt->start_step = r->start_step;
   r->active = 1;
@@ -176,6 +177,7 @@ int l_sim_run(lua_State *L) {
   opt.observers = observers;
   opt.nobservers = b->run.ckpt_every > 0 || b->run.ckpt_wall > 0 ? 2 : 1;
   int rc = mrn_run(b->sim, &opt);
+  b->run.cut_short = opt.cut_short; /* kept by the checkpoint a stop writes */
   b->busy = NULL;
   b->resumed = 0;
   mrn_lua_callback_release(stop_cb);

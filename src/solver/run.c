@@ -107,21 +107,20 @@ static int after_step(mrn_sim *sim, mrn_run_options *opt, int first) {
   return MRN_OK;
 }
 
-int mrn_run(mrn_sim *sim, mrn_run_options *opt) {
-  if (!(opt->time > 0) && !(opt->steps > 0) && !(opt->until > 0))
-    return mrn_error("run: give a positive time, end time or number of steps");
-  const double t_start = opt->resume ? opt->start_time : sim->time;
-  const long step_start = opt->resume ? opt->start_step : sim->step;
-  const double t_end = opt->until > 0 ? opt->until : opt->time > 0 ? t_start + opt->time : HUGE_VAL;
-  const long step_end = opt->steps > 0 ? step_start + opt->steps : -1;
-  const double wall_start = wall_seconds();
-  double last_draw = wall_start;
-  /* every_time hooks from the run's start; a resumed run past the calls made */
-  for (int i = 0; i < opt->nhooks; i++)
-    if (opt->hooks[i].every_time > 0) {
-      opt->hooks[i].next_time = t_start;
-      if (opt->resume) due_hook(&opt->hooks[i], sim);
-    }
+/* Before the first step: the hooks' schedule, what the step needs set up,
+ * and the reports of the starting state. 0, or what ended the run. */
+static int start_run(mrn_sim *sim, mrn_run_options *opt, double t_start) {
+  /* every_time hooks from the run's start; a resumed run past the calls
+   * made, up to this state when they are made again for it */
+  for (int i = 0; i < opt->nhooks; i++) {
+    mrn_hook *h = &opt->hooks[i];
+    if (!(h->every_time > 0)) continue;
+    h->next_time = t_start;
+    if (opt->resume && !opt->resume_hooks) due_hook(h, sim);
+    while (opt->resume && opt->resume_hooks && h->next_time < sim->time - 1e-9 * h->every_time)
+      h->next_time += h->every_time;
+  }
+  opt->cut_short = 0;
 
   /* the affine matrices belong to the explicit transfers */
   if (!sim->integrator.step && sim->affine_pending && sim->scheme.grid_velocity != MRN_VGRID_PLAIN)
@@ -131,9 +130,25 @@ int mrn_run(mrn_sim *sim, mrn_run_options *opt) {
   if (opt->thermo_every > 0 && !mrn_log_quiet()) mrn_thermo_header(stdout);
   /* a resumed run's state was reached before the stop, which may have cut
    * its reports short: the observers get it again as a step (each writes
-   * only what it lacks), the hooks do not */
-  int rc = opt->resume ? report_snapshots(sim, opt) : after_step(sim, opt, 1);
-  if (rc == MRN_OK && opt->resume) rc = report_rows(sim, opt, MRN_RUN_STEP);
+   * only what it lacks); the hooks too when the stop came inside them */
+  int rc = !opt->resume       ? after_step(sim, opt, 1)
+           : opt->resume_hooks ? after_step(sim, opt, 0)
+                               : report_snapshots(sim, opt);
+  if (rc == MRN_OK && opt->resume && !opt->resume_hooks) rc = report_rows(sim, opt, MRN_RUN_STEP);
+  if (rc != MRN_OK && rc != MRN_STOP) opt->cut_short = 1;
+  return rc;
+}
+
+int mrn_run(mrn_sim *sim, mrn_run_options *opt) {
+  if (!(opt->time > 0) && !(opt->steps > 0) && !(opt->until > 0))
+    return mrn_error("run: give a positive time, end time or number of steps");
+  const double t_start = opt->resume ? opt->start_time : sim->time;
+  const long step_start = opt->resume ? opt->start_step : sim->step;
+  const double t_end = opt->until > 0 ? opt->until : opt->time > 0 ? t_start + opt->time : HUGE_VAL;
+  const long step_end = opt->steps > 0 ? step_start + opt->steps : -1;
+  const double wall_start = wall_seconds();
+  double last_draw = wall_start;
+  int rc = start_run(sim, opt, t_start);
   while (rc == MRN_OK) {
     if (step_end >= 0 && sim->step >= step_end) break;
     if (sim->integrator.step) {
@@ -156,6 +171,7 @@ int mrn_run(mrn_sim *sim, mrn_run_options *opt) {
     }
     if ((rc = mrn_watchdog_check(&sim->watch, sim, sim->step == step_start + 1)) != MRN_OK) break;
     rc = after_step(sim, opt, 0);
+    if (rc != MRN_OK && rc != MRN_STOP) opt->cut_short = 1;
     if (rc == MRN_OK && mrn_interrupt_pending()) rc = MRN_ERR_INTERRUPTED;
     if (opt->progress) {
       double now = wall_seconds();

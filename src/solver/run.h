@@ -60,6 +60,12 @@ typedef struct mrn_run_options {
   int resume;
   double start_time;
   long start_step;
+  /* with resume: the stop cut the hooks or reports of the state short (see
+   * cut_short), so they are all made again for it, the hooks included */
+  int resume_hooks;
+  /* set by mrn_run when it ended on an error inside the hooks, reports or
+   * stop_when of a state: not all of them were made for the state it left */
+  int cut_short;
   long thermo_every;  /* thermo line every N steps (0: none) */
   int progress;       /* draw a progress bar on stderr */
   mrn_hook *hooks;

@@ -10,7 +10,7 @@ local sim = mpm.simulation{ dim = 2, grid = { size = { 1, 1 }, cell = 0.1 }, gra
   diagnostics_every = 7, output = { vtk = "block", every = 0.0013 } }
 sim:add_particles(mpm.box{ min = { 0.3, 0.2 }, max = { 0.7, 0.6 } }, { material = mat,
   velocity = mpm.rigid_rotation{ omega = 1, center = { 0.5, 0.4 } } })
-local stop_at = tonumber(mpm.param("stop_at", "0"))
+local stop_at = tonumber(mpm.param("stop_at", "-1"))
 sim:hook{ every_steps = 1, fn = function(s)
   if s:step() ~= stop_at then return end
   local f = assert(io.open(mpm.outdir .. "/at_stop", "w")) f:close()

@@ -51,5 +51,5 @@ set_tests_properties(doc.errors_table PROPERTIES LABELS doc)
 add_custom_target(memcheck COMMAND ${CMAKE_SOURCE_DIR}/scripts/memcheck.sh ${CMAKE_BINARY_DIR}/memcheck USES_TERMINAL)
 # a run stopped at a random step (SIGINT, SIGKILL) and continued with
 # --restart leaves a straight run's outputs; refused second and concurrent runs
-add_test(NAME robust.resume COMMAND ${MORAINE_ROBUST_DIR}/resume.sh $<TARGET_FILE:moraine> ${MORAINE_TEST_OUT}/robust_resume)
-set_tests_properties(robust.resume PROPERTIES LABELS robust ENVIRONMENT OMP_WAIT_POLICY=PASSIVE TIMEOUT 300)
+add_test(NAME robust.resume COMMAND ${MORAINE_ROBUST_DIR}/resume.sh $<TARGET_FILE:moraine> ${MORAINE_TEST_OUT}/robust_resume ${Python3_EXECUTABLE})
+set_tests_properties(robust.resume PROPERTIES LABELS robust ENVIRONMENT OMP_WAIT_POLICY=PASSIVE TIMEOUT 120)
