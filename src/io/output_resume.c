@@ -78,7 +78,7 @@ void mrn_output_stash(mrn_output *o, mrn_stash *s) {
 
 /* an entry added to the collection in memory only: mrn_pvd_add of the last
  * one rewrites the file with them all */
-static int mrn_pvd_add_quietly(mrn_pvd *pvd, double time, const char *file) {
+static int pvd_push(mrn_pvd *pvd, double time, const char *file) {
   if (pvd->count == pvd->cap) {
     int cap = pvd->cap ? 2 * pvd->cap : 16;
     double *times = realloc(pvd->times, (size_t)cap * sizeof *times);
@@ -131,7 +131,7 @@ static int resume_pvd(mrn_pvd *pvd, int keep) {
     pvd_attr(line, "timestep", time, sizeof time);
     pvd_attr(line, "file", file, sizeof file);
     if (index < keep - 1) {
-      rc = mrn_pvd_add_quietly(pvd, strtod(time, NULL), file);
+      rc = pvd_push(pvd, strtod(time, NULL), file);
     } else if (index == keep - 1) {
       last_time = strtod(time, NULL);
       last_file = strdup(file);

@@ -74,18 +74,15 @@ static void carry_deck_settings(mrn_sim *to, mrn_sim *from, int dt_function_drop
 /* the checkpoint at path into b: its state (replacing b's simulation, if
  * any), name, outputs and run record; its files continued */
 static void take_checkpoint(lua_State *L, sim_box *b, const char *path, const char *where) {
-  mrn_stash s;
-  if (mrn_checkpoint_read_stash(path, &s) != MRN_OK) mrn_lua_engine_error(L, where);
-  int resumable = mrn_stash_find(&s, "run.index") && mrn_stash_find(&s, "output.vtk_count");
+  mrn_stash *s = &b->taking;
+  mrn_stash_free(s);
+  if (mrn_checkpoint_read_stash(path, s) != MRN_OK) mrn_lua_engine_error(L, where);
+  if (!mrn_stash_find(s, "run.index") || !mrn_stash_find(s, "output.vtk_count"))
+    mrn_lua_error(L, where, "'%s' holds no run to continue (a checkpoint of sim:save() made inside a run, or of an "
+                  "older moraine): load it with mpm.load", path);
   mrn_checkpoint_info info;
-  mrn_sim *sim = resumable ? mrn_checkpoint_load_info(path, &info) : NULL;
-  if (!sim) {
-    mrn_stash_free(&s);
-    if (!resumable)
-      mrn_lua_error(L, where, "'%s' holds no run to continue (a checkpoint of sim:save() made inside a run, or of an "
-                    "older moraine): load it with mpm.load", path);
-    mrn_lua_engine_error(L, where);
-  }
+  mrn_sim *sim = mrn_checkpoint_load_info(path, &info);
+  if (!sim) mrn_lua_engine_error(L, where);
   carry_deck_settings(sim, b->sim, info.dt_function_dropped);
   if (b->sim) mrn_sim_free(b->sim);
   b->sim = sim;
@@ -94,16 +91,14 @@ static void take_checkpoint(lua_State *L, sim_box *b, const char *path, const ch
   mrn_output_init(&b->out, dir);
   free(dir);
   memset(&b->run, 0, sizeof b->run);
-  mrn_lua_sim_stash(b, &s);
+  mrn_lua_sim_stash(b, s);
   const char *names[] = {b->out.vtk_name, b->out.csv_name, b->out.series_name, b->out.series_file};
   for (int i = 0; i < 4; i++)
-    if (names[i] && (names[i][0] == '/' || strstr(names[i], ".."))) {
-      mrn_stash_free(&s);
+    if (names[i] && (names[i][0] == '/' || strstr(names[i], "..")))
       mrn_lua_error(L, where, "'%s': output file '%s' is not inside the output directory", path, names[i]);
-    }
   mrn_lua_check_outputs(L, where, &b->out, b->name);
-  int rc = mrn_output_resume(&b->out, &s);
-  mrn_stash_free(&s);
+  int rc = mrn_output_resume(&b->out, s);
+  mrn_stash_free(s);
   if (rc != MRN_OK) mrn_lua_engine_output_error(L, where);
   b->resumed = 1;
   b->ckpt_last_step = sim->step;

@@ -92,6 +92,7 @@ static int release_sim(lua_State *L) {
   b->out_ready = 0;
   mrn_sim_free(b->sim);
   b->sim = NULL;
+  mrn_stash_free(&b->taking);
   return rc;
 }
 

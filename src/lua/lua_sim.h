@@ -58,6 +58,7 @@ typedef struct sim_box {
   int resumed;          /* taken from a checkpoint: its next run{} continues the one saved */
   double ckpt_next_wall; /* wall clock of the next checkpoint = {wall} */
   long ckpt_last_step;   /* step of the checkpoint last written or taken */
+  mrn_stash taking;      /* a checkpoint's /resume while it is taken (freed with the box if that raises) */
 } sim_box;
 
 /* ---- the userdata (lua_sim.c) */

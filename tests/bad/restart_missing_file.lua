@@ -1,4 +1,4 @@
--- expect: moraine: --restart: 'no_such_checkpoint\.h5': .*
+-- expect: --restart: 'no_such_checkpoint\.h5': cannot open: No such file or directory
 -- options: --restart no_such_checkpoint.h5
 -- case: files | --restart naming a file that does not exist
 local mpm = require "moraine"
