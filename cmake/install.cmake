@@ -26,7 +26,7 @@ set(MORAINE_PUBLIC_HEADERS
   material/material.h
   solver/diagnostics.h solver/run.h solver/sim_scalars.h solver/simulation.h solver/timestep.h solver/watchdog.h
   implicit/implicit.h
-  io/checkpoint.h io/output.h io/series_h5.h io/vtk.h)
+  io/checkpoint.h io/output.h io/series_h5.h io/stash.h io/vtk.h)
 install(FILES src/moraine.h DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/moraine)
 foreach(h IN LISTS MORAINE_PUBLIC_HEADERS)
   get_filename_component(dir ${h} DIRECTORY)

@@ -24,6 +24,7 @@
 #include "core/warn.h"
 #include "io/atomic_file.h"
 #include "io/checkpoint.h"
+#include "io/dirlock.h"
 #include "io/h5util.h"
 #include "io/summary.h"
 #include "core/spec.h"
@@ -125,6 +126,16 @@ static int opt_sign_checkpoint(cli *c, const char *value) {
   return GO_ON;
 }
 
+static int opt_restart(cli *c, const char *value) {
+  c->opt.restart = value;
+  return GO_ON;
+}
+
+static int opt_overwrite(cli *c, const char *value) {
+  c->opt.overwrite = 1;
+  return GO_ON;
+}
+
 static int opt_help(cli *c, const char *value) {
   usage(stdout);
   return 0;
@@ -141,6 +152,12 @@ static const cli_option options[] = {
      "a parameter the deck reads with mpm.param(\"NAME\", default);\nmay be repeated; a NAME the deck never "
      "reads is\nwarned about at the end"},
     {"threads", 0, "N", opt_threads, "number of OpenMP threads (default: all cores)"},
+    {"restart", 0, "FILE", opt_restart,
+     "continue the run of a checkpoint (<name>_interrupted.h5,\n<name>_checkpoint_N.h5): the deck runs again and the run{}\n"
+     "the checkpoint was in goes on from it, its outputs appended to"},
+    {"overwrite", 0, NULL, opt_overwrite,
+     "replace the outputs another run left in the output directory\n(without it such a run is refused, naming the "
+     "files)"},
     {"quiet", 'q', NULL, opt_quiet, "no thermo lines, progress bar, summary or information\nmessages on the screen (log.txt still gets them)"},
     {"ignore-warning", 0, "ID", opt_ignore_warning, "silence one kind of warning (or 'all'); may be repeated"},
     {"safe", 0, NULL, opt_safe,
@@ -307,8 +324,9 @@ static int parse_args(int argc, char **argv, cli *c) {
 static int log_open; /* from open_run_log to close_run_log */
 
 /* The run log OUTDIR/log.txt, opened before the deck runs: everything moraine
- * and the deck print, up to the summary. `append`: a run that continues
- * another adds to that run's log. GO_ON, or the exit status. */
+ * and the deck print, up to the summary. `append`: the run adds to the log
+ * an earlier run left (each run's part starts with its header line).
+ * GO_ON, or the exit status. */
 static int open_run_log(const cli *c, int argc, char **argv, int append) {
   char *path = mrn_path_join(c->opt.outdir, "log.txt");
   int rc = path ? mrn_log_open(path, append) : mrn_error_code(MRN_ERR_IO, "out of memory");
@@ -378,8 +396,19 @@ static int run(int argc, char **argv, cli *c) {
     fprintf(stderr, "moraine: %s\n", mrn_error_message());
     return 1;
   }
-  int rc = open_run_log(c, argc, argv, 0);
-  if (rc != GO_ON) return rc;
+  /* one run at a time in a directory: a second one would mix its rows and
+   * snapshots with this one's */
+  mrn_dirlock lock;
+  int rc = mrn_dirlock_take(&lock, c->opt.outdir);
+  if (rc != MRN_OK) {
+    fprintf(stderr, "moraine: %s\n", mrn_error_message());
+    return rc == MRN_ERR_IO ? MRN_EXIT_OUTPUT : 1;
+  }
+  /* an earlier run's log is kept unless its outputs are replaced on purpose */
+  if ((rc = open_run_log(c, argc, argv, !c->opt.overwrite)) != GO_ON) {
+    mrn_dirlock_release(&lock);
+    return rc;
+  }
   mrn_summary_start();
   atexit(close_run_log_at_exit);
   c->opt.sets = c->sets;
@@ -396,7 +425,9 @@ static int run(int argc, char **argv, cli *c) {
   rc = mrn_lua_run_deck(c->deck, &c->opt);
   /* a signal stopped the run; unless what it leaves could not be written */
   if (rc && rc != MRN_EXIT_OUTPUT && mrn_interrupt_pending()) rc = MRN_EXIT_INTERRUPTED;
-  return close_run_log(rc);
+  rc = close_run_log(rc);
+  mrn_dirlock_release(&lock); /* after the summary: the log is the directory's too */
+  return rc;
 }
 
 int main(int argc, char **argv) {

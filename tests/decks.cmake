@@ -3,10 +3,11 @@
 # the deck's file and line.
 set(MORAINE_DECK_DIR ${CMAKE_CURRENT_SOURCE_DIR}/decks)
 
+# --overwrite: the directory holds the outputs of this test's previous run
 function(moraine_deck_test name deck)
   cmake_parse_arguments(ARG "" "" "ARGS;LABELS" ${ARGN})
   add_test(NAME deck.${name}
-           COMMAND moraine ${MORAINE_DECK_DIR}/${deck} -q -o ${MORAINE_TEST_OUT}/${name} ${ARG_ARGS})
+           COMMAND moraine ${MORAINE_DECK_DIR}/${deck} -q -o ${MORAINE_TEST_OUT}/${name} --overwrite ${ARG_ARGS})
   # parallel ctest jobs share two cores: threads must not spin while waiting
   set_tests_properties(deck.${name} PROPERTIES LABELS "deck;${ARG_LABELS}" ENVIRONMENT OMP_WAIT_POLICY=PASSIVE)
 endfunction()
@@ -81,7 +82,7 @@ foreach(deck ${MORAINE_EXAMPLES})
   get_filename_component(dir ${deck} DIRECTORY)
   get_filename_component(name ${dir} NAME)
   add_test(NAME example.${name}
-           COMMAND moraine ${deck} -q -o ${MORAINE_TEST_OUT}/example_${name} --set quick=true)
+           COMMAND moraine ${deck} -q -o ${MORAINE_TEST_OUT}/example_${name} --overwrite --set quick=true)
   set_tests_properties(example.${name} PROPERTIES LABELS example)
 endforeach()
 

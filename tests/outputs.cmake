@@ -120,10 +120,10 @@ set_tests_properties(robust.sigkill PROPERTIES LABELS "robust;long" ENVIRONMENT 
 # announce must be a valid, non-empty image
 set(example_plot_dir ${MORAINE_OUTPUTS_DIR}/example_plots)
 add_test(NAME plot.example_column_collapse
-         COMMAND moraine ${CMAKE_SOURCE_DIR}/examples/column_collapse/deck.lua -q -o ${example_plot_dir}/column_collapse
+         COMMAND moraine ${CMAKE_SOURCE_DIR}/examples/column_collapse/deck.lua -q -o ${example_plot_dir}/column_collapse --overwrite
                  --set quick=true --set plot=true)
 add_test(NAME plot.example_bouncing_cube
-         COMMAND moraine ${CMAKE_SOURCE_DIR}/examples/bouncing_cube/deck.lua -q -o ${example_plot_dir}/bouncing_cube
+         COMMAND moraine ${CMAKE_SOURCE_DIR}/examples/bouncing_cube/deck.lua -q -o ${example_plot_dir}/bouncing_cube --overwrite
                  --set quick=true --set plot=true)
 set_tests_properties(plot.example_column_collapse plot.example_bouncing_cube PROPERTIES
                      LABELS "plot;example" FIXTURES_SETUP example_plots ENVIRONMENT OMP_WAIT_POLICY=PASSIVE)

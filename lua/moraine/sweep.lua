@@ -146,7 +146,7 @@ local function quote(s)
 end
 
 --- sweep.decks{ deck = path, params = {...}, set = {name = value}, outdir = dir,
---               moraine = executable, quiet = true }:
+--               moraine = executable, quiet = true, overwrite = mpm.overwrite }:
 -- runs `moraine DECK -q -o OUTDIR/<label> --set name=value ...` for every
 -- combination (plus the fixed `set` options). OUTDIR defaults to
 -- mpm.outdir .. "/sweep". Returns a list of rows
@@ -163,6 +163,9 @@ function M.decks(t)
     local label = M.label(p):gsub("[^%w%.,=_-]", "_")
     local dir = base .. "/" .. (label ~= "" and label or "run")
     local cmd = { quote(exe), quote(t.deck), t.quiet == false and "" or "-q", "-o", quote(dir) }
+    local overwrite = t.overwrite
+    if overwrite == nil then overwrite = mpm.overwrite end
+    if overwrite then cmd[#cmd + 1] = "--overwrite" end
     local sets = {}
     for k, v in pairs(t.set or {}) do sets[k] = v end
     for k, v in pairs(p) do sets[k] = v end

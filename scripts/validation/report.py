@@ -21,6 +21,7 @@ import argparse
 import glob
 import json
 import os
+import shutil
 import subprocess
 import sys
 import time
@@ -53,6 +54,8 @@ def load_cases():
 def run_case(case, moraine, build, out):
     log = os.path.join(out, case["key"] + ".log")
     if "deck" in case:
+        # a fresh directory: moraine refuses to write over an earlier report's outputs
+        shutil.rmtree(os.path.join(out, case["key"]), ignore_errors=True)
         cmd = [moraine, os.path.join(ROOT, case["deck"]), "-q", "-o", os.path.join(out, case["key"])]
         for a in case.get("args", []):
             cmd += ["--set", a]

@@ -284,7 +284,7 @@ static void save_grid_nodes(mrn_h5w *w, const mrn_grid *grid) {
   H5Gclose(g);
 }
 
-static void save_all(mrn_h5w *w, const mrn_sim *sim) {
+static void save_all(mrn_h5w *w, const mrn_sim *sim, const mrn_stash *stash) {
   save_root(w);
   save_simulation(w, sim);
   save_grid(w, &sim->grid);
@@ -295,6 +295,7 @@ static void save_all(mrn_h5w *w, const mrn_sim *sim) {
   save_particles(w, sim);
   save_user_fields(w, &sim->particles);
   save_grid_nodes(w, &sim->grid);
+  ck_save_stash(w, stash);
 }
 
 /* datasets a checkpoint of `sim` holds at most: the particle fields,
@@ -316,7 +317,8 @@ static hid_t image_fcpl(uint64_t userblock) {
  * a full disk fails an ordinary write() reported with the path and reason.
  * The image starts with a user block HDF5 leaves alone; once the file is
  * complete the checksum table of its bytes goes there (checkpoint_sum.c). */
-static int build_image(const mrn_sim *sim, const char *final_path, void **image, size_t *size) {
+static int build_image(const mrn_sim *sim, const mrn_stash *stash, const char *final_path, void **image,
+                       size_t *size) {
   mrn_h5w w = {.file = H5I_INVALID_HID};
   mrn_h5_image img;
   const uint64_t userblock = ck_sum_userblock(dataset_count(sim));
@@ -328,7 +330,7 @@ static int build_image(const mrn_sim *sim, const char *final_path, void **image,
   *image = NULL;
   *size = 0;
   if (w.file < 0) return mrn_error_code(MRN_ERR_IO, "cannot write '%s': HDF5 could not create the file", final_path);
-  save_all(&w, sim);
+  save_all(&w, sim, stash);
   /* where each dataset's values lie is settled once they are flushed */
   ck_ranges ranges = {0};
   if (H5Fflush(w.file, H5F_SCOPE_GLOBAL) < 0 || ck_sum_collect(w.file, &ranges)) w.failed = 1;
@@ -345,12 +347,14 @@ static int build_image(const mrn_sim *sim, const char *final_path, void **image,
   return mrn_error_code(MRN_ERR_IO, "cannot write '%s': HDF5 could not build the file in memory", final_path);
 }
 
-int mrn_checkpoint_save(const mrn_sim *sim, const char *path) {
+int mrn_checkpoint_save(const mrn_sim *sim, const char *path) { return mrn_checkpoint_save_stash(sim, NULL, path); }
+
+int mrn_checkpoint_save_stash(const mrn_sim *sim, const mrn_stash *stash, const char *path) {
   void *image;
   size_t size;
   mrn_h5_quiet quiet;
   mrn_h5_silence(&quiet);
-  int rc = build_image(sim, path, &image, &size);
+  int rc = build_image(sim, stash, path, &image, &size);
   mrn_h5_restore(&quiet);
   if (rc == MRN_OK) rc = mrn_atomic_write_file(path, image, size);
   free(image);

@@ -14,6 +14,7 @@
 #ifndef MRN_IO_CHECKPOINT_H
 #define MRN_IO_CHECKPOINT_H
 
+#include "io/stash.h"
 #include "solver/simulation.h"
 
 #define MRN_CHECKPOINT_FORMAT "moraine checkpoint"
@@ -38,6 +39,13 @@ typedef struct mrn_checkpoint_info {
  * temporary name in the same directory and renamed into place when complete.
  * 0, or MRN_ERR_IO with the path and reason (no partial file is left). */
 int mrn_checkpoint_save(const mrn_sim *sim, const char *path);
+/* the same with the values of `stash` (may be NULL) in the group /resume:
+ * what a resumed run needs beyond the state (io/stash.h) */
+int mrn_checkpoint_save_stash(const mrn_sim *sim, const mrn_stash *stash, const char *path);
+/* The /resume values of the checkpoint at `path` (its checksums checked
+ * first) into a stash for loading; a file without the group gives an empty
+ * one. 0, or MRN_ERR_IO with a message naming the file. */
+int mrn_checkpoint_read_stash(const char *path, mrn_stash *stash);
 
 /* Read a checkpoint into a new simulation; materials are re-created from the
  * registry by type name with their saved parameters. NULL with a message

@@ -8,6 +8,8 @@
 #include <hdf5.h>
 #include <stdint.h>
 
+#include "io/h5util.h"
+#include "io/stash.h"
 #include "solver/simulation.h"
 
 /* upper bound on history variables per particle, against absurd files */
@@ -91,6 +93,9 @@ int ck_sum_write_image(unsigned char *image, uint64_t size, uint64_t userblock, 
  * 0: older files, or not a checkpoint); else MRN_ERR_IO with a message
  * naming the file and the damaged dataset or part. */
 int ck_sum_verify(const char *path, int *present);
+
+/* the group /resume of the values of `stash` (NULL or empty: none; checkpoint_stash.c) */
+void ck_save_stash(mrn_h5w *w, const mrn_stash *stash);
 
 /* NULL-terminated names of the time-step policy kinds, in enum order */
 const char *const *ck_dt_kind_names(void);

@@ -12,6 +12,7 @@
 #include "core/error.h"
 #include "core/spec.h"
 #include "io/atomic_file.h"
+#include "io/output_internal.h"
 #include "io/particle_fields.h"
 #include "io/summary.h"
 #include "io/vti.h"
@@ -46,6 +47,7 @@ int mrn_output_free(mrn_output *o) {
   free(o->run_name);
   free(o->deck_path);
   free(o->deck_text);
+  free(o->series_file);
   memset(o, 0, sizeof *o);
   o->csv_fd = -1;
   return rc;
@@ -122,6 +124,16 @@ static char *unused_series_path(mrn_output *o) {
 static int open_series(mrn_output *o, int dim) {
   char *path = unused_series_path(o);
   int rc = mrn_series_create(&o->series, path);
+  if (rc == MRN_OK) {
+    free(o->series_file);
+    /* its name in the directory, as a checkpoint keeps it */
+    size_t dlen = strlen(o->dir);
+    const char *rel = path;
+    if (dlen && strncmp(path, o->dir, dlen) == 0)
+      for (rel = path + dlen; *rel == '/'; rel++) continue;
+    o->series_file = strdup(rel);
+    o->series_rows = 0;
+  }
   free(path);
   if (rc != MRN_OK) return rc;
   rc = mrn_series_describe(o->series, o->run_name, o->deck_path, o->deck_text);
@@ -174,10 +186,10 @@ static char *snapshot_base(mrn_output *o) {
       return NULL;
     }
   }
-  if (!o->pvd.path) { /* VTK 9.1 reads no .vtkhdf from a .pvd: ParaView's JSON series lists those */
+  if (!o->pvd.path) {
     size_t len = strlen(base) + 16;
     char *pvd_path = malloc(len);
-    snprintf(pvd_path, len, "%s%s", base, o->vtkhdf ? ".vtkhdf.series" : ".pvd");
+    snprintf(pvd_path, len, "%s%s", base, MRN_OUTPUT_COLLECTION(o));
     if (o->vtkhdf) mrn_file_series_init(&o->pvd, pvd_path);
     else mrn_pvd_init(&o->pvd, pvd_path);
     free(pvd_path);
@@ -239,7 +251,7 @@ int mrn_output_write_vtk(mrn_output *o, const mrn_sim *sim) {
   if (!base) return MRN_ERR_IO;
   size_t len = strlen(base) + 32;
   char *path = malloc(len);
-  snprintf(path, len, "%s_%06d.%s", base, o->vtk_count, o->vtkhdf ? "vtkhdf" : "vtp");
+  snprintf(path, len, "%s_%06d%s", base, o->vtk_count, MRN_OUTPUT_SNAPSHOT_EXT(o));
   const char *file_part = strrchr(path, '/');
   file_part = file_part ? file_part + 1 : path;
 
@@ -283,20 +295,34 @@ int mrn_output_maybe_vtk(mrn_output *o, const mrn_sim *sim) {
 /* CSV files opened in this process: a second simulation writing to the same
  * file (a settling run and the collapse that follows it, say) appends its rows
  * under the same header instead of truncating the first one's */
-#define MAX_CSV_SEEN 64
-static char *csv_seen[MAX_CSV_SEEN];
-static int csv_seen_count;
+static mrn_path_set csv_seen;
 
 static int csv_seen_before(const char *path) {
-  for (int i = 0; i < csv_seen_count; i++)
-    if (strcmp(csv_seen[i], path) == 0) return 1;
-  if (csv_seen_count < MAX_CSV_SEEN) csv_seen[csv_seen_count++] = strdup(path);
+  if (mrn_path_set_has(&csv_seen, path)) return 1;
+  mrn_path_set_add(&csv_seen, path);
   return 0;
 }
 
+void mrn_output_mark_written(const char *path) { mrn_path_set_add(&csv_seen, path); }
+
+int mrn_path_set_has(const mrn_path_set *set, const char *path) {
+  for (int i = 0; i < set->n; i++)
+    if (strcmp(set->p[i], path) == 0) return 1;
+  return 0;
+}
+
+void mrn_path_set_add(mrn_path_set *set, const char *path) {
+  if (set->n < MRN_PATH_SET_MAX && !mrn_path_set_has(set, path)) set->p[set->n++] = strdup(path);
+}
+
+void mrn_path_set_clear(mrn_path_set *set) {
+  for (int i = 0; i < set->n; i++) free(set->p[i]);
+  set->n = 0;
+}
+
 void mrn_output_forget_files(void) {
-  for (int i = 0; i < csv_seen_count; i++) free(csv_seen[i]);
-  csv_seen_count = 0;
+  mrn_path_set_clear(&csv_seen);
+  mrn_output_forget_claims();
 }
 
 /* ---- the CSV ------------------------------------------------------------ */
@@ -401,6 +427,7 @@ int mrn_output_maybe_csv(mrn_output *o, const mrn_sim *sim, const mrn_diagnostic
       rc = mrn_series_set_at(o->series, i + 1, values[i]);
     if (rc == MRN_OK) rc = mrn_series_append(o->series, sim->step, sim->time);
     if (rc != MRN_OK) return rc;
+    o->series_rows++;
   }
   if (!o->csv_name) {
     o->csv_last_step = sim->step;

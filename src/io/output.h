@@ -10,6 +10,7 @@
 #include <sys/types.h>
 
 #include "io/series_h5.h"
+#include "io/stash.h"
 #include "io/vtk.h"
 #include "solver/diagnostics.h"
 #include "solver/run.h"
@@ -45,6 +46,8 @@ typedef struct mrn_output {
   char *series_name;
   mrn_series *series;
   char *run_name, *deck_path, *deck_text; /* its root attributes, or NULL */
+  char *series_file;       /* the file in use, relative to dir (NAME_2.h5, ...) */
+  long series_rows;        /* rows appended to it */
 
   /* diagnostics CSV; disabled when csv_name is NULL */
   char *csv_name;
@@ -74,6 +77,24 @@ int mrn_output_describe(mrn_output *o, const char *run_name, const char *deck_pa
 /* a value for the next row of the HDF5 series (a new name adds a column);
  * dim: the simulation's, for the units of the diagnostics columns */
 int mrn_output_record(mrn_output *o, int dim, const char *name, double value);
+
+/* The settings of the output and where its files stand (snapshots written,
+ * the next one due, bytes of CSV rows, rows of the series), walked into or
+ * out of a stash (io/stash.h): what a checkpoint keeps so that a resumed run
+ * continues the same files. A new setting is one line here. */
+void mrn_output_stash(mrn_output *o, mrn_stash *s);
+/* Continue the files of an output loaded from a stash: the .pvd keeps its
+ * first vtk_count entries (the snapshot files of those it drops are
+ * removed), the CSV is cut to its stored bytes and appended to, the series
+ * keeps its stored rows and the values recorded for its next row. Missing
+ * files start anew. 0, or MRN_ERR_IO naming
+ * the file (a CSV shorter than the stored rows is another run's). */
+int mrn_output_resume(mrn_output *o, const mrn_stash *s);
+/* Before a run writes: the files of this output that already exist in its
+ * directory and that this process has not written (another run's). With
+ * `overwrite` they are taken over; else MRN_ERR with a message naming them.
+ * The files are then this process's: later runs may append. */
+int mrn_output_claim(mrn_output *o, int overwrite);
 
 /* forget which CSV files this process has written (they are appended to
  * when a second output names the same file); called when a deck ends */

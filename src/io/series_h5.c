@@ -363,10 +363,121 @@ const char *mrn_series_column_name(const mrn_series *s, int column) {
   return s && column >= 0 && column < s->ncol ? s->cols[column].name : NULL;
 }
 
+double mrn_series_pending(const mrn_series *s, int column) {
+  return s && column >= 0 && column < s->ncol ? s->cols[column].pending : NAN;
+}
+
 int mrn_series_close(mrn_series *s) {
   if (!s) return MRN_OK;
   /* columns named but never given a row still appear, empty */
   int rc = s->dirty && !s->broken ? publish_quietly(s) : MRN_OK;
   release(s);
   return rc;
+}
+
+/* ---- continuing a series from its file ---------------------------------------------- */
+
+/* the 1D dataset `name` of `rows` entries (at least) into values[0 .. keep) */
+static int read_column(hid_t file, const char *name, hid_t mem_type, long keep, void *values) {
+  hid_t ds = H5Dopen2(file, name, H5P_DEFAULT);
+  if (ds < 0) return -1;
+  hid_t space = H5Dget_space(ds);
+  hsize_t dims[2] = {0, 0};
+  int ok = space >= 0 && H5Sget_simple_extent_ndims(space) == 1 && H5Sget_simple_extent_dims(space, dims, NULL) == 1 &&
+           dims[0] >= (hsize_t)keep;
+  if (ok && keep > 0) {
+    hsize_t start = 0, count = (hsize_t)keep;
+    hid_t mem = H5Screate_simple(1, &count, NULL);
+    ok = mem >= 0 && H5Sselect_hyperslab(space, H5S_SELECT_SET, &start, NULL, &count, NULL) >= 0 &&
+         H5Dread(ds, mem_type, mem, space, H5P_DEFAULT, values) >= 0;
+    if (mem >= 0) H5Sclose(mem);
+  }
+  if (space >= 0) H5Sclose(space);
+  H5Dclose(ds);
+  return ok ? 0 : -1;
+}
+
+/* an attribute string of `obj` (dataset name or "." for the root), or NULL */
+static char *read_text(hid_t file, const char *obj, const char *name) {
+  if (H5Aexists_by_name(file, obj, name, H5P_DEFAULT) <= 0) return NULL;
+  hid_t a = H5Aopen_by_name(file, obj, name, H5P_DEFAULT, H5P_DEFAULT);
+  hid_t t = a >= 0 ? H5Aget_type(a) : H5I_INVALID_HID;
+  char *text = NULL;
+  if (t >= 0 && H5Tget_class(t) == H5T_STRING && H5Tis_variable_str(t) == 0) {
+    size_t size = H5Tget_size(t);
+    text = calloc(size + 1, 1);
+    if (text && H5Aread(a, t, text) < 0) text[0] = '\0';
+  }
+  if (t >= 0) H5Tclose(t);
+  if (a >= 0) H5Aclose(a);
+  return text;
+}
+
+typedef struct reopen_ctx {
+  mrn_series *s;
+  long keep;
+  int failed;
+} reopen_ctx;
+
+/* every dataset of the root but time and step is a column, in creation order */
+static herr_t reopen_column(hid_t file, const char *name, const H5L_info_t *info, void *user) {
+  (void)info;
+  reopen_ctx *c = user;
+  if (!strcmp(name, "time") || !strcmp(name, "step")) return 0;
+  hid_t o = H5Oopen(file, name, H5P_DEFAULT);
+  H5I_type_t type = o >= 0 ? H5Iget_type(o) : H5I_BADID;
+  if (o >= 0) H5Oclose(o);
+  if (type != H5I_DATASET) return 0;
+  char *units = read_text(file, name, "units"), *description = read_text(file, name, "description");
+  int rc = mrn_series_add_column(c->s, name, units, description);
+  free(units), free(description);
+  if (rc == MRN_OK && read_column(file, name, H5T_NATIVE_DOUBLE, c->keep, c->s->cols[c->s->ncol - 1].values) == 0)
+    return 0;
+  c->failed = 1;
+  return -1;
+}
+
+/* the first `keep` rows of the file into the empty series s */
+static int reopen_rows(mrn_series *s, hid_t file, long keep) {
+  if (grow_rows(s, keep > 0 ? keep : 1) != 0) return -1;
+  if (read_column(file, "time", H5T_NATIVE_DOUBLE, keep, s->time) != 0 ||
+      read_column(file, "step", H5T_NATIVE_INT64, keep, s->step) != 0)
+    return -1;
+  reopen_ctx c = {s, keep, 0};
+  hsize_t idx = 0;
+  if (H5Literate(file, H5_INDEX_CRT_ORDER, H5_ITER_INC, &idx, reopen_column, &c) < 0) {
+    idx = 0; /* a file written without creation order: by name */
+    if (c.failed || H5Literate(file, H5_INDEX_NAME, H5_ITER_INC, &idx, reopen_column, &c) < 0) return -1;
+  }
+  s->rows = keep;
+  s->run_name = read_text(file, ".", "run_name");
+  s->deck = read_text(file, ".", "deck");
+  return 0;
+}
+
+int mrn_series_reopen(mrn_series **out, const char *path, long keep) {
+  *out = NULL;
+  mrn_series *s = calloc(1, sizeof *s);
+  if (!s || !(s->path = strdup(path))) {
+    free(s);
+    return mrn_error_code(MRN_ERR_IO, "cannot write '%s': out of memory", path);
+  }
+  mrn_h5_quiet quiet;
+  mrn_h5_silence(&quiet);
+  hid_t file = H5Fopen(path, H5F_ACC_RDONLY, H5P_DEFAULT);
+  int bad = file < 0 || reopen_rows(s, file, keep) != 0;
+  if (file >= 0) H5Fclose(file);
+  mrn_h5_restore(&quiet);
+  if (bad) {
+    release(s);
+    return mrn_error_code(MRN_ERR_IO, "cannot continue the series '%s': it is not a series of at least %ld rows",
+                          path, keep);
+  }
+  int rc = publish_quietly(s); /* the rows after `keep` are gone from the file too */
+  if (rc != MRN_OK) {
+    release(s);
+    return rc;
+  }
+  *out = s;
+  return MRN_OK;
 }

@@ -49,6 +49,13 @@ typedef struct mrn_series mrn_series;
  * *out holds the series, to be closed with mrn_series_close(). */
 int mrn_series_create(mrn_series **out, const char *path);
 
+/* Continue the series in the file at `path`, written by mrn_series_create:
+ * its columns (with their units and descriptions, in their order), its root
+ * attributes run_name and deck, and its first `keep` rows; the file is
+ * rewritten with those rows only, and later appends follow them. 0, or
+ * MRN_ERR_IO when the file is not such a series or holds fewer rows. */
+int mrn_series_reopen(mrn_series **out, const char *path, long keep);
+
 /* Declare a column before any value is set for it, so it has units, a
  * description and its place in the order (its dataset appears with the next
  * rewrite of the file). Declaring a name that exists updates its units
@@ -83,6 +90,8 @@ int mrn_series_describe(mrn_series *s, const char *run_name, const char *deck_pa
 long mrn_series_rows(const mrn_series *s);
 int mrn_series_column_count(const mrn_series *s);
 const char *mrn_series_column_name(const mrn_series *s, int column);
+/* the value set for the next row of a column, NaN when none */
+double mrn_series_pending(const mrn_series *s, int column);
 /* the index of column `name`, or -1 */
 int mrn_series_find(const mrn_series *s, const char *name);
 

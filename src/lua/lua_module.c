@@ -21,6 +21,7 @@
 #include "lua/lua_check.h"
 #include "lua/lua_internal.h"
 #include "lua/lua_safe.h"
+#include "lua/lua_sim.h"
 #include "lua/moraine_lua.h"
 
 static char library_dir[2 * PATH_MAX];
@@ -157,6 +158,8 @@ int luaopen_moraine(lua_State *L) {
   lua_setfield(L, module, "args");
   lua_getfield(L, LUA_REGISTRYINDEX, "moraine.outdir");
   lua_setfield(L, module, "outdir");
+  lua_getfield(L, LUA_REGISTRYINDEX, "moraine.overwrite");
+  lua_setfield(L, module, "overwrite");
   lua_pushvalue(L, module);
   lua_setfield(L, LUA_REGISTRYINDEX, "moraine.module");
 
@@ -177,6 +180,8 @@ int luaopen_moraine(lua_State *L) {
 void mrn_lua_open(lua_State *L, const mrn_deck_options *opt) {
   lua_pushstring(L, opt && opt->outdir ? opt->outdir : "out");
   lua_setfield(L, LUA_REGISTRYINDEX, "moraine.outdir");
+  lua_pushboolean(L, opt && opt->overwrite);
+  lua_setfield(L, LUA_REGISTRYINDEX, "moraine.overwrite");
   lua_newtable(L);
   for (int i = 0; opt && i < opt->nsets; i++) {
     const char *eq = strchr(opt->sets[i], '=');
@@ -210,6 +215,7 @@ static int open_protected(lua_State *L) {
   mrn_lua_open(L, opt);
   mrn_lua_log_prints(L);
   if (opt && opt->safe) mrn_lua_safe_open(L, opt->outdir ? opt->outdir : "out");
+  if (opt && opt->restart) mrn_lua_restart_open(L, opt->restart);
   return 0;
 }
 
@@ -254,6 +260,12 @@ static int write_provenance(lua_State *L, const char *path, const mrn_deck_optio
   return rc;
 }
 
+/* after the deck ran: --restart's checkpoint must have been continued */
+static int restart_done(lua_State *L) {
+  const char *unfinished = mrn_lua_restart_unfinished(L);
+  return unfinished ? luaL_error(L, "%s", unfinished) : 0;
+}
+
 int mrn_lua_run_deck(const char *path, const mrn_deck_options *opt) {
   lua_State *L = luaL_newstate();
   if (!L) {
@@ -288,6 +300,10 @@ int mrn_lua_run_deck(const char *path, const mrn_deck_options *opt) {
     lua_setfield(L, -2, "deck_dir");
     lua_pop(L, 1);
     status = lua_pcall(L, 0, 0, handler);
+    if (status == LUA_OK) {
+      lua_pushcfunction(L, restart_done);
+      status = lua_pcall(L, 0, 0, 0);
+    }
     if (status == LUA_OK && opt) mrn_lua_warn_unused_sets(L, opt->sets, opt->nsets);
   }
   if (status != LUA_OK) {

@@ -66,6 +66,7 @@ sim_box *mrn_lua_sim_push(lua_State *L) {
   b->out_ready = 1;
   b->thermo.every = 100;
   b->progress = 1;
+  b->ckpt_last_step = -1;
   return b;
 }
 
@@ -91,6 +92,7 @@ static int release_sim(lua_State *L) {
   b->out_ready = 0;
   mrn_sim_free(b->sim);
   b->sim = NULL;
+  mrn_stash_free(&b->taking);
   return rc;
 }
 
@@ -171,7 +173,8 @@ static const luaL_Reg meta[] = {
 static const mrn_spec_group *const groups[] = {
     &mrn_lua_simulation_group, &mrn_lua_grid_group, &mrn_lua_scheme_group, &mrn_lua_output_group,
     &mrn_lua_boundary_group,   &mrn_lua_face_group, &mrn_lua_dt_group,     &mrn_lua_damping_group,
-    &mrn_lua_run_group,        &mrn_lua_thermo_group, &mrn_lua_hook_group, &mrn_lua_particle_group, &mrn_lua_load_group,
+    &mrn_lua_run_group,        &mrn_lua_thermo_group, &mrn_lua_checkpoint_group, &mrn_lua_hook_group,
+    &mrn_lua_particle_group,   &mrn_lua_load_group,
     &mrn_lua_constrain_group,  &mrn_lua_reduce_group, &mrn_lua_import_group,
 };
 
@@ -190,6 +193,8 @@ void mrn_lua_open_simulation(lua_State *L, int module) {
   lua_setfield(L, module, "simulation");
   lua_pushcfunction(L, l_load);
   lua_setfield(L, module, "load");
+  lua_pushcfunction(L, l_resume);
+  lua_setfield(L, module, "resume");
   for (int i = 0; i < MRN_COUNT(groups); i++)
     mrn_spec_register_group(groups[i]->name, groups[i]->specs, groups[i]->count);
 }

@@ -32,6 +32,21 @@ typedef struct mrn_lua_thermo {
   int columns[MRN_THERMO_MAX_COLUMNS];
 } mrn_lua_thermo;
 
+/* The run{} calls of a simulation, as a checkpoint keeps them so that a
+ * resume continues the call it was in (lua_resume.c). */
+typedef struct mrn_lua_run_record {
+  long index;        /* run{} calls started: the number of the last one, from 1 */
+  int active;        /* 1 while that call is under way */
+  int cut_short;     /* it stopped inside the hooks or reports of its last state */
+  double start_time; /* the state it started from */
+  long start_step;
+  double time, until; /* its target as the deck gave it (0: not given) */
+  long steps;
+  long ckpt_every;   /* its checkpoint = {every, wall, keep} */
+  double ckpt_wall;
+  long ckpt_keep;
+} mrn_lua_run_record;
+
 /* the userdata behind a deck's simulation object */
 typedef struct sim_box {
   mrn_sim *sim;
@@ -47,6 +62,11 @@ typedef struct sim_box {
   long invalid_step; /* > 0: a run stopped keeping an invalid state (a particle outside the grid) at this step */
   int interrupted;   /* a run stopped on a signal and wrote <name>_interrupted.h5 */
   int summary_record; /* its line of the end-of-run summary (io/summary.h), 0 before its first run */
+  mrn_lua_run_record run;
+  int resumed;          /* taken from a checkpoint: its next run{} continues the one saved */
+  double ckpt_next_wall; /* wall clock of the next checkpoint = {wall} */
+  long ckpt_last_step;   /* step of the checkpoint last written or taken */
+  mrn_stash taking;      /* a checkpoint's /resume while it is taken (freed with the box if that raises) */
 } sim_box;
 
 /* ---- the userdata (lua_sim.c) */
@@ -96,10 +116,32 @@ void mrn_lua_thermo_apply(const mrn_lua_thermo *t, mrn_run_options *opt);
  * something could not (lua_sim_checkpoint.c). */
 int mrn_lua_sim_write_final_state(sim_box *b, const char *why, char *note, size_t len);
 
+/* ---- resuming (lua_resume.c) */
+
+/* the simulation's name, thermo interval, run record and outputs, walked
+ * into or out of a stash (io/stash.h) */
+void mrn_lua_sim_stash(sim_box *b, mrn_stash *s);
+/* a checkpoint of the simulation with what a resume needs (the stash); 0 or MRN_ERR_IO */
+int mrn_lua_sim_save(sim_box *b, const char *path);
+/* --restart FILE (opt: the registry's plan): before each run{} of a
+ * simulation; SKIP for a call the checkpoint is past, HERE when the
+ * checkpoint has just been taken into b, NONE otherwise */
+enum { MRN_LUA_RESTART_NONE, MRN_LUA_RESTART_SKIP, MRN_LUA_RESTART_HERE };
+int mrn_lua_restart_at_run(lua_State *L, sim_box *b, const char *where);
+/* read the plan of --restart FILE before the deck runs; raises on a bad file */
+void mrn_lua_restart_open(lua_State *L, const char *path);
+/* after the deck: an error message when the plan was never carried out, else NULL */
+const char *mrn_lua_restart_unfinished(lua_State *L);
+/* --overwrite was given */
+int mrn_lua_overwrite(lua_State *L);
+/* the periodic checkpoints of run{ checkpoint = ... } as an observer of the run */
+mrn_run_observer mrn_lua_checkpoint_observer(sim_box *b);
+
 /* ---- the methods, one C function each: sim:NAME is l_sim_NAME */
 
 int l_simulation(lua_State *L); /* mpm.simulation{} */
 int l_load(lua_State *L);       /* mpm.load() */
+int l_resume(lua_State *L);     /* mpm.resume() */
 int l_sim_add_particles(lua_State *L);
 int l_sim_run(lua_State *L);
 int l_sim_hook(lua_State *L);
@@ -135,6 +177,9 @@ extern const mrn_spec_group mrn_lua_simulation_group, mrn_lua_grid_group, mrn_lu
 extern const mrn_spec_group mrn_lua_scheme_group, mrn_lua_boundary_group, mrn_lua_face_group; /* options */
 extern const mrn_spec_group mrn_lua_dt_group, mrn_lua_damping_group;                          /* options */
 extern const mrn_spec_group mrn_lua_run_group, mrn_lua_hook_group, mrn_lua_thermo_group;                            /* run */
+
+extern const mrn_spec_group mrn_lua_run_group, mrn_lua_hook_group;                            /* run */
+extern const mrn_spec_group mrn_lua_checkpoint_group;                                         /* run */
 extern const mrn_spec_group mrn_lua_particle_group;                                           /* seed */
 extern const mrn_spec_group mrn_lua_load_group, mrn_lua_import_group;                         /* checkpoint */
 extern const mrn_spec_group mrn_lua_constrain_group;                                          /* set */

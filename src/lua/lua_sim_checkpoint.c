@@ -30,7 +30,10 @@ int l_sim_save(lua_State *L) {
   const char *path = output_path(L, b, luaL_checkstring(L, 2));
   mrn_lua_check_write(L, "save()", path);
   if (mrn_mkdir_p(b->out.dir) != MRN_OK) mrn_lua_engine_error(L, "save()");
-  if (mrn_checkpoint_save(b->sim, path) != MRN_OK) mrn_lua_engine_output_error(L, "save()");
+  /* between runs the file also holds what mpm.resume needs; inside one the
+   * step's outputs are not written yet, so it holds the state only */
+  int rc = b->busy ? mrn_checkpoint_save(b->sim, path) : mrn_lua_sim_save(b, path);
+  if (rc != MRN_OK) mrn_lua_engine_output_error(L, "save()");
   lua_pushstring(L, path);
   return 1;
 }
@@ -153,7 +156,7 @@ int mrn_lua_sim_write_final_state(sim_box *b, const char *why, char *note, size_
   char saved[2048];
   snprintf(saved, sizeof saved, "%s", mrn_error_message()); /* the writes may overwrite it */
   int rc = mrn_mkdir_p(b->out.dir);
-  if (rc == MRN_OK) rc = mrn_checkpoint_save(b->sim, path);
+  if (rc == MRN_OK) rc = mrn_lua_sim_save(b, path);
   if (rc == MRN_OK) note_add(note, len, "; the state at step %ld is in %s", b->sim->step, path);
   else note_add(note, len, "; the state at step %ld could not be saved: %s", b->sim->step, mrn_error_message());
   if (b->out.vtk_name && b->out.vtk_last_step != b->sim->step) {

@@ -26,6 +26,7 @@ int l_sim_dt_estimate(lua_State *L) {
 int l_sim_write_vtk(lua_State *L) {
   sim_box *b = mrn_lua_sim_check(L, 1);
   if (!b->out.vtk_name) mrn_lua_error(L, "write_vtk()", "no VTK series configured (output{vtk = name})");
+  if (mrn_output_claim(&b->out, mrn_lua_overwrite(L)) != MRN_OK) mrn_lua_engine_error(L, "write_vtk()");
   if (mrn_output_write_vtk(&b->out, b->sim) != MRN_OK) mrn_lua_engine_output_error(L, "write_vtk()");
   return 0;
 }

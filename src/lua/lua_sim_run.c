@@ -13,12 +13,20 @@
 
 static const mrn_spec run_specs[] = {
     {"time", MRN_SPEC_NUMBER, 0, 0, 0, HUGE_VAL, 1, 0, "s", "model time to advance", NULL},
+    {"end_time", MRN_SPEC_NUMBER, 0, 0, -HUGE_VAL, HUGE_VAL, 0, 0, "s", "model time to end at (absolute; instead of time)", NULL},
+    {"checkpoint", MRN_SPEC_TABLE, 0, 0, 0, 0, 0, 0, NULL, "periodic checkpoints {every, wall, keep}", NULL},
     {"steps", MRN_SPEC_INTEGER, 0, 0, 1, 1e15, 0, 0, "steps", "number of steps", NULL},
     {"thermo", MRN_SPEC_ANY, 0, 0, 0, 0, 0, 0, "steps",
      "thermo interval for this run, or {every, columns} (absent keys: the simulation's)", NULL},
     {"stop_when", MRN_SPEC_FUNCTION, 0, 0, 0, 0, 0, 0, NULL, "function(sim) -> true to stop", NULL},
     {"progress", MRN_SPEC_BOOLEAN, 0, 0, 0, 0, 0, 0, NULL, "progress bar for this run", NULL},
     {"output", MRN_SPEC_TABLE, 0, 0, 0, 0, 0, 0, NULL, "VTK output settings from now on (as in simulation{})", NULL},
+};
+
+static const mrn_spec checkpoint_specs[] = {
+    {"every", MRN_SPEC_INTEGER, 0, 0, 1, 1e15, 0, 0, "steps", "a checkpoint every N steps", NULL},
+    {"wall", MRN_SPEC_NUMBER, 0, 0, 0, HUGE_VAL, 1, 0, "s", "a checkpoint every this much wall-clock time", NULL},
+    {"keep", MRN_SPEC_INTEGER, 0, 2, 0, 1e9, 0, 0, "", "the newest files kept (0: all)", NULL},
 };
 
 static const mrn_spec hook_specs[] = {
@@ -58,6 +66,7 @@ static int raise_engine_error(lua_State *L, int rc, const char *where, sim_box *
   if (rc == MRN_ERR_STATE || rc == MRN_ERR_INTERRUPTED) {
     char note[1536];
     int written = mrn_lua_sim_write_final_state(b, rc == MRN_ERR_STATE ? "failed" : "interrupted", note, sizeof note);
+    b->run.active = 0;
     b->interrupted = rc == MRN_ERR_INTERRUPTED;
     char message[2048];
     snprintf(message, sizeof message, "%s%s", mrn_error_message(), note);
@@ -72,57 +81,122 @@ static int raise_engine_error(lua_State *L, int rc, const char *where, sim_box *
   return mrn_lua_engine_error(L, where);
 }
 
+#define RUN_SPECS run_specs, MRN_COUNT(run_specs)
+
+/* checkpoint = {every, wall, keep} of run{} at idx into the run record */
+static void read_checkpoint(lua_State *L, int idx, const char *where, mrn_lua_run_record *r) {
+  r->ckpt_every = 0, r->ckpt_wall = 0, r->ckpt_keep = 2;
+  if (!mrn_lua_has(L, idx, "checkpoint")) return;
+  lua_getfield(L, idx, "checkpoint");
+  char sub[64];
+  snprintf(sub, sizeof sub, "%s checkpoint", where);
+  mrn_lua_check_table(L, -1, sub, checkpoint_specs, MRN_COUNT(checkpoint_specs));
+  if (!mrn_lua_has(L, -1, "every") && !mrn_lua_has(L, -1, "wall"))
+    mrn_lua_error(L, sub, "give every = <steps> and/or wall = <seconds>");
+  if (mrn_lua_has(L, -1, "every"))
+    r->ckpt_every = mrn_lua_get_integer(L, -1, sub, checkpoint_specs, MRN_COUNT(checkpoint_specs), "every");
+  if (mrn_lua_has(L, -1, "wall"))
+    r->ckpt_wall = mrn_lua_get_number(L, -1, sub, checkpoint_specs, MRN_COUNT(checkpoint_specs), "wall");
+  r->ckpt_keep = mrn_lua_get_integer(L, -1, sub, checkpoint_specs, MRN_COUNT(checkpoint_specs), "keep");
+  lua_pop(L, 1);
+}
+
+/* The target of run{} into opt and the run record. The first run{} after a
+ * resume continues the run the checkpoint was in: its time and steps count
+ * from that run's start, and without a target it keeps that run's. */
+static void read_target(lua_State *L, const char *where, sim_box *b, mrn_run_options *opt) {
+  mrn_lua_run_record *r = &b->run;
+  const int continuing = b->resumed && r->active;
+  const int given = mrn_lua_has(L, 2, "time") || mrn_lua_has(L, 2, "steps") || mrn_lua_has(L, 2, "end_time");
+  if (mrn_lua_has(L, 2, "time") && mrn_lua_has(L, 2, "end_time"))
+    mrn_lua_error(L, where, "give time (to advance) or end_time (to end at), not both");
+  if (!given && !continuing) mrn_lua_error(L, where, "give time = <seconds>, end_time = <model time> and/or steps = <count>");
+  if (given) {
+    r->time = mrn_lua_has(L, 2, "time") ? mrn_lua_get_number(L, 2, where, RUN_SPECS, "time") : 0;
+    r->steps = mrn_lua_has(L, 2, "steps") ? mrn_lua_get_integer(L, 2, where, RUN_SPECS, "steps") : 0;
+    r->until = mrn_lua_has(L, 2, "end_time") ? mrn_lua_get_number(L, 2, where, RUN_SPECS, "end_time") : 0;
+    read_checkpoint(L, 2, where, r);
+  }
+  if (!continuing) {
+    r->index++;
+    r->start_time = b->sim->time;
+    r->start_step = b->sim->step;
+    if (mrn_lua_has(L, 2, "end_time") && !(r->until > b->sim->time))
+      mrn_lua_error(L, where, "end_time = %.10g is not after the simulation's time t = %.10g s", r->until, b->sim->time);
+  }
+  opt->time = r->time;
+  opt->steps = r->steps;
+  opt->until = r->until;
+  /* the state a resumed simulation starts from was reported before the checkpoint */
+  opt->resume = b->resumed;
+  opt->resume_hooks = continuing && r->cut_short;
+  opt->start_time = r->start_time;
+  opt->start_step = r->start_step;
+  r->active = 1;
+}
+
+/* the options of run{} at index 2 besides its target; the run's thermo
+ * settings go to *thermo, which opt points into while the run lasts */
+static mrn_lua_callback *read_options(lua_State *L, const char *where, sim_box *b, mrn_lua_thermo *thermo,
+                                      mrn_run_options *opt) {
+  *thermo = b->thermo;
+  if (mrn_lua_has(L, 2, "thermo")) {
+    lua_getfield(L, 2, "thermo");
+    mrn_lua_read_thermo(L, -1, where, thermo);
+    lua_pop(L, 1);
+  }
+  mrn_lua_thermo_apply(thermo, opt);
+  int progress = mrn_lua_get_boolean(L, 2, where, RUN_SPECS, "progress", b->progress);
+  opt->progress = progress && !mrn_log_quiet() && isatty(2);
+  opt->hooks = b->hooks;
+  opt->nhooks = b->nhooks;
+  if (!mrn_lua_has(L, 2, "stop_when")) return NULL;
+  lua_getfield(L, 2, "stop_when");
+  mrn_lua_callback *stop_cb = mrn_lua_callback_new(L, -1, "stop_when");
+  lua_pop(L, 1);
+  opt->stop_when = call_stop_when;
+  opt->stop_ctx = stop_cb;
+  return stop_cb;
+}
+
 int l_sim_run(lua_State *L) {
   const char *where = "run{}";
   mrn_lua_sim_check_valid(L, 1, where);
   sim_box *b = mrn_lua_sim_check_idle(L, 1, where);
-  mrn_lua_check_table(L, 2, where, run_specs, MRN_COUNT(run_specs));
-  if (!mrn_lua_has(L, 2, "time") && !mrn_lua_has(L, 2, "steps"))
-    mrn_lua_error(L, where, "give time = <seconds> and/or steps = <count>");
+  mrn_lua_check_table(L, 2, where, RUN_SPECS);
+  if (mrn_lua_restart_at_run(L, b, where) == MRN_LUA_RESTART_SKIP) return 0;
   if (b->sim->particles.n == 0) mrn_lua_error(L, where, "the simulation has no particles (add_particles first)");
   mrn_lua_implicit_prepare(L, 1, where); /* integrator = "implicit": made at the first run */
-  if (mrn_lua_has(L, 2, "output")) {
+  /* a resumed simulation keeps the outputs the checkpoint continues */
+  if (mrn_lua_has(L, 2, "output") && !b->resumed) {
     lua_getfield(L, 2, "output");
     mrn_lua_read_output(L, -1, where, b);
     lua_pop(L, 1);
   }
+  if (!b->resumed && mrn_output_claim(&b->out, mrn_lua_overwrite(L)) != MRN_OK) mrn_lua_engine_error(L, where);
   mrn_run_options opt;
   memset(&opt, 0, sizeof opt);
-  opt.time = mrn_lua_has(L, 2, "time") ? mrn_lua_get_number(L, 2, where, run_specs, MRN_COUNT(run_specs), "time") : 0;
-  opt.steps = mrn_lua_has(L, 2, "steps") ? mrn_lua_get_integer(L, 2, where, run_specs, MRN_COUNT(run_specs), "steps") : 0;
-  mrn_lua_thermo thermo = b->thermo;
-  if (mrn_lua_has(L, 2, "thermo")) {
-    lua_getfield(L, 2, "thermo");
-    mrn_lua_read_thermo(L, -1, where, &thermo);
-    lua_pop(L, 1);
-  }
-  mrn_lua_thermo_apply(&thermo, &opt);
-  int progress = mrn_lua_get_boolean(L, 2, where, run_specs, MRN_COUNT(run_specs), "progress", b->progress);
-  opt.progress = progress && !mrn_log_quiet() && isatty(2);
-  opt.hooks = b->hooks;
-  opt.nhooks = b->nhooks;
-  mrn_lua_callback *stop_cb = NULL;
-  if (mrn_lua_has(L, 2, "stop_when")) {
-    lua_getfield(L, 2, "stop_when");
-    stop_cb = mrn_lua_callback_new(L, -1, "stop_when");
-    lua_pop(L, 1);
-    opt.stop_when = call_stop_when;
-    opt.stop_ctx = stop_cb;
-  }
+  read_target(L, where, b, &opt);
+  mrn_lua_thermo thermo;
+  mrn_lua_callback *stop_cb = read_options(L, where, b, &thermo, &opt);
   lua_settop(L, 2); /* callbacks find the simulation at index 1 */
   mrn_lua_active = L;
   mrn_suspicious_run(b->sim);
   b->busy = where;
-  mrn_run_observer writers = mrn_output_observer(&b->out); /* the run knows no file format */
-  opt.observers = &writers;
-  opt.nobservers = 1;
+  /* the run knows no file format; the checkpoints follow the outputs' rows */
+  mrn_run_observer observers[2] = {mrn_output_observer(&b->out), mrn_lua_checkpoint_observer(b)};
+  opt.observers = observers;
+  opt.nobservers = b->run.ckpt_every > 0 || b->run.ckpt_wall > 0 ? 2 : 1;
   const long step0 = b->sim->step;
   const double t0 = b->sim->time;
   int rc = mrn_run(b->sim, &opt);
   mrn_summary_add_run(&b->summary_record, b->name, step0, t0, b->sim, &opt.stats);
+  b->run.cut_short = opt.cut_short; /* kept by the checkpoint a stop writes */
   b->busy = NULL;
+  b->resumed = 0;
   mrn_lua_callback_release(stop_cb);
   if (rc != MRN_OK) return raise_engine_error(L, rc, where, b);
+  b->run.active = 0;
   return 0;
 }
 
@@ -151,4 +225,5 @@ int l_sim_hook(lua_State *L) {
 }
 
 const mrn_spec_group mrn_lua_run_group = {"run{}", run_specs, MRN_COUNT(run_specs)};
+const mrn_spec_group mrn_lua_checkpoint_group = {"run{} checkpoint", checkpoint_specs, MRN_COUNT(checkpoint_specs)};
 const mrn_spec_group mrn_lua_hook_group = {"hook{}", hook_specs, MRN_COUNT(hook_specs)};

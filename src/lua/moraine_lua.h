@@ -11,6 +11,8 @@ typedef struct mrn_deck_options {
   const char *const *argv;  /* the command line, for provenance */
   int argc;
   int safe;                 /* --safe: the restrictions of lua_safe.h */
+  const char *restart;      /* --restart FILE: the checkpoint the deck's run continues, or NULL */
+  int overwrite;            /* --overwrite: runs may replace another run's outputs */
 } mrn_deck_options;
 
 /* Open the moraine module into L: package.preload["moraine"], the global

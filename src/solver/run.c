@@ -105,7 +105,7 @@ static double wall_seconds(void) {
 /* what a run keeps between its steps */
 typedef struct run_clock {
   double wall_start, last_draw;
-  double t_start;
+  double t_start, t_end; /* the run's model time span (t_end HUGE_VAL: none) */
   long step_start;
   long thermo_step;   /* the step of the last thermo line */
   double thermo_wall; /* and when it was printed */
@@ -130,7 +130,7 @@ static void draw_progress(double fraction, double elapsed) {
 static void update_progress(const mrn_sim *sim, const mrn_run_options *opt, run_clock *clk) {
   double now = wall_seconds();
   if (now - clk->last_draw <= 0.25) return;
-  double f_time = opt->time > 0 ? (sim->time - clk->t_start) / opt->time : 0;
+  double f_time = clk->t_end < HUGE_VAL ? (sim->time - clk->t_start) / (clk->t_end - clk->t_start) : 0;
   double f_steps = opt->steps > 0 ? (double)(sim->step - clk->step_start) / opt->steps : 0;
   draw_progress(f_time > f_steps ? f_time : f_steps, now - clk->wall_start);
   clk->last_draw = now;
@@ -226,7 +226,7 @@ static int take_step(mrn_sim *sim, const mrn_run_options *opt, double t_end) {
   double dt;
   int rc;
   if ((rc = mrn_dt_compute(sim, &dt)) != MRN_OK) return rc;
-  if (opt->time > 0) {
+  if (t_end < HUGE_VAL) {
     double remaining = t_end - sim->time;
     /* a sliver of time left over by round-off is not worth a step */
     if (remaining <= 1e-9 * dt) return MRN_STEP_NONE;
@@ -238,33 +238,62 @@ static int take_step(mrn_sim *sim, const mrn_run_options *opt, double t_end) {
 /* the first error a step's end finds: the watchdog, the hooks, a signal, the log */
 static int end_of_step(mrn_sim *sim, mrn_run_options *opt, run_clock *clk) {
   int rc = mrn_watchdog_check(&sim->watch, sim, sim->step == clk->step_start + 1);
-  if (rc == MRN_OK) rc = after_step(sim, opt, 0, clk);
+  if (rc == MRN_OK) {
+    rc = after_step(sim, opt, 0, clk);
+    if (rc != MRN_OK && rc != MRN_STOP) opt->cut_short = 1;
+  }
   if (rc == MRN_OK && mrn_interrupt_pending()) rc = MRN_ERR_INTERRUPTED;
   /* the run log is an output like the others: a run that cannot write it stops */
   if (rc == MRN_OK && mrn_log_failed()) rc = mrn_error_code(MRN_ERR_IO, "%s", mrn_log_failure());
   return rc;
 }
 
-static void prepare(mrn_sim *sim, mrn_run_options *opt) {
-  for (int i = 0; i < opt->nhooks; i++)
-    if (opt->hooks[i].every_time > 0) opt->hooks[i].next_time = sim->time;
+/* the every_time hooks' schedule from the run's start; a resumed run past
+ * the calls made, up to this state when they are made again for it */
+static void schedule_hooks(const mrn_sim *sim, mrn_run_options *opt, double t_start) {
+  for (int i = 0; i < opt->nhooks; i++) {
+    mrn_hook *h = &opt->hooks[i];
+    if (!(h->every_time > 0)) continue;
+    h->next_time = t_start;
+    if (opt->resume && !opt->resume_hooks) due_hook(h, sim);
+    while (opt->resume && opt->resume_hooks && h->next_time < sim->time - 1e-9 * h->every_time)
+      h->next_time += h->every_time;
+  }
+}
+
+/* Before the first step: the hooks' schedule, what the step needs set up,
+ * and the reports of the starting state. 0, or what ended the run. */
+static int start_run(mrn_sim *sim, mrn_run_options *opt, run_clock *clk) {
+  schedule_hooks(sim, opt, clk->t_start);
+  opt->cut_short = 0;
   /* the affine matrices belong to the explicit transfers */
   if (!sim->integrator.step && sim->affine_pending && sim->scheme.grid_velocity != MRN_VGRID_PLAIN)
     mrn_sim_init_affine(sim);
   if (!sim->energy_ref_set) mrn_sim_energy_balance_start(sim);
   mrn_watchdog_start(&sim->watch, sim);
+  if (thermo_on(opt)) thermo_header(opt);
+  /* a resumed run's state was reached before the stop, which may have cut
+   * its reports short: the observers get it again as a step (each writes
+   * only what it lacks); the hooks too when the stop came inside them */
+  int rc = !opt->resume       ? after_step(sim, opt, 1, clk)
+           : opt->resume_hooks ? after_step(sim, opt, 0, clk)
+                               : report_snapshots(sim, opt);
+  if (rc == MRN_OK && opt->resume && !opt->resume_hooks) rc = report_rows(sim, opt, MRN_RUN_STEP, clk);
+  if (rc != MRN_OK && rc != MRN_STOP) opt->cut_short = 1;
+  return rc;
 }
 
 int mrn_run(mrn_sim *sim, mrn_run_options *opt) {
   memset(&opt->stats, 0, sizeof opt->stats);
-  if (!(opt->time > 0) && !(opt->steps > 0)) return mrn_error("run: give a positive time or number of steps");
-  const double t_end = opt->time > 0 ? sim->time + opt->time : HUGE_VAL;
-  const long step_end = opt->steps > 0 ? sim->step + opt->steps : -1;
-  run_clock clk = {wall_seconds(), 0, sim->time, sim->step, sim->step, 0};
+  if (!(opt->time > 0) && !(opt->steps > 0) && !(opt->until > 0))
+    return mrn_error("run: give a positive time, end time or number of steps");
+  const double t_start = opt->resume ? opt->start_time : sim->time;
+  const long step_start = opt->resume ? opt->start_step : sim->step;
+  const double t_end = opt->until > 0 ? opt->until : opt->time > 0 ? t_start + opt->time : HUGE_VAL;
+  const long step_end = opt->steps > 0 ? step_start + opt->steps : -1;
+  run_clock clk = {wall_seconds(), 0, t_start, t_end, step_start, sim->step, 0};
   clk.last_draw = clk.thermo_wall = clk.wall_start;
-  prepare(sim, opt);
-  if (thermo_on(opt)) thermo_header(opt);
-  int rc = after_step(sim, opt, 1, &clk);
+  int rc = start_run(sim, opt, &clk);
   while (rc == MRN_OK) {
     if (step_end >= 0 && sim->step >= step_end) break;
     if ((rc = take_step(sim, opt, t_end)) == MRN_STEP_NONE) {

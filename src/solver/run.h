@@ -60,6 +60,20 @@ typedef struct mrn_run_stats {
 typedef struct mrn_run_options {
   double time;        /* > 0: run this much model time */
   long steps;         /* > 0: run this many steps */
+  double until;       /* > 0: run until this model time (absolute; instead of time) */
+  /* 1: the run continues one that started at (start_time, start_step) and
+   * was stopped (a checkpoint): time and steps count from that start, the
+   * hooks keep its schedule and are not called for the state it continues
+   * from, which the observers get as that of a step (MRN_RUN_STEP) */
+  int resume;
+  double start_time;
+  long start_step;
+  /* with resume: the stop cut the hooks or reports of the state short (see
+   * cut_short), so they are all made again for it, the hooks included */
+  int resume_hooks;
+  /* set by mrn_run when it ended on an error inside the hooks, reports or
+   * stop_when of a state: not all of them were made for the state it left */
+  int cut_short;
   long thermo_every;  /* thermo line every N steps (0: none) */
   const int *thermo_columns; /* mrn_thermo_column() of each column (NULL: the default ones) */
   int thermo_ncolumns;

@@ -1,4 +1,4 @@
--- expect: missing_run_length\.lua:8: run\{\}: give time = <seconds> and/or steps = <count>
+-- expect: missing_run_length\.lua:8: run\{\}: give time = <seconds>, end_time = <model time> and/or steps = <count>
 -- case: keys | run{} with neither time nor steps
 local mpm = require "moraine"
 local mat = mpm.material.linear_elastic{ density = 1000, E = 1e6, nu = 0.3 }

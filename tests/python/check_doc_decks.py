@@ -41,6 +41,7 @@ failed.
 """
 import os
 import re
+import shutil
 import subprocess
 import sys
 import time
@@ -213,6 +214,7 @@ def main(argv):
             deck = os.path.join(outdir, name + ".lua")
             with open(deck, "w", encoding="utf-8") as f:
                 f.write(code)
+            shutil.rmtree(os.path.join(outdir, name), ignore_errors=True)  # a fresh directory: no earlier run's outputs
             cmd = [moraine, deck, "-q", "-o", os.path.join(outdir, name)]
             for s in sets:
                 cmd += ["--set", s]

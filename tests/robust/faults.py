@@ -117,6 +117,8 @@ def creation_order(trace, out):
         head, base = os.path.split(path)
         m = TEMP.match(base)
         rel = os.path.join(head, m.group(1)) if m else path
+        if base == ".moraine.lock":  # the run's lock on the directory, removed when it ends
+            continue
         if not rel.startswith("..") and rel not in order:
             order.append(rel)
     return order

@@ -1,10 +1,10 @@
 #!/usr/bin/env bash
 # moraine robustness: the output directory is not writable.
 # case: permission | the output directory is read-only
-# expect: cannot write '.*/locked/log.txt': Permission denied
+# expect: cannot write the lock file '.*/locked/\.moraine\.lock': Permission denied
 #
-# The run must stop at its first output (the run log, opened before the
-# deck runs) with exit status 3 and the path and reason, leaving nothing
+# The run must stop at its first output (the lock file of the directory,
+# taken before the deck runs) with exit status 3 and the path and reason, leaving nothing
 # behind. moraine runs as an ordinary user: as root the test drops to 'nobody'
 # with setpriv (root may write anywhere); it is skipped (status 77) when that
 # is not possible.

@@ -12,7 +12,7 @@ add_test(NAME robust.warnings COMMAND ${MORAINE_ROBUST_DIR}/warnings.sh $<TARGET
 # long options, a deck on stdin, the warning about a --set never read
 add_test(NAME robust.cli COMMAND ${MORAINE_ROBUST_DIR}/cli.sh $<TARGET_FILE:moraine> ${MORAINE_TEST_OUT}/robust_cli)
 add_test(NAME robust.unstable_cfl
-         COMMAND $<TARGET_FILE:moraine> ${MORAINE_ROBUST_DIR}/unstable_cfl.lua -q -o ${MORAINE_TEST_OUT}/robust_unstable_cfl)
+         COMMAND $<TARGET_FILE:moraine> ${MORAINE_ROBUST_DIR}/unstable_cfl.lua -q -o ${MORAINE_TEST_OUT}/robust_unstable_cfl --overwrite)
 # every output file failing once (tests/robust/faults.py): faultfs, the LD_PRELOAD
 # library that injects the faults, goes next to moraine, where faults.py looks.
 # It is built without the sanitizers: a sanitised program wants their runtime
@@ -25,9 +25,9 @@ add_test(NAME robust.faults
 # the physical-sanity watchdog: an explosive run pinned to the walls stops;
 # violent runs that are right (bouncing cube, dam break) keep far from its bounds
 add_test(NAME robust.watchdog
-         COMMAND $<TARGET_FILE:moraine> ${MORAINE_ROBUST_DIR}/watchdog.lua -q -o ${MORAINE_TEST_OUT}/robust_watchdog)
+         COMMAND $<TARGET_FILE:moraine> ${MORAINE_ROBUST_DIR}/watchdog.lua -q -o ${MORAINE_TEST_OUT}/robust_watchdog --overwrite)
 add_test(NAME robust.watchdog_legit
-         COMMAND $<TARGET_FILE:moraine> ${MORAINE_ROBUST_DIR}/watchdog_legit.lua -q -o ${MORAINE_TEST_OUT}/robust_watchdog_legit)
+         COMMAND $<TARGET_FILE:moraine> ${MORAINE_ROBUST_DIR}/watchdog_legit.lua -q -o ${MORAINE_TEST_OUT}/robust_watchdog_legit --overwrite)
 # one damaged byte in a checkpoint, older checkpoints without checksums, no HDF5 printing
 add_test(NAME robust.checkpoint_damage
          COMMAND ${MORAINE_ROBUST_DIR}/checkpoint_damage.sh $<TARGET_FILE:moraine> ${MORAINE_TEST_OUT}/robust_checkpoint_damage ${Python3_EXECUTABLE})
@@ -38,7 +38,7 @@ set_tests_properties(robust.disk_full robust.permission robust.sigterm_twice rob
 # a link leading out, what a deck may still do, and an example that runs as usual
 add_test(NAME robust.safe_symlink COMMAND ${MORAINE_ROBUST_DIR}/safe_symlink.sh $<TARGET_FILE:moraine> ${MORAINE_TEST_OUT}/robust_safe_symlink)
 add_test(NAME robust.safe_allowed
-         COMMAND $<TARGET_FILE:moraine> ${MORAINE_ROBUST_DIR}/safe_allowed.lua --safe -q -o ${MORAINE_TEST_OUT}/robust_safe_allowed)
+         COMMAND $<TARGET_FILE:moraine> ${MORAINE_ROBUST_DIR}/safe_allowed.lua --safe -q -o ${MORAINE_TEST_OUT}/robust_safe_allowed --overwrite)
 add_test(NAME robust.safe_example COMMAND ${MORAINE_ROBUST_DIR}/safe_example.sh $<TARGET_FILE:moraine> ${MORAINE_TEST_OUT}/robust_safe_example)
 set_tests_properties(robust.safe_symlink robust.safe_allowed robust.safe_example PROPERTIES LABELS robust)
 
@@ -51,3 +51,7 @@ set_tests_properties(doc.errors_table PROPERTIES LABELS doc)
 # part of ctest; `cmake --build build --target memcheck` builds its own
 # valgrind-friendly copy in build/memcheck and runs it.
 add_custom_target(memcheck COMMAND ${CMAKE_SOURCE_DIR}/scripts/memcheck.sh ${CMAKE_BINARY_DIR}/memcheck USES_TERMINAL)
+# a run stopped at a random step (SIGINT, SIGKILL) and continued with
+# --restart leaves a straight run's outputs; refused second and concurrent runs
+add_test(NAME robust.resume COMMAND ${MORAINE_ROBUST_DIR}/resume.sh $<TARGET_FILE:moraine> ${MORAINE_TEST_OUT}/robust_resume ${Python3_EXECUTABLE})
+set_tests_properties(robust.resume PROPERTIES LABELS robust ENVIRONMENT OMP_WAIT_POLICY=PASSIVE TIMEOUT 120)
