@@ -64,6 +64,20 @@ def bouncing_cube_energy(case, run, records, runs, path):
     finish(fig, ax, path, "Bouncing cube (000 §4.1): total energy, USF, a_tau = 0.05", "t (s)", "E_total (kJ)")
 
 
+def bouncing_cube_updates(case, run, records, runs, path):
+    fig, ax = plt.subplots(figsize=(8, 4.5))
+    styles = {"0.05": "-", "0.025": "--"}
+    for i, update in enumerate(("USF", "USL", "MUSL", "USAVG")):
+        for a_tau, ls in styles.items():
+            f = os.path.join(run, f"upd_{update}_FLIP_{a_tau}.csv")
+            if os.path.isfile(f):
+                c = read_csv(f)
+                ax.plot(c["time"], 100 * (c["E_total"] / c["E_total"][0] - 1), ls, color=f"C{i}",
+                        label=f"{update}, a_tau = {a_tau}")
+    finish(fig, ax, path, "Bouncing cube (000 §4.1), FLIP: total energy under each stress update", "t (s)",
+           "E_total / E_ref - 1 (%)")
+
+
 def rotating_cube_L(case, run, records, runs, path):
     fig, ax = plt.subplots(figsize=(7, 4))
     for s in ("APIC", "AFLIP", "TFLIP"):
@@ -165,7 +179,8 @@ def collapse_picture(run, path, ratio="2.4"):
     plt.close(fig)
 
 
-PLOTTERS = {f.__name__: f for f in (settling_energy, axial_bar, bouncing_cube_energy, rotating_cube_L, strip_footing,
+PLOTTERS = {f.__name__: f for f in (settling_energy, axial_bar, bouncing_cube_energy, bouncing_cube_updates,
+                                    rotating_cube_L, strip_footing,
                                     channel_convergence, dam_break, sand_column, lube)}
 
 

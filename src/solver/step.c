@@ -7,7 +7,7 @@
  *   MUSL: as USL, then the new particle momenta are mapped back to the grid
  *         (at the start-of-step positions), BCs, and the stress is updated
  *         from that velocity before the particles move.
- *   USAVG: half the strain increment as in USF, half as in USL.
+ *   USAVG: half the strain increment as in USF, half as in MUSL.
  * 000 §3.4 describes MUSL as USL with V~ in Eq. (45); moraine follows the
  * original definitions, in which USL already uses V~ and MUSL re-maps. */
 #include <float.h>
@@ -116,7 +116,7 @@ static double *scratch(mrn_sim *sim, size_t count) {
  *   (the lowest index, for any thread count); with on_leave = delete, a
  *   finite particle outside the grid is marked instead and deleted after the
  *   pass (delete_leaving).
- * Where the step ends with G2P moving the particles (USF, USL, USAVG) and no
+ * Where the step ends with G2P moving the particles (USF, USL) and no
  * particle is to be deleted, this runs inside G2P on each chunk of particles
  * just moved (end_chunk, a mrn_particle_pass): a separate pass would read
  * every position, velocity and stress from memory again. Otherwise it is a
@@ -333,16 +333,29 @@ static int step_usl(mrn_sim *sim, mrn_transfer *tr, double dt, step_end *end) {
   return move_pass(sim, tr, MOVE_UPDATE_END, dt, dt, end); /* move -> gradient -> material update -> check */
 }
 
-/* USAVG: half the strain increment from V^i before the forces, half from
- * V~^i after the motion: two constitutive calls per step (000 §3.4) */
-static int step_usavg(mrn_sim *sim, mrn_transfer *tr, double dt, step_end *end) {
+/* The end of MUSL's and USAVG's step: G2P gives the particles their new
+ * velocities with the positions held back, the new momenta are mapped back
+ * to the grid at the start-of-step positions, and the stress is updated over
+ * material_dt from that velocity before the particles move. The re-mapped
+ * velocity is the one the next step starts from, so the strain sees the
+ * same velocity as the momentum: USL's strain from V~ does not, and loses
+ * energy every step (000 §3.4; App. A). */
+static int move_remap_update(mrn_sim *sim, mrn_transfer *tr, double dt, double material_dt, step_end *end) {
   int rc;
-  mrn_p2g(tr, 1, 0);                                   /* mass, momentum */
-  if ((rc = grid_velocity_stage(sim, tr))) return rc; /* V^i */
-  mrn_particle_stages update = {UPDATE_FORCE, .gvel = sim->grid.vel, .material_dt = 0.5 * dt};
-  if ((rc = mrn_particle_stages_run(sim, tr, &update))) return rc; /* gradient -> material update -> force */
-  grid_update(sim, dt);                                           /* V~^i */
-  return move_pass(sim, tr, MOVE_UPDATE_END, dt, 0.5 * dt, end); /* move -> gradient -> material update -> check */
+  /* the XPIC smoothing used the scratch; the position increments take it now */
+  double *dx = scratch(sim, 3 * sim->particles.n);
+  if (!dx && sim->particles.n) return mrn_error("step: out of memory");
+  mrn_particle_stages move = {MRN_STAGE_MOVE, .move_dt = dt, .dx = dx};
+  if ((rc = mrn_particle_stages_run(sim, tr, &move))) return rc; /* new velocities; positions held back */
+  mrn_blocks_reuse(tr->blocks);
+  mrn_p2g(tr, 1, 0); /* re-map the new momenta */
+  grid_velocity(sim);
+  mrn_particle_stages update = {MRN_STAGE_GRADIENT | MRN_STAGE_MATERIAL, .gvel = sim->grid.vel, .material_dt = material_dt};
+  if ((rc = mrn_particle_stages_run(sim, tr, &update))) return rc; /* gradient -> material update */
+  mrn_particles *ps = &sim->particles;
+  for (size_t i = 0; i < 3 * ps->n; i++) ps->x[i] += dx[i];
+  end->pass = NULL; /* the particles moved after G2P: the end of the step is a pass of its own */
+  return MRN_OK;
 }
 
 /* MUSL: as USL, but the stress from the new particle momenta mapped back to
@@ -352,20 +365,21 @@ static int step_musl(mrn_sim *sim, mrn_transfer *tr, double dt, step_end *end) {
   mrn_p2g(tr, 1, 1);                                   /* mass, momentum, internal force */
   if ((rc = grid_velocity_stage(sim, tr))) return rc; /* V^i */
   grid_update(sim, dt);                                /* V~^i */
-  /* the XPIC smoothing used the scratch; the position increments take it now */
-  double *dx = scratch(sim, 3 * sim->particles.n);
-  if (!dx && sim->particles.n) return mrn_error("step: out of memory");
-  mrn_particle_stages move = {MRN_STAGE_MOVE, .move_dt = dt, .dx = dx};
-  if ((rc = mrn_particle_stages_run(sim, tr, &move))) return rc; /* new velocities; positions held back */
-  mrn_blocks_reuse(tr->blocks);
-  mrn_p2g(tr, 1, 0); /* re-map the new momenta */
-  grid_velocity(sim);
-  mrn_particle_stages update = {MRN_STAGE_GRADIENT | MRN_STAGE_MATERIAL, .gvel = sim->grid.vel, .material_dt = dt};
-  if ((rc = mrn_particle_stages_run(sim, tr, &update))) return rc; /* gradient -> material update */
-  mrn_particles *ps = &sim->particles;
-  for (size_t i = 0; i < 3 * ps->n; i++) ps->x[i] += dx[i];
-  end->pass = NULL; /* the particles moved after G2P: the end of the step is a pass of its own */
-  return MRN_OK;
+  return move_remap_update(sim, tr, dt, dt, end);
+}
+
+/* USAVG (Nairn's, after which 000 §3.4 names it): half the strain increment
+ * from V^i before the forces, which then come from the half-updated stress,
+ * and half from the re-mapped new momenta as in MUSL. In the stress and the
+ * velocity this is the leapfrog drift-kick-drift: second order in dt. */
+static int step_usavg(mrn_sim *sim, mrn_transfer *tr, double dt, step_end *end) {
+  int rc;
+  mrn_p2g(tr, 1, 0);                                   /* mass, momentum */
+  if ((rc = grid_velocity_stage(sim, tr))) return rc; /* V^i */
+  mrn_particle_stages update = {UPDATE_FORCE, .gvel = sim->grid.vel, .material_dt = 0.5 * dt};
+  if ((rc = mrn_particle_stages_run(sim, tr, &update))) return rc; /* gradient -> material update -> force */
+  grid_update(sim, dt);                                           /* V~^i */
+  return move_remap_update(sim, tr, dt, 0.5 * dt, end);
 }
 
 int mrn_sim_step_dt(mrn_sim *sim, double dt) {

@@ -15,7 +15,7 @@
 #include "transfer/kernels.h"
 
 /* L from the nodal velocity gvel, then F, volume, stress and energies over
- * dt (USF, MUSL, both halves of USAVG's first part). 0, or an error naming
+ * dt (USF, MUSL, USAVG's halves). 0, or an error naming
  * the first particle whose F would invert (the others are updated). */
 int mrn_update_from_grid(mrn_sim *sim, mrn_transfer *tr, const double *gvel, double dt);
 
@@ -27,8 +27,8 @@ int mrn_update_from_grid(mrn_sim *sim, mrn_transfer *tr, const double *gvel, dou
 int mrn_update_then_force(mrn_sim *sim, mrn_transfer *tr, const double *gvel, double dt);
 
 /* G2P over dt_move (positions and velocities, mrn_g2p_then) with L from
- * the updated grid velocity, and the material update over dt_stress (USL,
- * USAVG's second half); then each chunk goes to `after` when it is not NULL
+ * the updated grid velocity, and the material update over dt_stress (USL);
+ * then each chunk goes to `after` when it is not NULL
  * (*after_bad: what it rejected first, or -1). Errors as
  * mrn_update_from_grid. */
 int mrn_update_with_g2p(mrn_sim *sim, mrn_transfer *tr, double dt_move, double dt_stress, const mrn_particle_pass *after,
