@@ -5,4 +5,5 @@ cd "$(dirname "$0")/.."
 scripts/install-deps.sh
 cmake -S . -B build -DCMAKE_BUILD_TYPE=Release -DMORAINE_NATIVE=ON
 cmake --build build -j "$(nproc 2>/dev/null || echo 2)"
-build/moraine examples/colliding_disks/deck.lua -o out/colliding_disks "$@"
+# the script's own outputs: a second run replaces those of the first
+build/moraine examples/colliding_disks/deck.lua -o out/colliding_disks --overwrite "$@"
