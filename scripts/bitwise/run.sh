@@ -19,7 +19,9 @@ work=$(mktemp -d /tmp/moraine-bitwise-XXXXXX)
 trap 'git -C "$root" worktree remove --force "$work/old-src" >/dev/null 2>&1 || true' EXIT
 
 build() { # SRC BUILD_DIR
-  cmake -S "$1" -B "$2" -DCMAKE_BUILD_TYPE=Release -DMORAINE_TESTS=OFF >/dev/null
+  # the same flags on both sides: whether -march=native is the default
+  # depends on the revision, and it changes which sums are fused
+  cmake -S "$1" -B "$2" -DCMAKE_BUILD_TYPE=Release -DMORAINE_TESTS=OFF -DMORAINE_NATIVE=ON >/dev/null
   cmake --build "$2" -j2 --target moraine bench >/dev/null
 }
 git -C "$root" worktree add --detach "$work/old-src" "$rev" >/dev/null 2>&1
