@@ -161,12 +161,21 @@ static __attribute__((noinline, unused)) int mrn_bspline_cubic_axis(double xi, d
 }
 #endif
 
-/* A plain quadratic (sup = 3) or cubic (sup = 4) B-spline stencil kept as
+/* The shapes with a fast stencil, by the code the kernels are specialised
+ * for: the support (nodes per axis), except uGIMP's, whose support is 3. */
+#ifndef MRN_FAST_KINDS
+#define MRN_FAST_KINDS
+enum { MRN_FAST_LINEAR = 2, MRN_FAST_QUADRATIC = 3, MRN_FAST_CUBIC = 4, MRN_FAST_GIMP = 5 };
+#define MRN_FAST_SUPPORT(kind) ((kind) == MRN_FAST_GIMP ? 3 : (kind))
+#endif
+
+/* A fast stencil (linear, quadratic B-spline, cubic B-spline, uGIMP) kept as
  * its factors: the node of the first corner and, per axis, the weights,
- * their derivatives d/dx (1/m) and the branch components x_i - x_p. The
- * quadratic's products are formed in the same order as stencil_build, so
- * both give the same bits; the cubic's weights are formed in factored form
- * (mrn_bspline_cubic_axis) and agree with stencil_build's to round-off. */
+ * their derivatives d/dx (1/m) and the branch components x_i - x_p; in 2D
+ * the lanes beyond the support hold zeros. The weights of every shape but
+ * the cubic are those of stencil_build (the same functions, the same bits);
+ * the cubic's are formed in factored form (mrn_bspline_cubic_axis) and
+ * agree with stencil_build's to round-off. */
 typedef struct KNAME(axes) {
   size_t node0;
   double w[DIM][4];
@@ -224,12 +233,33 @@ static inline __attribute__((always_inline)) int KNAME(axes_quadratic_2d)(const 
 }
 #endif
 
-static inline __attribute__((always_inline)) int KNAME(axes_build)(const mrn_grid *g, const int sup,
+/* uGIMP's particle half-width in cells, from its initial volume vol0, as
+ * stencil_build forms it */
+static inline double KNAME(gimp_half_width)(const mrn_grid *g, double vol0) {
+  const double lp = 0.5 * (DIM == 2 ? sqrt(vol0) : cbrt(vol0)) * g->inv_cell;
+  return lp > 0.5 ? 0.5 : lp;
+}
+
+/* The weights of one axis of a linear or uGIMP stencil, as stencil_build
+ * forms them (a linear particle exactly on the upper face belongs to the
+ * last cell); returns base. */
+static inline __attribute__((always_inline)) int KNAME(axis_hat)(const int kind, double xi, double lp, int ncell,
+                                                                 double *w, double *dw) {
+  if (kind == MRN_FAST_GIMP) return mrn_shape_gimp_1d(xi, lp, w, dw);
+  const int base = mrn_shape_linear_1d(xi, w, dw);
+  if (base != ncell) return base;
+  w[0] = 0.0, w[1] = 1.0;
+  return ncell - 1;
+}
+
+static inline __attribute__((always_inline)) int KNAME(axes_build)(const mrn_grid *g, const int kind,
                                                                    const mrn_kernel_boundary mode, const double *x,
-                                                                   KNAME(axes) *a) {
+                                                                   double vol0, KNAME(axes) *a) {
 #if DIM == 2
-  if (sup == 3) return KNAME(axes_quadratic_2d)(g, mode, x, a);
+  if (kind == MRN_FAST_QUADRATIC) return KNAME(axes_quadratic_2d)(g, mode, x, a);
 #endif
+  const int sup = MRN_FAST_SUPPORT(kind);
+  const double lp = kind == MRN_FAST_GIMP ? KNAME(gimp_half_width)(g, vol0) : 0.0;
   /* the grid's values in locals: the stores into `a` could alias them, and
    * the compiler would load them again for every node */
   const double inv_cell = g->inv_cell, cell = g->cell;
@@ -239,17 +269,19 @@ static inline __attribute__((always_inline)) int KNAME(axes_build)(const mrn_gri
     const double origin = g->origin[d], xd = x[d];
     const double xi = (xd - origin) * inv_cell;
     int base;
-    if (sup == 4) {
+    if (kind == MRN_FAST_CUBIC) {
       base = mrn_bspline_cubic_axis(xi, inv_cell, origin, cell, xd, a->w[d], a->dw[d], a->off[d]);
     } else {
       double w[3], dw[3];
-      base = mrn_shape_quadratic_1d(xi, w, dw);
+      if (kind == MRN_FAST_QUADRATIC) base = mrn_shape_quadratic_1d(xi, w, dw);
+      else base = KNAME(axis_hat)(kind, xi, lp, g->ncell[d], w, dw);
       const double b0 = (double)base;
       for (int k = 0; k < sup; k++) {
         a->w[d][k] = w[k];
         a->dw[d][k] = dw[k] * inv_cell;
         a->off[d][k] = origin + (b0 + k) * cell - xd; /* b0 + k: (double)(base + k) exactly */
       }
+      for (int k = sup; DIM == 2 && k < 4; k++) a->w[d][k] = a->dw[d][k] = a->off[d][k] = 0.0;
     }
     if (mode != MRN_KERNEL_EXTENDED && (base < 0 || base + sup - 1 > g->ncell[d])) return 0;
     node0 += (size_t)(base + pad) * (size_t)g->stride[d];
