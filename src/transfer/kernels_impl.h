@@ -3,9 +3,10 @@
  *
  * Each kernel exists in a general form, which builds a particle's full
  * stencil (stencil_build: any shape, face treatment, periodic axes, MLS
- * gradient), and in fast forms for plain quadratic and cubic B-splines away
- * from adjusted faces, which keep the stencil as its per-axis factors. Both
- * forms form the same products in the same order.
+ * gradient), and in fast forms for linear, uGIMP and plain quadratic and
+ * cubic B-spline kernels away from adjusted faces, without the MLS gradient
+ * or periodic axes (MRN_FAST_*, stencil.h), which keep the stencil as its
+ * per-axis factors and sum factor by factor.
  *
  * Instances: the work on one block's particles (P2G, USF's fused pass) or on
  * one particle (the velocity gradient, G2P) is an always-inline
@@ -304,9 +305,9 @@ MRN_INLINE void KNAME(p2g_fast)(const KNAME(p2g_args) *ar, const KNAME(axes) *ax
  * MRN_BATCH particles of consecutive indices (in block order) whose
  * stencils are all fast, built together (batch_build). Within a batch, in
  * 2D, a group of particles that follow one another with stencils starting
- * at the same node (as seeded or sorted: for a cubic B-spline the
- * particles of one cell, for a quadratic one those between the same cell
- * centres) is summed in registers, row by row of the stencil, and the sums
+ * at the same node (as seeded or sorted: for a linear, uGIMP or cubic
+ * kernel mostly the particles of one cell, for a quadratic one those
+ * between the same cell centres) is summed in registers, row by row of the stencil, and the sums
  * are added to the nodes once (group_sum); a particle alone is added to the nodes
  * directly (p2g_fast), as is every particle in 3D. Both passes form the same
  * batches from the same block order, so the force they scatter is the same
@@ -349,8 +350,9 @@ MRN_INLINE void KNAME(group_x_factors)(const mrn_particles *ps, const KNAME(axes
   const double m = ps->mass[p];
   double mv[3], MA[3][3], VS[3][3];
   KNAME(p2g_particle_terms)(ps, p, affine, mv, MA, VS);
-  /* lanes beyond the support hold zeros (axes_build); a quadratic
-   * stencil starting one node further along x takes lanes 1 .. 3 */
+  /* lanes beyond the support hold zeros (axes_build); a stencil of
+   * fewer than 4 nodes starting one node further along x takes the lanes
+   * from 1 */
   mrn_acc4 wx = {a->w[0][0], a->w[0][1], a->w[0][2], a->w[0][3]};
   mrn_acc4 dwx = {a->dw[0][0], a->dw[0][1], a->dw[0][2], a->dw[0][3]};
   mrn_acc4 ox = {a->off[0][0], a->off[0][1], a->off[0][2], a->off[0][3]};
@@ -419,11 +421,11 @@ MRN_INLINE void KNAME(group_flush)(const KNAME(p2g_args) *ar, size_t node0, cons
 }
 
 /* The particles p0 .. p0 + n - 1 (n >= 2), whose stencils ax[0 .. n) all
- * start at ax[0].node0 or, when `wide` (quadratic B-spline only: 3 nodes
- * along x), some at the node after it along x, summed and added to the
- * nodes: the lanes of a row are then its 4 nodes from ax[0].node0, and a
- * stencil starting at the next node has its x factors moved up one lane (its
- * fourth lane is a zero, axes_build). With N = w_x w_y, the
+ * start at ax[0].node0 or, when `wide` (supports of 2 or 3 nodes along x),
+ * some at the node after it along x, summed and added to the nodes: the
+ * lanes of a row are then its sup + 1 nodes from ax[0].node0, and a stencil
+ * starting at the next node has its x factors moved up one lane (its lanes
+ * beyond the support are zeros, axes_build). With N = w_x w_y, the
  * branch x_i - x_p = (o_x, o_y) and A_x, A_y the columns of A, row j of the
  * nodes (lanes i, along x) receives from each particle
  *   m N                      = w_y (m w_x)
