@@ -307,9 +307,10 @@ MRN_INLINE void KNAME(p2g_fast)(const KNAME(p2g_args) *ar, const KNAME(axes) *ax
  * 2D, a group of particles that follow one another with stencils starting
  * at the same node (as seeded or sorted: for a linear, uGIMP or cubic
  * kernel mostly the particles of one cell, for a quadratic one those
- * between the same cell centres) is summed in registers, row by row of the stencil, and the sums
- * are added to the nodes once (group_sum); a particle alone is added to the nodes
- * directly (p2g_fast), as is every particle in 3D. Both passes form the same
+ * between the same cell centres) is summed in registers, row by row of the
+ * stencil, and the sums are added to the nodes once (group_sum); a particle
+ * alone is added to the nodes directly (p2g_fast), as is every particle in
+ * 3D. Both passes form the same
  * batches from the same block order, so the force they scatter is the same
  * bit for bit, whatever the thread count. */
 
