@@ -38,6 +38,10 @@
 
 #define MRN_INLINE static inline __attribute__((always_inline))
 
+/* the initial volume axes_build reads (uGIMP's only: the other kernels do
+ * not load it, so their code is what it was without uGIMP) */
+#define MRN_FAST_VOL0(kind, ps, p) ((kind) == MRN_FAST_GIMP ? (ps)->vol0[p] : 0.0)
+
 /* values stored per particle for F and the affine matrix (particles.h) */
 #define TSTRIDE ((size_t)(DIM * DIM))
 
@@ -791,7 +795,7 @@ MRN_INLINE void KNAME(gradient_fast)(const mrn_grid *g, const KNAME(axes) *ax, c
 MRN_INLINE void KNAME(gradient_particle)(const mrn_grid *g, const mrn_particles *ps, const mrn_kernel_options *ko,
                                          const double *gvel, size_t p, double *out, const int kind) {
   KNAME(axes) ax;
-  if (kind && KNAME(axes_build)(g, kind, ko->boundary, ps->x + 3 * p, ps->vol0[p], &ax)) {
+  if (kind && KNAME(axes_build)(g, kind, ko->boundary, ps->x + 3 * p, MRN_FAST_VOL0(kind, ps, p), &ax)) {
     KNAME(gradient_fast)(g, &ax, gvel, out, MRN_FAST_SUPPORT(kind));
     return;
   }
@@ -853,7 +857,8 @@ MRN_INLINE size_t KNAME(batch_build)(const KNAME(p2g_args) *ar, const uint32_t *
                                      const int momentum, const int force, const int affine) {
   size_t n = 0;
   while (q + n < to && n < MRN_BATCH && (order ? order[q + n] : q + n) == p0 + n &&
-         KNAME(axes_build)(ar->g, kind, ar->ko.boundary, ar->ps->x + 3 * (p0 + n), ar->ps->vol0[p0 + n], &ax[n])) {
+         KNAME(axes_build)(ar->g, kind, ar->ko.boundary, ar->ps->x + 3 * (p0 + n), MRN_FAST_VOL0(kind, ar->ps, p0 + n),
+                           &ax[n])) {
     const size_t p = p0 + n;
     if (gvel) {
       KNAME(gradient_fast)(ar->g, &ax[n], gvel, L + 9 * n, MRN_FAST_SUPPORT(kind));
@@ -1056,7 +1061,7 @@ MRN_INLINE void KNAME(g2p_particle)(const KNAME(g2p_args) *ar, size_t p, double 
   }
   if (gvk == MRN_VGRID_AFFINE) __builtin_prefetch(ps->affine + TSTRIDE * p, 1);
   KNAME(axes) ax;
-  if (kind >= MRN_FAST_LINEAR && KNAME(axes_build)(g, kind, ar->ko->boundary, x, ps->vol0[p], &ax)) {
+  if (kind >= MRN_FAST_LINEAR && KNAME(axes_build)(g, kind, ar->ko->boundary, x, MRN_FAST_VOL0(kind, ps, p), &ax)) {
     KNAME(gather_fast)(&ax, g->vel_new, g->vel, g->stride[1], g->stride[2], MRN_FAST_SUPPORT(kind), 1, want_dv,
                        want_bd && !linear, fused || (want_l && !linear), v_pic, v_old, B, L);
     if (gvk == MRN_VGRID_AFFINE && !linear) {
@@ -1234,4 +1239,5 @@ void KNAME(mrn_particles_to_grid)(mrn_transfer *tr, const double *pvel, double *
 #undef MRN_G2P_VARIANTS
 #undef MRN_CHUNKED_LOOP
 #undef MRN_INLINE
+#undef MRN_FAST_VOL0
 #undef TSTRIDE

@@ -287,7 +287,9 @@ static inline __attribute__((always_inline)) int KNAME(axes_linear_2d)(const mrn
     a->off[d][1] = o1[d];
     for (int k = 2; k < 4; k++) a->w[d][k] = a->dw[d][k] = a->off[d][k] = 0.0;
   }
-  if (mode != MRN_KERNEL_EXTENDED && ((base[0] < 0) | (base[1] < 0))) return 0;
+  if (mode != MRN_KERNEL_EXTENDED &&
+      ((base[0] < 0) | (base[1] < 0) | (base[0] + 1 > g->ncell[0]) | (base[1] + 1 > g->ncell[1])))
+    return 0;
   a->node0 = (size_t)(base[0] + g->pad) * (size_t)g->stride[0] + (size_t)(base[1] + g->pad) * (size_t)g->stride[1];
   return 1;
 }
