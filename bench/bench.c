@@ -10,7 +10,7 @@
  * threads, same repetitions) and prints moraine's speed as a ratio to them.
  *
  *   moraine-bench [--anchors DIR] [--threads 1,2] [--reps 3] [--json FILE]
- *                 [--only a,w,b,c,m,d,det|NAME,...] [--det-steps 1000]
+ *                 [--only a,w,b,c,l,u,q,m,d,det|NAME,...] [--det-steps 1000]
  *                 [--sort-every N] [--shuffle] [--steps-scale X] [--warmup N]
  *
  * Problems:
@@ -29,6 +29,10 @@
  *                  per cell, quadratic B-spline, APIC, USL (`ref3d 32 2 20`,
  *                  `ref3d 50 2 6`); c50mc: the 50^3 cube with Mohr-Coulomb
  *                  history, for the memory figure
+ *   l160k, l32     a160k and c32 with linear shape functions, FLIP, USF
+ *   u160k, u32     the same with uGIMP (particle half-width from its volume)
+ *   q160k, q32     the same with the quadratic B-spline: the rate linear and
+ *                  uGIMP are measured against, on the same particles and scheme
  *   d1m            one .vtp snapshot of 1e6 particles with every default field
  *   det            threads change nothing: a 40,000-particle column run for
  *                  --det-steps steps on 1 and on 2 threads (APIC/USL elastic
@@ -101,6 +105,18 @@ static const problem problems[] = {
      MRN_SHAPE_CUBIC_BSPLINE, 1, 10, "ref2d 2400 2 10", "2D Mohr-Coulomb, FLIP, cubic, USF"},
     {"c32", "c", KIND_STEP, 3, 0.1, 2, {3.6, 3.6, 3.6}, {3.2, 3.2, 3.2}, {0.2, 0, 0.2}, "APIC", MRN_STRESS_USL,
      MRN_SHAPE_QUADRATIC_BSPLINE, 0, 20, "ref3d 32 2 20", "3D elastic, APIC, quadratic, USL"},
+    {"l160k", "l", KIND_STEP, 2, H1, 4, {6, 1.04, 0}, {1, 1, 0}, {0, 0, 0}, "FLIP", MRN_STRESS_USF,
+     MRN_SHAPE_LINEAR, 0, 20, NULL, "2D elastic, FLIP, linear, USF"},
+    {"u160k", "u", KIND_STEP, 2, H1, 4, {6, 1.04, 0}, {1, 1, 0}, {0, 0, 0}, "FLIP", MRN_STRESS_USF,
+     MRN_SHAPE_GIMP, 0, 20, NULL, "2D elastic, FLIP, uGIMP, USF"},
+    {"q160k", "q", KIND_STEP, 2, H1, 4, {6, 1.04, 0}, {1, 1, 0}, {0, 0, 0}, "FLIP", MRN_STRESS_USF,
+     MRN_SHAPE_QUADRATIC_BSPLINE, 0, 20, NULL, "2D elastic, FLIP, quadratic, USF"},
+    {"l32", "l", KIND_STEP, 3, 0.1, 2, {3.6, 3.6, 3.6}, {3.2, 3.2, 3.2}, {0.2, 0, 0.2}, "FLIP", MRN_STRESS_USF,
+     MRN_SHAPE_LINEAR, 0, 20, NULL, "3D elastic, FLIP, linear, USF"},
+    {"u32", "u", KIND_STEP, 3, 0.1, 2, {3.6, 3.6, 3.6}, {3.2, 3.2, 3.2}, {0.2, 0, 0.2}, "FLIP", MRN_STRESS_USF,
+     MRN_SHAPE_GIMP, 0, 20, NULL, "3D elastic, FLIP, uGIMP, USF"},
+    {"q32", "q", KIND_STEP, 3, 0.1, 2, {3.6, 3.6, 3.6}, {3.2, 3.2, 3.2}, {0.2, 0, 0.2}, "FLIP", MRN_STRESS_USF,
+     MRN_SHAPE_QUADRATIC_BSPLINE, 0, 20, NULL, "3D elastic, FLIP, quadratic, USF"},
     {"c50", "c", KIND_STEP, 3, 0.1, 2, {5.4, 5.4, 5.4}, {5.0, 5.0, 5.0}, {0.2, 0, 0.2}, "APIC", MRN_STRESS_USL,
      MRN_SHAPE_QUADRATIC_BSPLINE, 0, 6, "ref3d 50 2 6", "3D elastic, APIC, quadratic, USL"},
     {"c50mc", "m", KIND_STEP, 3, 0.1, 2, {5.4, 5.4, 5.4}, {5.0, 5.0, 5.0}, {0.2, 0, 0.2}, "APIC", MRN_STRESS_USL,
@@ -634,7 +650,7 @@ static void write_json(const row *rows, int nrows, const char *path, char derive
 static void usage(void) {
   fprintf(stderr,
           "usage: moraine-bench [--anchors DIR] [--threads 1,2] [--reps N] [--json FILE]\n"
-          "                     [--only a,w,b,c,m,d,det|NAME,...] [--det-steps N] [--sort-every N]\n"
+          "                     [--only a,w,b,c,l,u,q,m,d,det|NAME,...] [--det-steps N] [--sort-every N]\n"
           "                     [--steps-scale X] [--warmup N] [--shuffle]\n");
 }
 
@@ -665,7 +681,7 @@ int main(int argc, char **argv) {
   if (opt.reps < 1) opt.reps = 1;
   if (opt.reps > 32) opt.reps = 32;
   if (opt.anchors && build_anchors()) return 1;
-  if (!opt.only[0]) snprintf(opt.only, sizeof opt.only, "a,w,b,c,m,d,det");
+  if (!opt.only[0]) snprintf(opt.only, sizeof opt.only, "a,w,b,c,l,u,q,m,d,det");
 
   printf("moraine bench: %ld CPUs online, threads", sysconf(_SC_NPROCESSORS_ONLN));
   for (int t = 0; t < opt.nthreads; t++) printf(" %d", opt.threads[t]);

@@ -33,7 +33,7 @@ status=0
 echo "bitwise: bench problems"
 for side in old new; do
   bin=$([ $side = old ] && echo "$work/old-build" || echo "$root/build-bitwise")/moraine-bench
-  (cd "$work" && "$bin" --only a,w,b,c,m,det --reps 1 --threads 1,2 --det-steps 300 \
+  (cd "$work" && "$bin" --only a,w,b,c,l,u,q,m,det --reps 1 --threads 1,2 --det-steps 300 \
      --json "$work/$side.json" >"$work/$side-bench.txt" 2>&1)
 done
 "$py" - "$work/old.json" "$work/new.json" <<'PY' || status=1

@@ -62,7 +62,8 @@ long mrn_gradient_2d(mrn_transfer *tr, const double *gvel, const mrn_gradient_si
 long mrn_gradient_3d(mrn_transfer *tr, const double *gvel, const mrn_gradient_sink *sink);
 
 /* USF's material update and internal force in one pass over the particles,
- * for plain quadratic and cubic B-splines and particles that lie in long
+ * for the kernels with a fast stencil (linear, uGIMP, plain quadratic and
+ * cubic B-splines; no MLS gradient, no periodic axis) and particles that lie in long
  * runs of consecutive indices within the blocks of the last binning
  * (mrn_update_force_fused says whether the options and the order allow it): the same as mrn_gradient from gvel with
  * `sink`, then mrn_p2g with force only (keeping the binning of the last

@@ -3,9 +3,10 @@
  *
  * Each kernel exists in a general form, which builds a particle's full
  * stencil (stencil_build: any shape, face treatment, periodic axes, MLS
- * gradient), and in fast forms for plain quadratic and cubic B-splines away
- * from adjusted faces, which keep the stencil as its per-axis factors. Both
- * forms form the same products in the same order.
+ * gradient), and in fast forms for linear, uGIMP and plain quadratic and
+ * cubic B-spline kernels away from adjusted faces, without the MLS gradient
+ * or periodic axes (MRN_FAST_*, stencil.h), which keep the stencil as its
+ * per-axis factors and sum factor by factor.
  *
  * Instances: the work on one block's particles (P2G, USF's fused pass) or on
  * one particle (the velocity gradient, G2P) is an always-inline
@@ -37,13 +38,24 @@
 
 #define MRN_INLINE static inline __attribute__((always_inline))
 
+/* the initial volume axes_build reads (uGIMP's only: the other kernels do
+ * not load it, so their code is what it was without uGIMP) */
+#define MRN_FAST_VOL0(kind, ps, p) ((kind) == MRN_FAST_GIMP ? (ps)->vol0[p] : 0.0)
+
 /* values stored per particle for F and the affine matrix (particles.h) */
 #define TSTRIDE ((size_t)(DIM * DIM))
 
-/* support of the fast path for these options, or 0 for the general stencil */
-static inline int KNAME(fast_support)(const mrn_kernel_options *o) {
+/* the fast stencil for these options (MRN_FAST_*, stencil.h), or 0 for
+ * the general one */
+static inline int KNAME(fast_kind)(const mrn_kernel_options *o) {
   if (o->periodic || o->mls_gradient) return 0;
-  return o->shape == MRN_SHAPE_QUADRATIC_BSPLINE ? 3 : o->shape == MRN_SHAPE_CUBIC_BSPLINE ? 4 : 0;
+  switch (o->shape) {
+  case MRN_SHAPE_LINEAR: return MRN_FAST_LINEAR;
+  case MRN_SHAPE_QUADRATIC_BSPLINE: return MRN_FAST_QUADRATIC;
+  case MRN_SHAPE_CUBIC_BSPLINE: return MRN_FAST_CUBIC;
+  case MRN_SHAPE_GIMP: return MRN_FAST_GIMP;
+  default: return 0;
+  }
 }
 
 /* ---- P2G -------------------------------------------------------------------- */
@@ -297,11 +309,12 @@ MRN_INLINE void KNAME(p2g_fast)(const KNAME(p2g_args) *ar, const KNAME(axes) *ax
  * MRN_BATCH particles of consecutive indices (in block order) whose
  * stencils are all fast, built together (batch_build). Within a batch, in
  * 2D, a group of particles that follow one another with stencils starting
- * at the same node (as seeded or sorted: for a cubic B-spline the
- * particles of one cell, for a quadratic one those between the same cell
- * centres) is summed in registers, row by row of the stencil, and the sums
- * are added to the nodes once (group_sum); a particle alone is added to the nodes
- * directly (p2g_fast), as is every particle in 3D. Both passes form the same
+ * at the same node (as seeded or sorted: for a linear, uGIMP or cubic
+ * kernel mostly the particles of one cell, for a quadratic one those
+ * between the same cell centres) is summed in registers, row by row of the
+ * stencil, and the sums are added to the nodes once (group_sum); a particle
+ * alone is added to the nodes directly (p2g_fast), as is every particle in
+ * 3D. Both passes form the same
  * batches from the same block order, so the force they scatter is the same
  * bit for bit, whatever the thread count. */
 
@@ -314,7 +327,7 @@ enum { MRN_BATCH = 64 };
  * gvel, each particle's velocity gradient is gathered from it into
  * L + 9 j as its stencil is built. */
 MRN_INLINE size_t KNAME(batch_build)(const KNAME(p2g_args) *ar, const uint32_t *order, size_t q, size_t to,
-                                     size_t p0, KNAME(axes) *ax, const double *gvel, double *L, const int sup,
+                                     size_t p0, KNAME(axes) *ax, const double *gvel, double *L, const int kind,
                                      const int momentum, const int force, const int affine);
 
 #if DIM == 2
@@ -342,8 +355,9 @@ MRN_INLINE void KNAME(group_x_factors)(const mrn_particles *ps, const KNAME(axes
   const double m = ps->mass[p];
   double mv[3], MA[3][3], VS[3][3];
   KNAME(p2g_particle_terms)(ps, p, affine, mv, MA, VS);
-  /* lanes beyond the support hold zeros (axes_build); a quadratic
-   * stencil starting one node further along x takes lanes 1 .. 3 */
+  /* lanes beyond the support hold zeros (axes_build); a stencil of
+   * fewer than 4 nodes starting one node further along x takes the lanes
+   * from 1 */
   mrn_acc4 wx = {a->w[0][0], a->w[0][1], a->w[0][2], a->w[0][3]};
   mrn_acc4 dwx = {a->dw[0][0], a->dw[0][1], a->dw[0][2], a->dw[0][3]};
   mrn_acc4 ox = {a->off[0][0], a->off[0][1], a->off[0][2], a->off[0][3]};
@@ -407,16 +421,16 @@ MRN_INLINE void KNAME(group_flush)(const KNAME(p2g_args) *ar, size_t node0, cons
                                    const int width, const int momentum, const int force) {
   KNAME(group_flush_row)(ar, node0, s, 0, width, momentum, force);
   KNAME(group_flush_row)(ar, node0, s, 1, width, momentum, force);
-  KNAME(group_flush_row)(ar, node0, s, 2, width, momentum, force);
+  if (sup >= 3) KNAME(group_flush_row)(ar, node0, s, 2, width, momentum, force);
   if (sup == 4) KNAME(group_flush_row)(ar, node0, s, 3, width, momentum, force);
 }
 
 /* The particles p0 .. p0 + n - 1 (n >= 2), whose stencils ax[0 .. n) all
- * start at ax[0].node0 or, when `wide` (quadratic B-spline only: 3 nodes
- * along x), some at the node after it along x, summed and added to the
- * nodes: the lanes of a row are then its 4 nodes from ax[0].node0, and a
- * stencil starting at the next node has its x factors moved up one lane (its
- * fourth lane is a zero, axes_build). With N = w_x w_y, the
+ * start at ax[0].node0 or, when `wide` (supports of 2 or 3 nodes along x),
+ * some at the node after it along x, summed and added to the nodes: the
+ * lanes of a row are then its sup + 1 nodes from ax[0].node0, and a stencil
+ * starting at the next node has its x factors moved up one lane (its lanes
+ * beyond the support are zeros, axes_build). With N = w_x w_y, the
  * branch x_i - x_p = (o_x, o_y) and A_x, A_y the columns of A, row j of the
  * nodes (lanes i, along x) receives from each particle
  *   m N                      = w_y (m w_x)
@@ -433,18 +447,19 @@ MRN_INLINE void KNAME(group_sum)(const KNAME(p2g_args) *ar, const KNAME(axes) *a
     KNAME(group_x_factors)(ar->ps, a, p0 + k, wide && a->node0 != ax->node0, affine, &f);
     KNAME(group_add_row)(&s, a, &f, 0, momentum, force, affine);
     KNAME(group_add_row)(&s, a, &f, 1, momentum, force, affine);
-    KNAME(group_add_row)(&s, a, &f, 2, momentum, force, affine);
+    if (sup >= 3) KNAME(group_add_row)(&s, a, &f, 2, momentum, force, affine);
     if (sup == 4) KNAME(group_add_row)(&s, a, &f, 3, momentum, force, affine);
   }
-  /* `sup` nodes per row, 4 for a wide group */
-  if (wide) KNAME(group_flush)(ar, ax->node0, &s, sup, 4, momentum, force);
+  /* `sup` nodes per row, one more for a wide group (sup < 4) */
+  if (wide) KNAME(group_flush)(ar, ax->node0, &s, sup, sup < 4 ? sup + 1 : 4, momentum, force);
   else KNAME(group_flush)(ar, ax->node0, &s, sup, sup, momentum, force);
 }
 #endif
 
 /* A batch's particles p0 .. p0 + n - 1, stencils ax[0 .. n), to the grid */
 MRN_INLINE void KNAME(batch_scatter)(const KNAME(p2g_args) *ar, const KNAME(axes) *ax, size_t p0, size_t n,
-                                     const int sup, const int momentum, const int force, const int affine) {
+                                     const int kind, const int momentum, const int force, const int affine) {
+  const int sup = MRN_FAST_SUPPORT(kind);
   size_t j = 0;
   while (j < n) {
     size_t e = j + 1;
@@ -452,7 +467,7 @@ MRN_INLINE void KNAME(batch_scatter)(const KNAME(p2g_args) *ar, const KNAME(axes
     int wide = 0;
     for (; e < n; e++) {
       if (ax[e].node0 == ax[j].node0) continue;
-      if (sup == 3 && ax[e].node0 == ax[j].node0 + 1) {
+      if (sup <= 3 && ax[e].node0 == ax[j].node0 + 1) {
         wide = 1;
         continue;
       }
@@ -472,54 +487,56 @@ MRN_INLINE void KNAME(batch_scatter)(const KNAME(p2g_args) *ar, const KNAME(axes
 
 /* the particles order[from .. to) (or from .. to when order is NULL) */
 MRN_INLINE void KNAME(p2g_range)(const KNAME(p2g_args) *ar, const uint32_t *order, size_t from, size_t to,
-                                 const int sup, const int momentum, const int force, const int affine) {
+                                 const int kind, const int momentum, const int force, const int affine) {
   KNAME(axes) ax[MRN_BATCH];
   size_t q = from;
   while (q < to) {
     const size_t p0 = order ? order[q] : q;
-    const size_t n = sup ? KNAME(batch_build)(ar, order, q, to, p0, ax, NULL, NULL, sup, momentum, force, affine) : 0;
+    const size_t n =
+        kind ? KNAME(batch_build)(ar, order, q, to, p0, ax, NULL, NULL, kind, momentum, force, affine) : 0;
     if (!n) {
       KNAME(p2g_general)(ar, p0, momentum, force, affine);
       q++;
       continue;
     }
-    KNAME(batch_scatter)(ar, ax, p0, n, sup, momentum, force, affine);
+    KNAME(batch_scatter)(ar, ax, p0, n, kind, momentum, force, affine);
     q += n;
   }
 }
 
-/* Every P2G instance: support (0: the general stencil), mass and momentum,
+/* Every P2G instance: fast stencil (0: the general one), mass and momentum,
  * internal force, affine term; one specialised range function each
  * (p2g_range with these constants), named and tabled from this list. */
-#define MRN_P2G_VARIANTS(X) \
-  X(0, 1, 0, 0) X(0, 1, 0, 1) X(0, 0, 1, 0) X(0, 1, 1, 0) X(0, 1, 1, 1) \
-  X(3, 1, 0, 0) X(3, 1, 0, 1) X(3, 0, 1, 0) X(3, 1, 1, 0) X(3, 1, 1, 1) \
-  X(4, 1, 0, 0) X(4, 1, 0, 1) X(4, 0, 1, 0) X(4, 1, 1, 0) X(4, 1, 1, 1)
+#define MRN_P2G_VARIANTS_OF(X, KIND) \
+  X(KIND, 1, 0, 0) X(KIND, 1, 0, 1) X(KIND, 0, 1, 0) X(KIND, 1, 1, 0) X(KIND, 1, 1, 1)
+#define MRN_P2G_VARIANTS(X)                                                           \
+  MRN_P2G_VARIANTS_OF(X, 0) MRN_P2G_VARIANTS_OF(X, 2) MRN_P2G_VARIANTS_OF(X, 3) \
+  MRN_P2G_VARIANTS_OF(X, 4) MRN_P2G_VARIANTS_OF(X, 5)
 
-#define MRN_P2G_INSTANCE(SUP, MOM, FRC, AFF)                                                                  \
-  static void KNAME(p2g_##SUP##_##MOM##FRC##AFF)(const void *ar, const uint32_t *order, size_t from, size_t to, \
-                                                 long *first_bad, double *spent) {                            \
-    (void)first_bad, (void)spent;                                                                             \
-    KNAME(p2g_range)(ar, order, from, to, SUP, MOM, FRC, AFF);                                                \
+#define MRN_P2G_INSTANCE(KIND, MOM, FRC, AFF)                                                                  \
+  static void KNAME(p2g_##KIND##_##MOM##FRC##AFF)(const void *ar, const uint32_t *order, size_t from, size_t to, \
+                                                  long *first_bad, double *spent) {                            \
+    (void)first_bad, (void)spent;                                                                              \
+    KNAME(p2g_range)(ar, order, from, to, KIND, MOM, FRC, AFF);                                                \
   }
 MRN_P2G_VARIANTS(MRN_P2G_INSTANCE)
 #undef MRN_P2G_INSTANCE
 
 typedef struct KNAME(p2g_variant) {
-  int sup, momentum, force, affine;
+  int kind, momentum, force, affine;
   KNAME(range_fn) run;
 } KNAME(p2g_variant);
 
-#define MRN_P2G_ENTRY(SUP, MOM, FRC, AFF) {SUP, MOM, FRC, AFF, KNAME(p2g_##SUP##_##MOM##FRC##AFF)},
+#define MRN_P2G_ENTRY(KIND, MOM, FRC, AFF) {KIND, MOM, FRC, AFF, KNAME(p2g_##KIND##_##MOM##FRC##AFF)},
 static const KNAME(p2g_variant) KNAME(p2g_variants)[] = {MRN_P2G_VARIANTS(MRN_P2G_ENTRY)};
 #undef MRN_P2G_ENTRY
 
-static KNAME(range_fn) KNAME(p2g_pick)(int sup, int momentum, int force, int affine) {
+static KNAME(range_fn) KNAME(p2g_pick)(int kind, int momentum, int force, int affine) {
   affine = affine && momentum;
   const size_t count = sizeof KNAME(p2g_variants) / sizeof KNAME(p2g_variants)[0];
   for (size_t k = 0; k < count; k++) {
     const KNAME(p2g_variant) *v = &KNAME(p2g_variants)[k];
-    if (v->sup == sup && v->momentum == momentum && v->force == force && v->affine == affine) return v->run;
+    if (v->kind == kind && v->momentum == momentum && v->force == force && v->affine == affine) return v->run;
   }
   return NULL;
 }
@@ -534,7 +551,7 @@ void KNAME(mrn_p2g)(mrn_transfer *tr, int momentum, int force) {
   mrn_blocks *b = mrn_blocks_prepare(tr, clear); /* may reorder the particles */
   KNAME(p2g_args) ar = {tr->grid, tr->particles, tr->kernel};
   const int affine = tr->scheme->grid_velocity != MRN_VGRID_PLAIN;
-  const KNAME(range_fn) run = KNAME(p2g_pick)(KNAME(fast_support)(&ar.ko), momentum, force, affine);
+  const KNAME(range_fn) run = KNAME(p2g_pick)(KNAME(fast_kind)(&ar.ko), momentum, force, affine);
   double unused = 0.0;
   if (!b) {
     run(&ar, NULL, 0, tr->particles->n, NULL, &unused);
@@ -773,12 +790,13 @@ MRN_INLINE void KNAME(gradient_fast)(const mrn_grid *g, const KNAME(axes) *ax, c
   KNAME(store_matrix)(L, out);
 }
 
-/* one particle's L into out (9 values); `sup` is a constant at every call */
+/* one particle's L into out (9 values); `kind` (MRN_FAST_*, 0: the general
+ * stencil) is a constant at every call */
 MRN_INLINE void KNAME(gradient_particle)(const mrn_grid *g, const mrn_particles *ps, const mrn_kernel_options *ko,
-                                         const double *gvel, size_t p, double *out, const int sup) {
+                                         const double *gvel, size_t p, double *out, const int kind) {
   KNAME(axes) ax;
-  if (sup && KNAME(axes_build)(g, sup, ko->boundary, ps->x + 3 * p, &ax)) {
-    KNAME(gradient_fast)(g, &ax, gvel, out, sup);
+  if (kind && KNAME(axes_build)(g, kind, ko->boundary, ps->x + 3 * p, MRN_FAST_VOL0(kind, ps, p), &ax)) {
+    KNAME(gradient_fast)(g, &ax, gvel, out, MRN_FAST_SUPPORT(kind));
     return;
   }
   double L[DIM][DIM] = {{0}}, none[DIM][DIM] = {{0}}, nv[DIM] = {0};
@@ -789,14 +807,14 @@ MRN_INLINE void KNAME(gradient_particle)(const mrn_grid *g, const mrn_particles 
 }
 
 
-/* every velocity gradient instance, by support (0: the general stencil) */
-#define MRN_GRADIENT_VARIANTS(X) X(0) X(3) X(4)
+/* every velocity gradient instance, by fast stencil (0: the general one) */
+#define MRN_GRADIENT_VARIANTS(X) X(0) X(2) X(3) X(4) X(5)
 
 typedef long (*KNAME(gradient_fn))(const mrn_transfer *, const mrn_kernel_options *, const double *,
                                    const mrn_gradient_sink *, double *);
 
-#define MRN_GRADIENT_INSTANCE(SUP)                                                                    \
-  static long KNAME(gradient_##SUP)(const mrn_transfer *tr, const mrn_kernel_options *ko, const double *gvel, \
+#define MRN_GRADIENT_INSTANCE(KIND)                                                                   \
+  static long KNAME(gradient_##KIND)(const mrn_transfer *tr, const mrn_kernel_options *ko, const double *gvel, \
                                     const mrn_gradient_sink *sink, double *sink_seconds) {            \
     const mrn_grid *g = tr->grid;                                                                     \
     const mrn_particles *ps = tr->particles;                                                          \
@@ -804,24 +822,24 @@ typedef long (*KNAME(gradient_fn))(const mrn_transfer *, const mrn_kernel_option
     long *after_bad = NULL;                                                                           \
     (void)after_bad;                                                                                  \
     MRN_CHUNKED_LOOP((long)ps->n, 1,                                                                  \
-                     KNAME(gradient_particle)(g, ps, ko, gvel, (size_t)p, L + 9 * (p - lo), SUP))     \
+                     KNAME(gradient_particle)(g, ps, ko, gvel, (size_t)p, L + 9 * (p - lo), KIND))    \
   }
 MRN_GRADIENT_VARIANTS(MRN_GRADIENT_INSTANCE)
 #undef MRN_GRADIENT_INSTANCE
 
 typedef struct KNAME(gradient_variant) {
-  int sup;
+  int kind;
   KNAME(gradient_fn) run;
 } KNAME(gradient_variant);
 
-#define MRN_GRADIENT_ENTRY(SUP) {SUP, KNAME(gradient_##SUP)},
+#define MRN_GRADIENT_ENTRY(KIND) {KIND, KNAME(gradient_##KIND)},
 static const KNAME(gradient_variant) KNAME(gradient_variants)[] = {MRN_GRADIENT_VARIANTS(MRN_GRADIENT_ENTRY)};
 #undef MRN_GRADIENT_ENTRY
 
-static KNAME(gradient_fn) KNAME(gradient_pick)(int sup) {
+static KNAME(gradient_fn) KNAME(gradient_pick)(int kind) {
   const size_t count = sizeof KNAME(gradient_variants) / sizeof KNAME(gradient_variants)[0];
   for (size_t k = 0; k < count; k++)
-    if (KNAME(gradient_variants)[k].sup == sup) return KNAME(gradient_variants)[k].run;
+    if (KNAME(gradient_variants)[k].kind == kind) return KNAME(gradient_variants)[k].run;
   return KNAME(gradient_0);
 }
 
@@ -829,20 +847,21 @@ long KNAME(mrn_gradient)(mrn_transfer *tr, const double *gvel, const mrn_gradien
   const double t0 = mrn_phase_begin();
   const mrn_kernel_options ko = tr->kernel;
   double spent = 0.0;
-  const long bad = KNAME(gradient_pick)(KNAME(fast_support)(&ko))(tr, &ko, gvel, sink, &spent);
+  const long bad = KNAME(gradient_pick)(KNAME(fast_kind)(&ko))(tr, &ko, gvel, sink, &spent);
   mrn_phase_end_split(MRN_PHASE_G2P, sink->phase, t0, spent, tr->particles->n > MRN_OMP_MIN_ITEMS);
   return bad;
 }
 
 MRN_INLINE size_t KNAME(batch_build)(const KNAME(p2g_args) *ar, const uint32_t *order, size_t q, size_t to,
-                                     size_t p0, KNAME(axes) *ax, const double *gvel, double *L, const int sup,
+                                     size_t p0, KNAME(axes) *ax, const double *gvel, double *L, const int kind,
                                      const int momentum, const int force, const int affine) {
   size_t n = 0;
   while (q + n < to && n < MRN_BATCH && (order ? order[q + n] : q + n) == p0 + n &&
-         KNAME(axes_build)(ar->g, sup, ar->ko.boundary, ar->ps->x + 3 * (p0 + n), &ax[n])) {
+         KNAME(axes_build)(ar->g, kind, ar->ko.boundary, ar->ps->x + 3 * (p0 + n), MRN_FAST_VOL0(kind, ar->ps, p0 + n),
+                           &ax[n])) {
     const size_t p = p0 + n;
     if (gvel) {
-      KNAME(gradient_fast)(ar->g, &ax[n], gvel, L + 9 * n, sup);
+      KNAME(gradient_fast)(ar->g, &ax[n], gvel, L + 9 * n, MRN_FAST_SUPPORT(kind));
       /* what the material update reads once the batch's gradients are formed */
       __builtin_prefetch(ar->ps->F + TSTRIDE * p, 1);
       __builtin_prefetch(ar->ps->stress + 6 * p, 1);
@@ -869,10 +888,10 @@ MRN_INLINE size_t KNAME(batch_build)(const KNAME(p2g_args) *ar, const uint32_t *
  * once, its L gathered from gvel, the batch's L handed to the sink (the
  * material update), and then the internal force of the updated stress
  * scattered with the same stencils, as P2G would. A particle that needs the
- * general stencil is handled on its own. `sup` (3 or 4) is a constant. */
+ * general stencil is handled on its own. `kind` (MRN_FAST_*) is a constant. */
 MRN_INLINE void KNAME(update_force_range)(const KNAME(p2g_args) *ar, const double *gvel, const uint32_t *order,
                                           size_t from, size_t to, const mrn_gradient_sink *sink, long *first_bad,
-                                          double *spent, const int sup) {
+                                          double *spent, const int kind) {
   const mrn_grid *g = ar->g;
   const mrn_particles *ps = ar->ps;
   KNAME(axes) ax[MRN_BATCH];
@@ -880,7 +899,7 @@ MRN_INLINE void KNAME(update_force_range)(const KNAME(p2g_args) *ar, const doubl
   size_t q = from;
   while (q < to) {
     const size_t p0 = order ? order[q] : q;
-    const size_t n = KNAME(batch_build)(ar, order, q, to, p0, ax, gvel, L, sup, 0, 0, 0);
+    const size_t n = KNAME(batch_build)(ar, order, q, to, p0, ax, gvel, L, kind, 0, 0, 0);
     if (!n) { /* the general stencil, for this particle alone */
       KNAME(gradient_particle)(g, ps, &ar->ko, gvel, p0, L, 0);
       KNAME(hand_over)(sink, (long)p0, (long)p0 + 1, L, first_bad, spent);
@@ -889,7 +908,7 @@ MRN_INLINE void KNAME(update_force_range)(const KNAME(p2g_args) *ar, const doubl
       continue;
     }
     KNAME(hand_over)(sink, (long)p0, (long)(p0 + n), L, first_bad, spent);
-    KNAME(batch_scatter)(ar, ax, p0, n, sup, 0, 1, 0);
+    KNAME(batch_scatter)(ar, ax, p0, n, kind, 0, 1, 0);
     q += n;
   }
 }
@@ -901,38 +920,38 @@ typedef struct KNAME(update_force_args) {
   const mrn_gradient_sink *sink;
 } KNAME(update_force_args);
 
-/* every instance of the fused pass, by support (plain B-splines only) */
-#define MRN_UPDATE_FORCE_VARIANTS(X) X(3) X(4)
+/* every instance of the fused pass, by fast stencil */
+#define MRN_UPDATE_FORCE_VARIANTS(X) X(2) X(3) X(4) X(5)
 
-#define MRN_UPDATE_FORCE_INSTANCE(SUP)                                                                         \
-  static void KNAME(update_force_##SUP)(const void *args, const uint32_t *order, size_t from, size_t to,       \
+#define MRN_UPDATE_FORCE_INSTANCE(KIND)                                                                         \
+  static void KNAME(update_force_##KIND)(const void *args, const uint32_t *order, size_t from, size_t to,       \
                                         long *first_bad, double *spent) {                                      \
     const KNAME(update_force_args) *a = args;                                                                  \
-    KNAME(update_force_range)(&a->p2g, a->gvel, order, from, to, a->sink, first_bad, spent, SUP);              \
+    KNAME(update_force_range)(&a->p2g, a->gvel, order, from, to, a->sink, first_bad, spent, KIND);              \
   }
 MRN_UPDATE_FORCE_VARIANTS(MRN_UPDATE_FORCE_INSTANCE)
 #undef MRN_UPDATE_FORCE_INSTANCE
 
 typedef struct KNAME(update_force_variant) {
-  int sup;
+  int kind;
   KNAME(range_fn) run;
 } KNAME(update_force_variant);
 
-#define MRN_UPDATE_FORCE_ENTRY(SUP) {SUP, KNAME(update_force_##SUP)},
+#define MRN_UPDATE_FORCE_ENTRY(KIND) {KIND, KNAME(update_force_##KIND)},
 static const KNAME(update_force_variant) KNAME(update_force_variants)[] = {
     MRN_UPDATE_FORCE_VARIANTS(MRN_UPDATE_FORCE_ENTRY)};
 #undef MRN_UPDATE_FORCE_ENTRY
 
-static KNAME(range_fn) KNAME(update_force_pick)(int sup) {
+static KNAME(range_fn) KNAME(update_force_pick)(int kind) {
   const size_t count = sizeof KNAME(update_force_variants) / sizeof KNAME(update_force_variants)[0];
   for (size_t k = 0; k < count; k++)
-    if (KNAME(update_force_variants)[k].sup == sup) return KNAME(update_force_variants)[k].run;
+    if (KNAME(update_force_variants)[k].kind == kind) return KNAME(update_force_variants)[k].run;
   return NULL;
 }
 
 int KNAME(mrn_update_force_fused)(const mrn_transfer *tr) {
   const mrn_kernel_options ko = tr->kernel;
-  if (!KNAME(fast_support)(&ko)) return 0;
+  if (!KNAME(fast_kind)(&ko)) return 0;
   /* In block order the material update reaches F, stress and strain run by
    * run: worth it when the runs are long (particles as seeded, or sorted),
    * not when they are scattered (after a long flow, unsorted: runs of one
@@ -946,7 +965,7 @@ long KNAME(mrn_update_force)(mrn_transfer *tr, const double *gvel, const mrn_gra
   mrn_blocks_reuse(tr->blocks); /* the particles have not moved since the first P2G */
   const mrn_blocks *b = mrn_blocks_prepare(tr, MRN_CLEAR_FORCE);
   const KNAME(update_force_args) ar = {{tr->grid, tr->particles, tr->kernel}, gvel, sink};
-  const KNAME(range_fn) run = KNAME(update_force_pick)(KNAME(fast_support)(&tr->kernel));
+  const KNAME(range_fn) run = KNAME(update_force_pick)(KNAME(fast_kind)(&tr->kernel));
   const long n = (long)tr->particles->n;
   double spent = 0.0;
   long first_bad = n;
@@ -990,11 +1009,12 @@ static inline void KNAME(apic_matrix)(const double B[DIM][DIM], const double D[D
     }
 }
 
-/* the G2P "support" of the multilinear kernel with an affine or Taylor grid
- * velocity: the general stencil, and the affine matrix fitted from the grid
- * (transfer/affine_fit.h: the kernel's own B D^-1 vanishes on grid lines) */
+/* the G2P "stencil" of the multilinear kernel with an affine or Taylor grid
+ * velocity where it has no fast one: the general stencil, and the affine
+ * matrix fitted from the grid (transfer/affine_fit.h: the kernel's own
+ * B D^-1 vanishes on grid lines); the fast linear stencil fits it too */
 #ifndef MRN_SUP_LINEAR_FIT
-#define MRN_SUP_LINEAR_FIT 2
+#define MRN_SUP_LINEAR_FIT 1
 #endif
 
 /* what G2P needs that does not change from particle to particle */
@@ -1015,15 +1035,18 @@ typedef struct KNAME(g2p_args) {
  * `want_dv` the grid velocity before the update V is gathered too, for the
  * change dv = sum N (V~ - V) = a_p dt of FLIP's and XPIC's updates (000,
  * Eq. 33; the grid keeps no acceleration); PIC and APIC (X = 0) do without
- * it. `sup`, `gvk`, `fused` and `want_dv` are constants at every call. */
-MRN_INLINE void KNAME(g2p_particle)(const KNAME(g2p_args) *ar, size_t p, double *Lout, const int sup, const int gvk,
+ * it. `kind` (MRN_FAST_*, 0: the general stencil, MRN_SUP_LINEAR_FIT), `gvk`,
+ * `fused` and `want_dv` are constants at every call; uGIMP's fast form
+ * takes no affine grid velocity (its D is not a constant). */
+MRN_INLINE void KNAME(g2p_particle)(const KNAME(g2p_args) *ar, size_t p, double *Lout, const int kind, const int gvk,
                                     const int fused, const int want_dv) {
   const mrn_grid *g = ar->g;
   mrn_particles *ps = ar->ps;
   const double dt = ar->dt, X = ar->X;
   const mrn_velocity_update_kind vu = ar->vu;
+  /* the linear kernel's affine matrix is fitted: no B, D or L for it */
+  const int linear = (kind == MRN_SUP_LINEAR_FIT || kind == MRN_FAST_LINEAR) && gvk != MRN_VGRID_PLAIN;
   const int want_bd = gvk == MRN_VGRID_AFFINE, want_l = gvk == MRN_VGRID_TAYLOR || fused;
-  const int linear = sup == MRN_SUP_LINEAR_FIT; /* no B, D or L for its affine matrix */
   double *x = ps->x + 3 * p;
   double *v = ps->v + 3 * p;
   double v_pic[3] = {0, 0, 0}, v_old[3] = {0, 0, 0}, v_star[3] = {0, 0, 0};
@@ -1038,13 +1061,13 @@ MRN_INLINE void KNAME(g2p_particle)(const KNAME(g2p_args) *ar, size_t p, double 
   }
   if (gvk == MRN_VGRID_AFFINE) __builtin_prefetch(ps->affine + TSTRIDE * p, 1);
   KNAME(axes) ax;
-  if (sup > MRN_SUP_LINEAR_FIT && KNAME(axes_build)(g, sup, ar->ko->boundary, x, &ax)) {
-    KNAME(gather_fast)(&ax, g->vel_new, g->vel, g->stride[1], g->stride[2], sup, 1, want_dv, want_bd, want_l, v_pic,
-                       v_old, B, L);
-    if (gvk == MRN_VGRID_AFFINE) {
+  if (kind >= MRN_FAST_LINEAR && KNAME(axes_build)(g, kind, ar->ko->boundary, x, MRN_FAST_VOL0(kind, ps, p), &ax)) {
+    KNAME(gather_fast)(&ax, g->vel_new, g->vel, g->stride[1], g->stride[2], MRN_FAST_SUPPORT(kind), 1, want_dv,
+                       want_bd && !linear, fused || (want_l && !linear), v_pic, v_old, B, L);
+    if (gvk == MRN_VGRID_AFFINE && !linear) {
       /* the full B-spline's D = sum N (x_i - x_p) (x)(x_i - x_p) is h^2/4 I
        * (quadratic) or h^2/3 I (cubic) wherever the particle is */
-      const double dinv = (sup == 3 ? 4.0 : 3.0) * g->inv_cell * g->inv_cell;
+      const double dinv = (kind == MRN_FAST_QUADRATIC ? 4.0 : 3.0) * g->inv_cell * g->inv_cell;
       double *C = ps->affine + TSTRIDE * p;
       for (int a = 0; a < DIM; a++)
         for (int b = 0; b < DIM; b++) C[DIM * a + b] = B[a][b] * dinv;
@@ -1093,48 +1116,49 @@ MRN_INLINE void KNAME(g2p_particle)(const KNAME(g2p_args) *ar, size_t p, double 
   }
 }
 
-/* Every G2P instance: support (0: the general stencil; MRN_SUP_LINEAR_FIT:
- * the general stencil with the fitted affine matrix), grid velocity
+/* Every G2P instance: stencil (0: the general one; MRN_SUP_LINEAR_FIT: the
+ * general one with the fitted affine matrix; MRN_FAST_*), grid velocity
  * (mrn_grid_velocity_kind), gradient handed on (fused), change of the grid
  * velocity gathered (dv); one instance each (g2p_particle with these
  * constants in a chunked loop), named and tabled from this list. */
-#define MRN_G2P_VARIANTS_OF(X, SUP)                                                                        \
-  X(SUP, PLAIN, 0, 0) X(SUP, AFFINE, 0, 0) X(SUP, TAYLOR, 0, 0) X(SUP, PLAIN, 1, 0) X(SUP, AFFINE, 1, 0) \
-  X(SUP, TAYLOR, 1, 0) X(SUP, PLAIN, 0, 1) X(SUP, AFFINE, 0, 1) X(SUP, TAYLOR, 0, 1) X(SUP, PLAIN, 1, 1) \
-  X(SUP, AFFINE, 1, 1) X(SUP, TAYLOR, 1, 1)
-#define MRN_G2P_VARIANTS(X) \
-  MRN_G2P_VARIANTS_OF(X, 0) MRN_G2P_VARIANTS_OF(X, 2) MRN_G2P_VARIANTS_OF(X, 3) MRN_G2P_VARIANTS_OF(X, 4)
+#define MRN_G2P_VARIANTS_GV(X, KIND, GV) X(KIND, GV, 0, 0) X(KIND, GV, 1, 0) X(KIND, GV, 0, 1) X(KIND, GV, 1, 1)
+#define MRN_G2P_VARIANTS_OF(X, KIND) \
+  MRN_G2P_VARIANTS_GV(X, KIND, PLAIN) MRN_G2P_VARIANTS_GV(X, KIND, AFFINE) MRN_G2P_VARIANTS_GV(X, KIND, TAYLOR)
+#define MRN_G2P_VARIANTS(X)                                                                                   \
+  MRN_G2P_VARIANTS_OF(X, 0) MRN_G2P_VARIANTS_GV(X, 1, AFFINE) MRN_G2P_VARIANTS_GV(X, 1, TAYLOR)              \
+  MRN_G2P_VARIANTS_OF(X, 2) MRN_G2P_VARIANTS_OF(X, 3) MRN_G2P_VARIANTS_OF(X, 4) MRN_G2P_VARIANTS_GV(X, 5, PLAIN) \
+  MRN_G2P_VARIANTS_GV(X, 5, TAYLOR)
 
 typedef long (*KNAME(g2p_fn))(const KNAME(g2p_args) *, const mrn_gradient_sink *, double *,
                               const mrn_particle_pass *, long *);
 
-#define MRN_G2P_INSTANCE(SUP, GV, FUSED, DV)                                                                       \
-  static long KNAME(g2p_##SUP##_##GV##_##FUSED##DV)(const KNAME(g2p_args) * ar, const mrn_gradient_sink *sink,     \
+#define MRN_G2P_INSTANCE(KIND, GV, FUSED, DV)                                                                      \
+  static long KNAME(g2p_##KIND##_##GV##_##FUSED##DV)(const KNAME(g2p_args) * ar, const mrn_gradient_sink *sink,     \
                                                     double *sink_seconds, const mrn_particle_pass *after,           \
                                                     long *after_bad) {                                              \
     MRN_CHUNKED_LOOP((long)ar->ps->n, FUSED,                                                                       \
-                     KNAME(g2p_particle)(ar, (size_t)p, L + (FUSED ? 9 * (p - lo) : 0), SUP, MRN_VGRID_##GV, FUSED, \
+                     KNAME(g2p_particle)(ar, (size_t)p, L + (FUSED ? 9 * (p - lo) : 0), KIND, MRN_VGRID_##GV, FUSED, \
                                          DV))                                                                       \
   }
 MRN_G2P_VARIANTS(MRN_G2P_INSTANCE)
 #undef MRN_G2P_INSTANCE
 
 typedef struct KNAME(g2p_variant) {
-  int sup;
+  int kind;
   mrn_grid_velocity_kind gv;
   int fused, dv;
   KNAME(g2p_fn) run;
 } KNAME(g2p_variant);
 
-#define MRN_G2P_ENTRY(SUP, GV, FUSED, DV) {SUP, MRN_VGRID_##GV, FUSED, DV, KNAME(g2p_##SUP##_##GV##_##FUSED##DV)},
+#define MRN_G2P_ENTRY(KIND, GV, FUSED, DV) {KIND, MRN_VGRID_##GV, FUSED, DV, KNAME(g2p_##KIND##_##GV##_##FUSED##DV)},
 static const KNAME(g2p_variant) KNAME(g2p_variants)[] = {MRN_G2P_VARIANTS(MRN_G2P_ENTRY)};
 #undef MRN_G2P_ENTRY
 
-static KNAME(g2p_fn) KNAME(g2p_pick)(int sup, mrn_grid_velocity_kind gv, int fused, int dv) {
+static KNAME(g2p_fn) KNAME(g2p_pick)(int kind, mrn_grid_velocity_kind gv, int fused, int dv) {
   const size_t count = sizeof KNAME(g2p_variants) / sizeof KNAME(g2p_variants)[0];
   for (size_t k = 0; k < count; k++) {
     const KNAME(g2p_variant) *v = &KNAME(g2p_variants)[k];
-    if (v->sup == sup && v->gv == gv && v->fused == (fused != 0) && v->dv == (dv != 0)) return v->run;
+    if (v->kind == kind && v->gv == gv && v->fused == (fused != 0) && v->dv == (dv != 0)) return v->run;
   }
   return NULL;
 }
@@ -1145,8 +1169,9 @@ static long KNAME(g2p_any)(mrn_transfer *tr, double dt, double *dx, const mrn_gr
   const mrn_kernel_options ko = tr->kernel;
   const mrn_scheme *sc = tr->scheme;
   /* XPIC's smoothed velocity is gathered by the general form only */
-  int sup = sc->velocity_update == MRN_VUPDATE_XPIC ? 0 : KNAME(fast_support)(&ko);
-  if (!sup && ko.shape == MRN_SHAPE_LINEAR && sc->grid_velocity != MRN_VGRID_PLAIN) sup = MRN_SUP_LINEAR_FIT;
+  int kind = sc->velocity_update == MRN_VUPDATE_XPIC ? 0 : KNAME(fast_kind)(&ko);
+  if (kind == MRN_FAST_GIMP && sc->grid_velocity == MRN_VGRID_AFFINE) kind = 0; /* its D is not a constant */
+  if (!kind && ko.shape == MRN_SHAPE_LINEAR && sc->grid_velocity != MRN_VGRID_PLAIN) kind = MRN_SUP_LINEAR_FIT;
   const mrn_velocity_update_kind vu = sc->velocity_update;
   KNAME(g2p_args) ar = {tr->grid, tr->particles, &ko, dt,
                         vu == MRN_VUPDATE_FLIP ? 1.0 : vu == MRN_VUPDATE_BLEND ? sc->flip_fraction : 0.0, dx,
@@ -1155,7 +1180,7 @@ static long KNAME(g2p_any)(mrn_transfer *tr, double dt, double *dx, const mrn_gr
   /* the change of the grid velocity, only where the update uses it */
   const int dv = ar.X > 0.0 || vu == MRN_VUPDATE_XPIC || sc->position_update == MRN_XUPDATE_XPIC;
   double spent = 0.0;
-  const long bad = KNAME(g2p_pick)(sup, sc->grid_velocity, sink != NULL, dv)(&ar, sink, &spent, after, after_bad);
+  const long bad = KNAME(g2p_pick)(kind, sc->grid_velocity, sink != NULL, dv)(&ar, sink, &spent, after, after_bad);
   mrn_phase_end_split(MRN_PHASE_G2P, sink ? sink->phase : MRN_PHASE_G2P, t0, spent,
                       tr->particles->n > MRN_OMP_MIN_ITEMS);
   return bad;
@@ -1209,7 +1234,10 @@ void KNAME(mrn_particles_to_grid)(mrn_transfer *tr, const double *pvel, double *
 #undef MRN_GRADIENT_VARIANTS
 #undef MRN_UPDATE_FORCE_VARIANTS
 #undef MRN_G2P_VARIANTS_OF
+#undef MRN_G2P_VARIANTS_GV
+#undef MRN_P2G_VARIANTS_OF
 #undef MRN_G2P_VARIANTS
 #undef MRN_CHUNKED_LOOP
 #undef MRN_INLINE
+#undef MRN_FAST_VOL0
 #undef TSTRIDE

@@ -159,14 +159,53 @@ static __attribute__((noinline, unused)) int mrn_bspline_cubic_axis(double xi, d
   *(mrn_axis_v4 *)off = origin + (fl + k) * cell - x; /* fl + k: (double)(base + k) exactly */
   return (int)fl - 1;
 }
+
+/* uGIMP along one axis for the 3 nodes from floor(xi - lp) (lp: the
+ * particle's half-width in cells, at most 1/2), as 4-wide vectors: each of
+ * mrn_shape_gimp_1d's branches formed on every lane with its operations and
+ * the lane's branch picked by masks, so the same values without a branch
+ * per node (the fourth lane, 2 + lp cells or more away, gets zero). Stores
+ * and returns as mrn_bspline_cubic_axis. Inlined (a call per axis cost a
+ * fifth of the uGIMP step): test_blocks holds the kernels that build the
+ * same particle's stencil to the same bits. */
+typedef long long mrn_axis_m4 __attribute__((vector_size(32), aligned(8), may_alias));
+#define MRN_AXIS_PICK(m, a, b) ((mrn_axis_v4)(((mrn_axis_m4)(a) & (m)) | ((mrn_axis_m4)(b) & ~(m))))
+static inline __attribute__((always_inline, unused)) int mrn_gimp_axis(double xi, double lp, double inv_cell,
+                                                                        double origin, double cell, double x,
+                                                                        double *w, double *dw, double *off) {
+  const double fl = floor(xi - lp);
+  const mrn_axis_v4 k = {0.0, 1.0, 2.0, 3.0}, zero = {0.0, 0.0, 0.0, 0.0};
+  const mrn_axis_v4 node = fl + k, r = xi - node;
+  const mrn_axis_v4 a = MRN_AXIS_PICK(r < 0.0, -r, r); /* fabs */
+  const mrn_axis_v4 sgn = MRN_AXIS_PICK(r < 0.0, zero - 1.0, zero + 1.0);
+  const mrn_axis_v4 t = 1.0 + lp - a;
+  const mrn_axis_m4 inner = a < lp, middle = a < 1.0 - lp, outer = a < 1.0 + lp;
+  const mrn_axis_v4 w_in = 1.0 - (r * r + lp * lp) / (2.0 * lp), w_mid = 1.0 - a, w_out = t * t / (4.0 * lp);
+  const mrn_axis_v4 d_in = -r / lp, d_mid = -sgn, d_out = -sgn * t / (2.0 * lp);
+  *(mrn_axis_v4 *)w = MRN_AXIS_PICK(inner, w_in, MRN_AXIS_PICK(middle, w_mid, MRN_AXIS_PICK(outer, w_out, zero)));
+  *(mrn_axis_v4 *)dw =
+      MRN_AXIS_PICK(inner, d_in, MRN_AXIS_PICK(middle, d_mid, MRN_AXIS_PICK(outer, d_out, zero))) * inv_cell;
+  *(mrn_axis_v4 *)off = origin + node * cell - x;
+  return (int)fl;
+}
+#undef MRN_AXIS_PICK
 #endif
 
-/* A plain quadratic (sup = 3) or cubic (sup = 4) B-spline stencil kept as
+/* The shapes with a fast stencil, by the code the kernels are specialised
+ * for: the support (nodes per axis), except uGIMP's, whose support is 3. */
+#ifndef MRN_FAST_KINDS
+#define MRN_FAST_KINDS
+enum { MRN_FAST_LINEAR = 2, MRN_FAST_QUADRATIC = 3, MRN_FAST_CUBIC = 4, MRN_FAST_GIMP = 5 };
+#define MRN_FAST_SUPPORT(kind) ((kind) == MRN_FAST_GIMP ? 3 : (kind))
+#endif
+
+/* A fast stencil (linear, quadratic B-spline, cubic B-spline, uGIMP) kept as
  * its factors: the node of the first corner and, per axis, the weights,
- * their derivatives d/dx (1/m) and the branch components x_i - x_p. The
- * quadratic's products are formed in the same order as stencil_build, so
- * both give the same bits; the cubic's weights are formed in factored form
- * (mrn_bspline_cubic_axis) and agree with stencil_build's to round-off. */
+ * their derivatives d/dx (1/m) and the branch components x_i - x_p; in 2D
+ * the lanes beyond the support hold zeros. The weights of every shape but
+ * the cubic are those of stencil_build (the same functions, the same bits);
+ * the cubic's are formed in factored form (mrn_bspline_cubic_axis) and
+ * agree with stencil_build's to round-off. */
 typedef struct KNAME(axes) {
   size_t node0;
   double w[DIM][4];
@@ -222,14 +261,56 @@ static inline __attribute__((always_inline)) int KNAME(axes_quadratic_2d)(const 
   a->node0 = (size_t)(base[0] + g->pad) * (size_t)g->stride[0] + (size_t)(base[1] + g->pad) * (size_t)g->stride[1];
   return 1;
 }
+
+/* The linear stencil's axes of a 2D particle, both axes at once: the
+ * operations of stencil_build (mrn_shape_linear_1d, and a particle exactly
+ * on the upper face in the last cell, whose weights (0, 1) the same formula
+ * gives there), so the same bits. Lanes 2 and 3 hold zeros. */
+static inline __attribute__((always_inline)) int KNAME(axes_linear_2d)(const mrn_grid *g,
+                                                                       const mrn_kernel_boundary mode,
+                                                                       const double *x, KNAME(axes) *a) {
+  const double inv_cell = g->inv_cell, cell = g->cell;
+  const mrn_axis_v2 xd = {x[0], x[1]}, origin = {g->origin[0], g->origin[1]};
+  const mrn_axis_v2 xi = (xd - origin) * inv_cell;
+  mrn_axis_v2 b0 = {floor(xi[0]), floor(xi[1])};
+  if (b0[0] == (double)g->ncell[0]) b0[0] -= 1.0;
+  if (b0[1] == (double)g->ncell[1]) b0[1] -= 1.0;
+  const int base[2] = {(int)b0[0], (int)b0[1]};
+  const mrn_axis_v2 t = xi - b0, w0 = 1.0 - t;
+  const mrn_axis_v2 o0 = origin + b0 * cell - xd, o1 = origin + (b0 + 1.0) * cell - xd;
+  for (int d = 0; d < 2; d++) {
+    a->w[d][0] = w0[d];
+    a->w[d][1] = t[d];
+    a->dw[d][0] = -inv_cell;
+    a->dw[d][1] = inv_cell;
+    a->off[d][0] = o0[d];
+    a->off[d][1] = o1[d];
+    for (int k = 2; k < 4; k++) a->w[d][k] = a->dw[d][k] = a->off[d][k] = 0.0;
+  }
+  if (mode != MRN_KERNEL_EXTENDED &&
+      ((base[0] < 0) | (base[1] < 0) | (base[0] + 1 > g->ncell[0]) | (base[1] + 1 > g->ncell[1])))
+    return 0;
+  a->node0 = (size_t)(base[0] + g->pad) * (size_t)g->stride[0] + (size_t)(base[1] + g->pad) * (size_t)g->stride[1];
+  return 1;
+}
 #endif
 
-static inline __attribute__((always_inline)) int KNAME(axes_build)(const mrn_grid *g, const int sup,
+/* uGIMP's particle half-width in cells, from its initial volume vol0, as
+ * stencil_build forms it */
+static inline double KNAME(gimp_half_width)(const mrn_grid *g, double vol0) {
+  const double lp = 0.5 * (DIM == 2 ? sqrt(vol0) : cbrt(vol0)) * g->inv_cell;
+  return lp > 0.5 ? 0.5 : lp;
+}
+
+static inline __attribute__((always_inline)) int KNAME(axes_build)(const mrn_grid *g, const int kind,
                                                                    const mrn_kernel_boundary mode, const double *x,
-                                                                   KNAME(axes) *a) {
+                                                                   double vol0, KNAME(axes) *a) {
 #if DIM == 2
-  if (sup == 3) return KNAME(axes_quadratic_2d)(g, mode, x, a);
+  if (kind == MRN_FAST_QUADRATIC) return KNAME(axes_quadratic_2d)(g, mode, x, a);
+  if (kind == MRN_FAST_LINEAR) return KNAME(axes_linear_2d)(g, mode, x, a);
 #endif
+  const int sup = MRN_FAST_SUPPORT(kind);
+  const double lp = kind == MRN_FAST_GIMP ? KNAME(gimp_half_width)(g, vol0) : 0.0;
   /* the grid's values in locals: the stores into `a` could alias them, and
    * the compiler would load them again for every node */
   const double inv_cell = g->inv_cell, cell = g->cell;
@@ -239,11 +320,18 @@ static inline __attribute__((always_inline)) int KNAME(axes_build)(const mrn_gri
     const double origin = g->origin[d], xd = x[d];
     const double xi = (xd - origin) * inv_cell;
     int base;
-    if (sup == 4) {
+    if (kind == MRN_FAST_CUBIC) {
       base = mrn_bspline_cubic_axis(xi, inv_cell, origin, cell, xd, a->w[d], a->dw[d], a->off[d]);
+    } else if (kind == MRN_FAST_GIMP) {
+      base = mrn_gimp_axis(xi, lp, inv_cell, origin, cell, xd, a->w[d], a->dw[d], a->off[d]);
     } else {
       double w[3], dw[3];
-      base = mrn_shape_quadratic_1d(xi, w, dw);
+      if (kind == MRN_FAST_QUADRATIC) {
+        base = mrn_shape_quadratic_1d(xi, w, dw);
+      } else { /* linear; a particle exactly on the upper face in the last cell, as stencil_build */
+        base = mrn_shape_linear_1d(xi, w, dw);
+        if (base == g->ncell[d]) base--, w[0] = 0.0, w[1] = 1.0;
+      }
       const double b0 = (double)base;
       for (int k = 0; k < sup; k++) {
         a->w[d][k] = w[k];

@@ -337,6 +337,7 @@ int main(void) {
     threads_and_spans(dim, MRN_SHAPE_QUADRATIC_BSPLINE);
     threads_and_spans(dim, MRN_SHAPE_CUBIC_BSPLINE);
     threads_and_spans(dim, MRN_SHAPE_LINEAR);
+    threads_and_spans(dim, MRN_SHAPE_GIMP);
     sorted_run(dim);
     reused_binning(dim);
     incremental_rebin(dim, 1);
@@ -345,6 +346,8 @@ int main(void) {
       for (int threads = 1; threads <= 2; threads++) {
         fused_update_force(dim, MRN_SHAPE_QUADRATIC_BSPLINE, sorted, threads);
         fused_update_force(dim, MRN_SHAPE_CUBIC_BSPLINE, sorted, threads);
+        fused_update_force(dim, MRN_SHAPE_LINEAR, sorted, threads);
+        fused_update_force(dim, MRN_SHAPE_GIMP, sorted, threads);
       }
   }
   permute_keeps_fields();

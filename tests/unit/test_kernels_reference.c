@@ -16,15 +16,15 @@
  * What must agree, and how closely:
  * - Values of the general stencil: G2P results (v, x or dx, affine matrix,
  *   grad v) of a particle the fast kernels handle with the general stencil
- *   (linear, uGIMP, MLS gradient, periodic axes, XPIC's G2P, and a quadratic
- *   or cubic B-spline cut by a truncated, modified or WLS face), and P2G
- *   values at a node only such a particle reaches. Both forms form the same
+ *   (MLS gradient, periodic axes, XPIC's G2P, uGIMP's G2P with APIC, and a
+ *   kernel cut by a truncated, modified or WLS face), and P2G values at a
+ *   node only such a particle reaches. Both forms form the same
  *   products in the same order: bitwise equal when the build rounds every
  *   operation (-ffp-contract=off). With GCC's default -ffp-contract=fast the
  *   compiler fuses a * b + c into one FMA in some sums of one form and not
  *   of the other (the general G2P gathers, for one): then within FUSED_ULP.
- * - Values of the fast stencils (quadratic or cubic B-spline, kernel not
- *   cut): formed factor by factor (w_x w_y w_z apart, rows of nodes as
+ * - Values of the fast stencils (linear, quadratic or cubic B-spline, uGIMP;
+ *   kernel not cut): formed factor by factor (w_x w_y w_z apart, rows of nodes as
  *   vectors), the cubic weights from a factored formula, APIC's D the exact
  *   h^2/4 I or h^2/3 I instead of the sum; every nodal sum of more than one
  *   particle in block order (in 2D a run of particles with the same first
@@ -186,10 +186,8 @@ typedef struct kase {
   double *saved;    /* x, v, affine of every particle before G2P */
 } kase;
 
-static int fast_config(const mrn_kernel_options *ko) {
-  return !ko->periodic && !ko->mls_gradient &&
-         (ko->shape == MRN_SHAPE_QUADRATIC_BSPLINE || ko->shape == MRN_SHAPE_CUBIC_BSPLINE);
-}
+/* every shape has a fast stencil */
+static int fast_config(const mrn_kernel_options *ko) { return !ko->periodic && !ko->mls_gradient; }
 
 /* whether the fast kernels take the general stencil for particle p: the
  * options have no fast form, or a face treatment cuts its kernel */
