@@ -70,8 +70,9 @@ static int raise_engine_error(lua_State *L, int rc, const char *where, sim_box *
     b->interrupted = rc == MRN_ERR_INTERRUPTED;
     char message[2048];
     snprintf(message, sizeof message, "%s%s", mrn_error_message(), note);
-    /* a state the grid cannot hold (a particle outside it) may not be stepped
-     * or measured on the grid again: run{} and dt_estimate() refuse it */
+    /* a state the grid cannot hold (a particle outside it) has no grid
+     * values to step from or to estimate a time step on: run{} and
+     * dt_estimate() refuse it */
     if (rc == MRN_ERR_STATE && mrn_sim_check_state(b->sim) != MRN_OK)
       b->invalid_step = b->sim->step > 0 ? b->sim->step : 1;
     /* what a stopped run promises to leave could not be written: exit status 3 */
