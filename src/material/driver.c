@@ -7,6 +7,7 @@
 #include "core/tensor.h"
 #include "material/advance.h"
 #include "material/principal.h"
+#include "material/user.h"
 
 int mrn_driver_init(mrn_driver *d, const mrn_material *m, const double stress0[6]) {
   memset(d, 0, sizeof *d);
@@ -26,9 +27,11 @@ static int advance(mrn_driver *d, const double L[9], double dt) {
   const mrn_energy_sums energy = {&unit_volume, &d->e_elastic, &d->w_plastic};
   mrn_point_result r;
   mrn_f_update kind = d->kinematics == MRN_DRIVER_F_MIDPOINT ? MRN_F_UPDATE_MIDPOINT : MRN_F_UPDATE_EULER;
-  if (mrn_material_advance_points(d->mat, 3, kind, dt, 1, L, d->F, d->stress, d->strain,
-                                  d->mat->type->nstate ? d->state : NULL, 0, &energy, &r) >= 0)
-    return mrn_error("driver: the increment would invert F at t = %g s", d->time + dt);
+  long bad = mrn_material_advance_points(d->mat, 3, kind, dt, 1, L, d->F, d->stress, d->strain,
+                                         d->mat->type->nstate ? d->state : NULL, 0, &energy, &r);
+  int failed = mrn_material_user_failure(d->mat);
+  if (failed) return failed;
+  if (bad >= 0) return mrn_error("driver: the increment would invert F at t = %g s", d->time + dt);
   d->de_elastic = r.de_elastic;
   d->dw_plastic = r.dw_plastic;
   d->time += dt;
