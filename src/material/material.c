@@ -16,6 +16,8 @@ static const mrn_material_type *const registry[] = {
     &mrn_material_newtonian,
     &mrn_material_hencky,
     &mrn_material_neo_hookean,
+    &mrn_material_mu_i,
+    &mrn_material_cam_clay,
     &mrn_material_user,
 };
 enum { REGISTRY_COUNT = sizeof registry / sizeof registry[0] };

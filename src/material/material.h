@@ -131,6 +131,8 @@ extern const mrn_material_type mrn_material_von_mises;
 extern const mrn_material_type mrn_material_newtonian;
 extern const mrn_material_type mrn_material_hencky;
 extern const mrn_material_type mrn_material_neo_hookean;
+extern const mrn_material_type mrn_material_mu_i;
+extern const mrn_material_type mrn_material_cam_clay;
 extern const mrn_material_type mrn_material_user;
 /* frees what a user material owns (user.c) */
 void mrn_material_user_free(mrn_material *m);
