@@ -137,8 +137,10 @@ static inline void update_point(const mrn_material *m, mrn_material_point *pt) {
   const double f0 = r.q_trial * r.q_trial / r.M2 + r.p_trial * (r.p_trial - pc_n);
   const int plastic = f0 > 0.0;
   if (plastic) {
-    /* the multiplier's scale: a plastic strain of the size of the increment */
-    const double scale = (sqrt(sym_ddot(pt->dstrain, pt->dstrain)) + 1e-300) / pc_n;
+    /* the multiplier's scale: a plastic strain of the size of the increment,
+     * plus f0 over the size of df/ddlambda, ~ (K + G) p_c^2 (a trial state
+     * outside the surface without an increment) */
+    const double scale = sqrt(sym_ddot(pt->dstrain, pt->dstrain)) / pc_n + f0 / ((K + G) * pc_n * pc_n);
     solve_multiplier(&r, f0, scale);
     const double ratio = r.q_trial > 0.0 ? r.q / r.q_trial : 0.0;
     for (int k = 0; k < 6; k++) s[k] = ratio * dev[k] + (k < 3 ? -r.p : 0.0);

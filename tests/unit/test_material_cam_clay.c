@@ -5,6 +5,7 @@
  * p' = -tr(sigma) / 3. */
 #include <math.h>
 #include <stdio.h>
+#include <stdlib.h>
 
 #include "check.h"
 #include "core/error.h"
@@ -114,6 +115,44 @@ static void test_undrained(void) {
   mrn_material_unref(m);
 }
 
+/* Random states (inside and outside the surface, in tension too) and random
+ * increments, none included: every return is finite, lands on the updated
+ * surface (or stays inside it when elastic) with p' >= 0. */
+static double urand(void) { return rand() / (double)RAND_MAX * 2.0 - 1.0; }
+
+static void test_random_returns(void) {
+  mrn_material *m = mcc();
+  double worst = 0.0;
+  int plastic = 0;
+  srand(2828);
+  for (int t = 0; t < 20000; t++) {
+    double s0[6];
+    for (int k = 0; k < 6; k++) s0[k] = (k < 3 ? -0.6 : 0.0) * PC0 + 0.8 * PC0 * urand();
+    mrn_driver d;
+    mrn_driver_init(&d, m, s0);
+    double de[6];
+    const double size = t % 3 == 0 ? 0.0 : pow(10.0, -6.0 + 4.0 * (urand() + 1.0) / 2.0);
+    for (int k = 0; k < 6; k++) de[k] = size * urand();
+    CHECK(mrn_driver_strain(&d, de, 1.0) == MRN_OK);
+    const double p = p_of(d.stress), q = q_of(d.stress), pc = PC0 * exp(d.state[0]);
+    const double f = q * q / (M * M) + p * (p - pc);
+    int finite = isfinite(p) && isfinite(q) && isfinite(pc);
+    CHECK(finite);
+    if (!finite) break;
+    CHECK(p >= -1e-9 * PC0 || f <= 0.0);
+    if (d.dw_plastic != 0.0 || d.state[2] != 0.0) {
+      plastic++;
+      worst = fmax(worst, fabs(f) / (pc * pc));
+    } else {
+      CHECK(f <= 1e-12 * PC0 * PC0);
+    }
+  }
+  printf("cam_clay random returns: %d plastic of 20000, worst |f| / p_c^2 on the surface %.2e\n", plastic, worst);
+  CHECK(plastic > 5000);
+  CHECK(worst < 1e-10);
+  mrn_material_unref(m);
+}
+
 static void test_parameters(void) {
   mrn_material *m = mcc();
   CHECK(mrn_material_set(m, "kappa", 0.3) == MRN_OK);
@@ -127,6 +166,7 @@ int main(void) {
   test_isotropic();
   test_drained();
   test_undrained();
+  test_random_returns();
   test_parameters();
   CHECK_DONE();
 }
