@@ -68,6 +68,7 @@ static double plastic_rate(const mrn_material *m, double tau, double p, double d
   const double c = m->param[P_D] / sqrt(p / m->param[P_RHO_S]);
   const double a = tau - m->param[P_MU_S] * p, dmu = m->param[P_MU_2] - m->param[P_MU_S];
   const double A = G * dt * c, B = G * dt * I0 + (p * dmu - a) * c, C = a * I0;
+  if (!(A > 0.0)) return 0.0; /* a step of no time: no flow (and no division by A) */
   const double disc = sqrt(B * B + 4.0 * A * C);
   return B >= 0.0 ? 2.0 * C / (B + disc) : (disc - B) / (2.0 * A);
 }
