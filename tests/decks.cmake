@@ -54,6 +54,10 @@ moraine_deck_test(apic_linear_slide apic_linear_slide.lua)
 moraine_deck_test(sweep sweep.lua LABELS lua)
 # moraine.presets and moraine.geometry
 moraine_deck_test(presets_geometry presets_geometry.lua LABELS lua)
+# a material written in Lua against linear_elastic (deck and driver), its history through a checkpoint
+moraine_deck_test(lua_material lua_material.lua)
+# mu_i and cam_clay: their history variables through a checkpoint, bit for bit
+moraine_deck_test(granular_restart granular_restart.lua)
 # a vertical cut stands below the limit-analysis lower bound and collapses above the upper bound
 moraine_deck_test(vertical_cut vertical_cut.lua)
 

@@ -22,3 +22,9 @@ if(COMMAND moraine_deck_test)
     moraine_deck_test(${case}_full ${case}.lua ARGS --set full=true LABELS "physics;slow;long")
   endforeach()
 endif()
+
+# mu(I) on a rough inclined plane: the Bagnold profile (Jop et al. 2006), 12 % on 8 cells, 6 % on 16
+if(COMMAND moraine_deck_test)
+  moraine_deck_test(inclined_plane inclined_plane.lua LABELS physics)
+  moraine_deck_test(inclined_plane_full inclined_plane.lua ARGS --set full=true LABELS "physics;slow;long")
+endif()

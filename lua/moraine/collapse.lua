@@ -77,6 +77,7 @@ local DEFAULTS = {
   vtk = false,                 -- true or {every = s, fields = {...}}: <name>_settle.pvd, <name>_collapse.pvd
   thermo = 0,
   keep = false,                -- keep (return) the simulation objects instead of freeing them
+  material = false,            -- a material object for the collapse instead of the Mohr-Coulomb sand
 }
 
 local function check_options(opts)
@@ -306,9 +307,11 @@ local function settled_checkpoint(o, result)
 end
 
 -- the settled particles on a grid width_factor times wider, as Mohr-Coulomb sand
+-- (or as the material given)
 local function collapse_sim(o, settled)
-  local sand = mpm.material.mohr_coulomb{ density = o.density, E = o.E, nu = o.nu, phi = o.phi, psi = o.psi,
-                                          cohesion = o.cohesion, tension = o.tension, name = "sand" }
+  local sand = o.material or mpm.material.mohr_coulomb{ density = o.density, E = o.E, nu = o.nu, phi = o.phi,
+                                                        psi = o.psi, cohesion = o.cohesion, tension = o.tension,
+                                                        name = "sand" }
   local sim = phase_sim(o, "collapse", o.width_factor * o.width, o.strategy, o.collapse_damping)
   sim:import(settled, { material = sand })
   return sim

@@ -2,6 +2,7 @@
  * particles to one) from a validated file. Reading and validation are in
  * checkpoint_read.c; the layout is documented in doc/checkpoint-format.md. */
 #include "io/checkpoint.h"
+#include "material/user.h"
 
 #include <errno.h>
 #include <math.h>
@@ -179,6 +180,15 @@ static void save_material(mrn_h5w *w, hid_t parent, int index, const mrn_materia
   for (int i = 0; i < m->type->nparams && params >= 0; i++)
     mrn_h5w_double(w, params, m->type->params[i].key, m->param[i]);
   if (params >= 0) H5Gclose(params);
+  if (mrn_material_is_user(m) && m->type->nstate) {
+    /* its history variables are named by the deck: the names say what /particles/state holds */
+    char names[MRN_USER_MAX_STATE * 33] = "";
+    for (int i = 0; i < m->type->nstate; i++) {
+      if (i) strcat(names, ",");
+      strcat(names, m->type->state_names[i]);
+    }
+    mrn_h5w_string(w, g, "state_names", names);
+  }
   H5Gclose(g);
 }
 

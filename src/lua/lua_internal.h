@@ -87,6 +87,15 @@ long mrn_lua_point_force_args(lua_State *L, int idx, const struct mrn_sim *sim, 
 /* the load factor at idx of sim:load_factor(f) and imp:load_factor(f): a finite number */
 double mrn_lua_check_load_factor(lua_State *L, int idx);
 mrn_material *mrn_lua_check_material(lua_State *L, int idx, const char *where);
+/* push a material userdata owning m (its reference) */
+void mrn_lua_push_material(lua_State *L, mrn_material *m);
+/* mpm.material.lua{} into the table of constructors at idx, and mpm.driver{} (lua_material_user.c) */
+void mrn_lua_open_user_material(lua_State *L, int materials);
+void mrn_lua_open_driver(lua_State *L, int module);
+/* A checkpoint holds a Lua material's parameters and history but not its
+ * function: each such material of sim is replaced by the deck's Lua
+ * material of the same name, when the deck has made one. */
+void mrn_lua_rebind_user_materials(lua_State *L, struct mrn_sim *sim, const char *where);
 
 /* read a vector of the simulation's dimension from a function's results or a table at idx */
 int mrn_lua_read_numbers(lua_State *L, int idx, int count, double *out);

@@ -18,6 +18,12 @@ mrn_material *mrn_lua_check_material(lua_State *L, int idx, const char *where) {
   return b->m;
 }
 
+void mrn_lua_push_material(lua_State *L, mrn_material *m) {
+  material_box *b = lua_newuserdatauv(L, sizeof *b, 0);
+  b->m = m;
+  luaL_setmetatable(L, MRN_LUA_MATERIAL);
+}
+
 static int l_new_material(lua_State *L) {
   const mrn_material_type *type = lua_touserdata(L, lua_upvalueindex(1));
   char where[96];
@@ -111,6 +117,7 @@ void mrn_lua_open_materials(lua_State *L, int module) {
   lua_newtable(L);
   for (int i = 0; i < mrn_material_type_count(); i++) {
     const mrn_material_type *t = mrn_material_type_at(i);
+    if (t == &mrn_material_user) continue; /* its constructor takes a function (lua_material_user.c) */
     lua_pushlightuserdata(L, (void *)t);
     lua_pushcclosure(L, l_new_material, 1);
     lua_setfield(L, -2, t->name);
@@ -120,6 +127,7 @@ void mrn_lua_open_materials(lua_State *L, int module) {
       mrn_spec_register_group(groups[i], t->params, t->nparams);
     }
   }
+  mrn_lua_open_user_material(L, lua_gettop(L));
   mrn_lua_strict(L, -1, "mpm.material", "model");
   lua_setfield(L, module, "material");
 }

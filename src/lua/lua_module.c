@@ -141,6 +141,7 @@ int luaopen_moraine(lua_State *L) {
   int module = lua_gettop(L);
   mrn_lua_open_regions(L, module);
   mrn_lua_open_materials(L, module);
+  mrn_lua_open_driver(L, module);
   mrn_lua_open_simulation(L, module);
   mrn_lua_open_warnings(L, module);
   mrn_lua_open_implicit(L, module);

@@ -103,6 +103,7 @@ static void take_checkpoint(lua_State *L, sim_box *b, const char *path, const ch
   mrn_sim *sim = mrn_checkpoint_load_info(path, &info);
   if (!sim) mrn_lua_engine_error(L, where);
   carry_deck_settings(sim, b->sim, info.dt_function_dropped);
+  mrn_lua_rebind_user_materials(L, sim, where);
   if (b->sim) mrn_sim_free(b->sim);
   b->sim = sim;
   char *dir = strdup(b->out.dir);

@@ -70,6 +70,7 @@ int l_load(lua_State *L) {
   mrn_checkpoint_info info;
   b->sim = mrn_checkpoint_load_info(path, &info);
   if (!b->sim) mrn_lua_engine_error(L, where);
+  mrn_lua_rebind_user_materials(L, b->sim, where);
   if (info.dt_function_dropped) mrn_warn("%s", info.note);
   snprintf(b->name, sizeof b->name, "%s", "loaded");
   mrn_output_set_csv(&b->out, "diagnostics.csv", 10);

@@ -212,7 +212,7 @@ MRN_ALWAYS_INLINE long advance_hooke(const int dim, const mrn_material *mat, mrn
   return first_bad;
 }
 
-enum { BATCH = 32 }; /* points per call of the model's update */
+enum { BATCH = MRN_MATERIAL_BATCH }; /* points per call of the model's update */
 
 MRN_ALWAYS_INLINE long advance_points(const int dim, const mrn_material *mat, mrn_f_update f_update, double dt,
                                       size_t n, const double *L, double *F, double *stress, double *strain,

@@ -7,6 +7,7 @@
 #include "core/tensor.h"
 #include "material/advance.h"
 #include "material/principal.h"
+#include "material/user.h"
 
 int mrn_driver_init(mrn_driver *d, const mrn_material *m, const double stress0[6]) {
   memset(d, 0, sizeof *d);
@@ -26,9 +27,11 @@ static int advance(mrn_driver *d, const double L[9], double dt) {
   const mrn_energy_sums energy = {&unit_volume, &d->e_elastic, &d->w_plastic};
   mrn_point_result r;
   mrn_f_update kind = d->kinematics == MRN_DRIVER_F_MIDPOINT ? MRN_F_UPDATE_MIDPOINT : MRN_F_UPDATE_EULER;
-  if (mrn_material_advance_points(d->mat, 3, kind, dt, 1, L, d->F, d->stress, d->strain,
-                                  d->mat->type->nstate ? d->state : NULL, 0, &energy, &r) >= 0)
-    return mrn_error("driver: the increment would invert F at t = %g s", d->time + dt);
+  long bad = mrn_material_advance_points(d->mat, 3, kind, dt, 1, L, d->F, d->stress, d->strain,
+                                         d->mat->type->nstate ? d->state : NULL, 0, &energy, &r);
+  int failed = mrn_material_user_failure(d->mat);
+  if (failed) return failed;
+  if (bad >= 0) return mrn_error("driver: the increment would invert F at t = %g s", d->time + dt);
   d->de_elastic = r.de_elastic;
   d->dw_plastic = r.dw_plastic;
   d->time += dt;
@@ -96,7 +99,8 @@ int mrn_driver_step_mixed(mrn_driver *d, const double L[9], const int stress_ctr
   double x[6], xn[6], r[6], jac[36], dx[6];
   for (int i = 0; i < n; i++) x[i] = get_sym(L, free_[i]);
   mrn_driver t, tn, tp, tm;
-  if (trial_stress(d, L, free_, n, x, dt, &t)) return MRN_ERR;
+  int rc; /* a trial's error (a user material's law fails with its own code) */
+  if ((rc = trial_stress(d, L, free_, n, x, dt, &t))) return rc;
   double worst = residual(&t, free_, n, target, r);
   for (int it = 0; it < 60; it++) {
     if (worst <= tol) {
@@ -109,9 +113,9 @@ int mrn_driver_step_mixed(mrn_driver *d, const double L[9], const int stress_ctr
     for (int j = 0; j < n; j++) {
       double xj = x[j];
       x[j] = xj + h;
-      if (trial_stress(d, L, free_, n, x, dt, &tp)) return MRN_ERR;
+      if ((rc = trial_stress(d, L, free_, n, x, dt, &tp))) return rc;
       x[j] = xj - h;
-      if (trial_stress(d, L, free_, n, x, dt, &tm)) return MRN_ERR;
+      if ((rc = trial_stress(d, L, free_, n, x, dt, &tm))) return rc;
       x[j] = xj;
       for (int i = 0; i < n; i++) jac[n * i + j] = (tp.stress[free_[i]] - tm.stress[free_[i]]) / (2 * h);
     }
@@ -123,7 +127,7 @@ int mrn_driver_step_mixed(mrn_driver *d, const double L[9], const int stress_ctr
     double rn[6], worst_n = HUGE_VAL;
     for (double step = 1.0; step > 1e-12; step *= 0.5) {
       for (int i = 0; i < n; i++) xn[i] = x[i] - step * dx[i];
-      if (trial_stress(d, L, free_, n, xn, dt, &tn)) return MRN_ERR;
+      if ((rc = trial_stress(d, L, free_, n, xn, dt, &tn))) return rc;
       worst_n = residual(&tn, free_, n, target, rn);
       if (worst_n < worst) break;
     }

@@ -16,6 +16,9 @@ static const mrn_material_type *const registry[] = {
     &mrn_material_newtonian,
     &mrn_material_hencky,
     &mrn_material_neo_hookean,
+    &mrn_material_mu_i,
+    &mrn_material_cam_clay,
+    &mrn_material_user,
 };
 enum { REGISTRY_COUNT = sizeof registry / sizeof registry[0] };
 
@@ -78,7 +81,10 @@ void mrn_material_ref(mrn_material *m) {
 }
 
 void mrn_material_unref(mrn_material *m) {
-  if (m && --m->refcount == 0) free(m);
+  if (m && --m->refcount == 0) {
+    mrn_material_user_free(m);
+    free(m);
+  }
 }
 
 double mrn_material_get(const mrn_material *m, const char *key) {

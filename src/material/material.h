@@ -17,6 +17,8 @@
 
 #define MRN_MATERIAL_MAX_PARAMS 24
 #define MRN_MATERIAL_MAX_DERIVED 16
+/* the most points one call of a model's update receives */
+#define MRN_MATERIAL_BATCH 32
 
 struct mrn_material;
 
@@ -92,6 +94,7 @@ typedef struct mrn_material {
   double param[MRN_MATERIAL_MAX_PARAMS];       /* in the order of type->params */
   double derived[MRN_MATERIAL_MAX_DERIVED];    /* set by prepare() */
   int refcount;
+  struct mrn_user_box *user;                   /* a user material's law and type (user.h); else NULL */
 } mrn_material;
 
 int mrn_material_type_count(void);
@@ -128,6 +131,11 @@ extern const mrn_material_type mrn_material_von_mises;
 extern const mrn_material_type mrn_material_newtonian;
 extern const mrn_material_type mrn_material_hencky;
 extern const mrn_material_type mrn_material_neo_hookean;
+extern const mrn_material_type mrn_material_mu_i;
+extern const mrn_material_type mrn_material_cam_clay;
+extern const mrn_material_type mrn_material_user;
+/* frees what a user material owns (user.c) */
+void mrn_material_user_free(mrn_material *m);
 
 /* defines a model's batch `update` from its one-point update `point_fn` */
 #define MRN_MATERIAL_BATCH_UPDATE(point_fn)                                    \

@@ -3,6 +3,7 @@
 
 #include "core/error.h"
 #include "material/advance.h"
+#include "material/user.h"
 #include "transfer/kernels.h"
 
 typedef struct chunk_ctx {
@@ -42,11 +43,20 @@ static int inverted_error(const mrn_sim *sim, long p, double dt) {
                         sim->step + 1, (long long)sim->particles.id[p], x[0], x[1], x[2], dt);
 }
 
+/* The outcome of a material pass: a user material's failed law (its
+ * message), else the first inverted particle, else MRN_OK. */
+static int pass_result(const mrn_sim *sim, long bad, double dt) {
+  for (int i = 0; i < sim->nmaterials; i++) {
+    int rc = mrn_material_user_failure(sim->materials[i]);
+    if (rc) return rc;
+  }
+  return bad >= 0 ? inverted_error(sim, bad, dt) : MRN_OK;
+}
+
 int mrn_update_from_grid(mrn_sim *sim, mrn_transfer *tr, const double *gvel, double dt) {
   chunk_ctx c = {sim, dt};
   const mrn_gradient_sink sink = {update_chunk, &c, MRN_PHASE_STRESS};
-  const long bad = mrn_gradient(tr, gvel, &sink);
-  return bad >= 0 ? inverted_error(sim, bad, dt) : MRN_OK;
+  return pass_result(sim, mrn_gradient(tr, gvel, &sink), dt);
 }
 
 int mrn_update_then_force(mrn_sim *sim, mrn_transfer *tr, const double *gvel, double dt) {
@@ -59,16 +69,14 @@ int mrn_update_then_force(mrn_sim *sim, mrn_transfer *tr, const double *gvel, do
   }
   chunk_ctx c = {sim, dt};
   const mrn_gradient_sink sink = {update_chunk, &c, MRN_PHASE_STRESS};
-  const long bad = mrn_update_force(tr, gvel, &sink);
-  return bad >= 0 ? inverted_error(sim, bad, dt) : MRN_OK;
+  return pass_result(sim, mrn_update_force(tr, gvel, &sink), dt);
 }
 
 int mrn_update_with_g2p(mrn_sim *sim, mrn_transfer *tr, double dt_move, double dt_stress, const mrn_particle_pass *after,
                         long *after_bad) {
   chunk_ctx c = {sim, dt_stress};
   const mrn_gradient_sink sink = {update_chunk, &c, MRN_PHASE_STRESS};
-  const long bad = mrn_g2p_then(tr, dt_move, NULL, &sink, after, after_bad);
-  return bad >= 0 ? inverted_error(sim, bad, dt_stress) : MRN_OK;
+  return pass_result(sim, mrn_g2p_then(tr, dt_move, NULL, &sink, after, after_bad), dt_stress);
 }
 
 int mrn_particle_stages_run(mrn_sim *sim, mrn_transfer *tr, mrn_particle_stages *s) {
