@@ -1,10 +1,13 @@
 # Granular column settling and collapse (000 §5) through lua/moraine/collapse.lua,
 # included from tests/CMakeLists.txt after decks.cmake (it uses moraine_deck_test).
-# The quick variant takes about 10 s of CPU; `--set full=true` adds the other
-# aspect ratios, a finer time step and TFLIP (about a minute), label `slow`.
+# The quick variant takes about 10 s of CPU; `--set full=true` adds a finer
+# time step and TFLIP, label `slow`. collapse_s4 is 000's series S4 (AR 0.6,
+# 2.4 and 3 with FLIP and AFLIP) at a coarser step, about 15 s; the series as
+# 000 ran it is a validation case (scripts/validation/cases.toml).
 if(COMMAND moraine_deck_test)
   moraine_deck_test(column_collapse column_collapse.lua LABELS collapse)
   moraine_deck_test(column_collapse_full column_collapse.lua ARGS --set full=true LABELS "collapse;slow")
+  moraine_deck_test(collapse_s4 collapse_s4.lua ARGS --set quick=true LABELS collapse)
 endif()
 
 # the collapse with mu(I) and Modified Cam-Clay beside Mohr-Coulomb (AR = 2)

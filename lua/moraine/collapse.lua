@@ -167,6 +167,14 @@ function M.lube(a)
   return { runout = 0.5 * (lo + hi), runout_low = lo, runout_high = hi, height = height, t_arrest = 3.0 }
 end
 
+--- The final normalised runout of Lajeunesse et al. (2005), glass beads in a
+-- rectangular channel (quasi-2D), the experiments 000 §5.4 compares with:
+-- Delta L / L_i = 1.2 a for a below about 2.3 and 1.9 a^(2/3) above (the law
+-- as Kumar (2015, PhD thesis, Cambridge, ch. 2) quotes it from the paper).
+function M.lajeunesse(a)
+  return a < 2.3 and 1.2 * a or 1.9 * a ^ (2 / 3)
+end
+
 --- Write rows (arrays of numbers) under a header to a CSV file in the output
 -- directory (a relative path) or at an absolute path. Returns the path.
 M.write_csv = results.write_csv
