@@ -15,6 +15,11 @@ endfunction()
 moraine_deck_test(free_fall free_fall.lua)
 # particles leaving through a free face with on_leave = "delete": mass and energy booked as outflow
 moraine_deck_test(outflow outflow.lua)
+# inflow sources: mass rho A v t (2D, 3D, a velocity function), a steady channel with outflow, the energy
+# columns, a checkpoint bit for bit, sorting, particles added from a hook
+moraine_deck_test(inflow inflow.lua)
+# mass scaling: the stable dt grows by sqrt(factor), a slow compression ends in the same stress in fewer steps
+moraine_deck_test(mass_scaling mass_scaling.lua)
 # point forces (sim:point_force, load_factor, clear_forces): momentum, energy, traction, checkpoint
 moraine_deck_test(point_force point_force.lua)
 # every setter (found in the method table) refuses NaN, inf and out-of-range values as its constructor key does
