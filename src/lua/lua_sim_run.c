@@ -175,7 +175,8 @@ int l_sim_run(lua_State *L) {
   sim_box *b = mrn_lua_sim_check_idle(L, 1, where);
   mrn_lua_check_table(L, 2, where, RUN_SPECS);
   if (mrn_lua_restart_at_run(L, b, where) == MRN_LUA_RESTART_SKIP) return 0;
-  if (b->sim->particles.n == 0) mrn_lua_error(L, where, "the simulation has no particles (add_particles first)");
+  if (b->sim->particles.n == 0 && b->sim->nsources == 0)
+    mrn_lua_error(L, where, "the simulation has no particles (add_particles or add_source first)");
   mrn_lua_implicit_prepare(L, 1, where); /* integrator = "implicit": made at the first run */
   /* a resumed simulation keeps the outputs the checkpoint continues */
   if (mrn_lua_has(L, 2, "output") && !b->resumed) {

@@ -43,6 +43,13 @@ double mrn_dt_particle_critical_at(const mrn_sim *sim, long *fastest_particle, d
       top_p = (long)p;
     }
   }
+  /* the particles a source is about to make (and all there is in a run
+   * that starts empty) */
+  for (int k = 0; k < sim->nsources; k++) {
+    const mrn_source *src = &sim->sources[k];
+    const double *v = src->cfg.fn ? src->v : src->cfg.velocity;
+    fastest = fmax(fastest, speed[src->cfg.material] + sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]));
+  }
   if (fastest_particle) *fastest_particle = top_p;
   if (top_speed) *top_speed = top_p >= 0 ? top : 0.0;
   double dt = fastest > 0.0 ? h / fastest : HUGE_VAL; /* (002, Eq. 35) */

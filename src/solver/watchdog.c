@@ -96,7 +96,9 @@ static int test_energy(mrn_watchdog_state *s, const mrn_sim *sim, double dt_rati
   if (!(w->energy > 0) || !sim->energy_ref_set || driven(sim)) return MRN_OK;
   mrn_diagnostics d;
   mrn_sim_energies(sim, &d);
-  const double scale = energy_scale(s, sim, &d), ratio = d.mpm_error / scale;
+  const double scale = energy_scale(s, sim, &d);
+  if (!(scale > 0.0)) return MRN_OK; /* no particles yet (a source about to begin): nothing to judge */
+  const double ratio = d.mpm_error / scale;
   s->peak_energy = fmax(s->peak_energy, ratio);
   if (ratio <= w->energy) return MRN_OK;
   char what[512];
