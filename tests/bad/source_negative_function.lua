@@ -1,4 +1,4 @@
--- expect: source_negative_function\.lua:10: run\{\}: source 'inlet': velocity: the inflow velocity -0\.05 m/s along x at t = 0\.\d+ s points out of the inlet \(a negative flow\)
+-- expect: source_negative_function\.lua:10: run\{\}: source 'inlet': velocity: the inflow velocity -0\.05 m/s along x at t = 0\.[0-9]+ s points out of the inlet \(a negative flow\)
 -- case: runtime | an inflow velocity function that turns negative during the run
 local mpm = require "moraine"
 local mat = mpm.material.linear_elastic{ density = 1000, E = 1e6, nu = 0.3 }
