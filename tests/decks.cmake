@@ -92,6 +92,12 @@ foreach(deck ${MORAINE_EXAMPLES})
            COMMAND moraine ${deck} -q -o ${MORAINE_TEST_OUT}/example_${name} --overwrite --set quick=true)
   set_tests_properties(example.${name} PROPERTIES LABELS example)
 endforeach()
+# the inflow example's diagnostics read back: the E_inflow, W_inflow, E_outflow columns and W_MPM
+set_tests_properties(example.channel_inflow PROPERTIES FIXTURES_SETUP channel_inflow)
+add_test(NAME python.inflow_series
+         COMMAND ${Python3_EXECUTABLE} ${CMAKE_CURRENT_SOURCE_DIR}/python/check_inflow_series.py
+                 ${MORAINE_TEST_OUT}/example_channel_inflow)
+set_tests_properties(python.inflow_series PROPERTIES LABELS python FIXTURES_REQUIRED channel_inflow)
 
 # Robustness: a signal stops a run cleanly with a checkpoint that continues
 # bit for bit; a failed run leaves a checkpoint h5py reads

@@ -9,7 +9,7 @@
 --
 --   moraine examples/channel_inflow/deck.lua -o out/jet
 local quick = mpm.param("quick", false)
-local T = quick and 0.5 or mpm.param("time", 6.0)
+local T = quick and 1.6 or mpm.param("time", 6.0)
 local fluid = mpm.material.newtonian{ density = 1000, viscosity = 1.0, sound_speed = 20 }
 local v = mpm.param("v", 1.0)
 
@@ -35,7 +35,7 @@ sim:add_source{
 }
 
 local rows = {}
-sim:hook{ every_time = quick and 0.1 or 0.5, fn = function(s)
+sim:hook{ every_time = 0.5, fn = function(s)
   local d = s:diagnostics()
   rows[#rows + 1] = string.format("t = %4.1f s: mass in the box %7.2f kg/m, in %8.2f, out %8.2f, W_MPM / E_in %.2e",
     s:time(), d.mass, d.inflow_mass, d.outflow_mass, d.E_inflow > 0 and d.W_MPM / d.E_inflow or 0)
