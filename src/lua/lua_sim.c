@@ -139,8 +139,8 @@ static int l_sim_tostring(lua_State *L) {
 
 /* The method table: sim:NAME is the C function l_sim_NAME, and the
  * metamethod __NAME is l_sim_NAME too, except __close, which is sim:free.
- * The methods of lua_fields.c, lua_loads.c, lua_watchdog.c and
- * lua_implicit.c join the table after these. */
+ * The methods of lua_fields.c, lua_loads.c, lua_watchdog.c,
+ * lua_sim_source.c and lua_implicit.c join the table after these. */
 static const luaL_Reg methods[] = {
     {"add_particles", l_sim_add_particles},
     {"run", l_sim_run},

@@ -6,6 +6,7 @@
  *                         simulation{} and by the set_*() methods
  *   lua_sim_set.c         the set_*() methods and the velocity constraints
  *   lua_sim_seed.c        add_particles()
+ *   lua_sim_source.c      add_source() and source(): inflow sources
  *   lua_sim_run.c         run{}, hook{} and the errors a run raises
  *   lua_sim_query.c       reading the state: time, energy, field, particle, ...
  *   lua_sim_reduce.c      reduce()

@@ -26,8 +26,9 @@ static int check_velocity(const mrn_sim *sim, const char *name, const mrn_source
     if (!isfinite(v[d]))
       return mrn_error("source '%s': velocity: the inflow velocity at t = %g s is not finite", name, t);
     if (d != c->axis && v[d] != 0.0)
-      return mrn_error("source '%s': velocity: the inflow velocity (%g, %g%s) at t = %g s is not normal to "
-                       "the inflow face (along %c only)", name, v[0], v[1], sim->dim == 3 ? ", ..." : "", t, axis_names[c->axis]);
+      return mrn_error("source '%s': velocity: the inflow velocity has a component %g m/s along %c at t = %g s: it "
+                       "must be normal to the inflow face (along %c only)", name, v[d], axis_names[d], t,
+                       axis_names[c->axis]);
   }
   if (flow_sign(c) * v[c->axis] < 0.0)
     return mrn_error("source '%s': velocity: the inflow velocity %g m/s along %c at t = %g s points out of the "
@@ -145,7 +146,7 @@ static void take_state(mrn_sim *sim, mrn_source *s) {
 static int setup_source(mrn_sim *sim, mrn_source *s, const mrn_source_config *cfg) {
   s->cfg = *cfg;
   snprintf(s->name, sizeof s->name, "%s", cfg->name ? cfg->name : "source");
-  s->cfg.name = s->name;
+  s->cfg.name = NULL; /* the caller's string may go: the name is s->name */
   snprintf(s->st.name, sizeof s->st.name, "%s", s->name);
   if (cfg->material < 0 || cfg->material >= sim->nmaterials)
     return mrn_error("source '%s': material index %d is not registered", s->name, cfg->material);

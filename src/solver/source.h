@@ -50,7 +50,7 @@ typedef struct mrn_source_state {
 } mrn_source_state;
 
 typedef struct mrn_source_config {
-  const char *name;
+  const char *name;    /* copied; NULL: "source" */
   double lo[3], hi[3]; /* the inlet box (z ignored in 2D) */
   int axis, side;      /* the inflow plane: the box's face along `axis`, its lower (0) or upper (1) side */
   int material;        /* index from mrn_sim_add_material */
