@@ -15,6 +15,11 @@ endfunction()
 moraine_deck_test(free_fall free_fall.lua)
 # particles leaving through a free face with on_leave = "delete": mass and energy booked as outflow
 moraine_deck_test(outflow outflow.lua)
+# inflow sources: mass rho A v t (2D, 3D, a velocity function), a steady channel with outflow, the energy
+# columns, a checkpoint bit for bit, sorting, particles added from a hook
+moraine_deck_test(inflow inflow.lua)
+# mass scaling: the stable dt grows by sqrt(factor), a slow compression ends in the same stress in fewer steps
+moraine_deck_test(mass_scaling mass_scaling.lua)
 # point forces (sim:point_force, load_factor, clear_forces): momentum, energy, traction, checkpoint
 moraine_deck_test(point_force point_force.lua)
 # every setter (found in the method table) refuses NaN, inf and out-of-range values as its constructor key does
@@ -91,6 +96,12 @@ foreach(deck ${MORAINE_EXAMPLES})
            COMMAND moraine ${deck} -q -o ${MORAINE_TEST_OUT}/example_${name} --overwrite --set quick=true)
   set_tests_properties(example.${name} PROPERTIES LABELS example)
 endforeach()
+# the inflow example's diagnostics read back: the E_inflow, W_inflow, E_outflow columns and W_MPM
+set_tests_properties(example.channel_inflow PROPERTIES FIXTURES_SETUP channel_inflow)
+add_test(NAME python.inflow_series
+         COMMAND ${Python3_EXECUTABLE} ${CMAKE_CURRENT_SOURCE_DIR}/python/check_inflow_series.py
+                 ${MORAINE_TEST_OUT}/example_channel_inflow)
+set_tests_properties(python.inflow_series PROPERTIES LABELS python FIXTURES_REQUIRED channel_inflow)
 
 # Robustness: a signal stops a run cleanly with a checkpoint that continues
 # bit for bit; a failed run leaves a checkpoint h5py reads

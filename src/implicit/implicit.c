@@ -82,6 +82,10 @@ static int check_setup(const mrn_sim *sim, const mrn_implicit_options *o) {
   if (sim->shape == MRN_SHAPE_CUBIC_BSPLINE)
     return mrn_error_code(MRN_ERR, "implicit: shape functions of support 4 are not supported (use linear, gimp or "
                                    "quadratic)");
+  /* both belong to the explicit step (solver/step.c, solver/source.c) */
+  if (sim->mass_scaling != 1.0 || sim->nsources > 0)
+    return mrn_error_code(MRN_ERR, "implicit: mass scaling and inflow sources are explicit-only (mass_scaling = %g, "
+                                   "%d source(s))", sim->mass_scaling, sim->nsources);
   return 0;
 }
 

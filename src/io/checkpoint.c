@@ -294,6 +294,35 @@ static void save_grid_nodes(mrn_h5w *w, const mrn_grid *grid) {
   H5Gclose(g);
 }
 
+/* one source's state under /sources/<i> */
+static void save_source(mrn_h5w *w, hid_t parent, int index, const mrn_source_state *st) {
+  char name[32];
+  snprintf(name, sizeof name, "%d", index);
+  hid_t g = mrn_h5w_group(w, parent, name);
+  if (g < 0) return;
+  mrn_h5w_string(w, g, "name", st->name);
+  mrn_h5w_double(w, g, "progress", st->progress);
+  mrn_h5w_int64(w, g, "layers", st->layers);
+  mrn_h5w_int64(w, g, "particles", st->particles);
+  mrn_h5w_double(w, g, "mass", st->mass);
+  mrn_h5w_double(w, g, "energy", st->energy);
+  mrn_h5w_double(w, g, "work", st->work);
+  H5Gclose(g);
+}
+
+/* the sources' states, and those a loaded file kept for sources not added
+ * again: none, no group */
+static void save_sources(mrn_h5w *w, const mrn_sim *sim) {
+  const int count = sim->nsources + sim->nsource_states;
+  if (count == 0) return;
+  hid_t g = mrn_h5w_group(w, w->file, "sources");
+  if (g < 0) return;
+  mrn_h5w_int32(w, g, "count", count);
+  for (int i = 0; i < sim->nsources; i++) save_source(w, g, i, &sim->sources[i].st);
+  for (int i = 0; i < sim->nsource_states; i++) save_source(w, g, sim->nsources + i, &sim->source_states[i]);
+  H5Gclose(g);
+}
+
 static void save_all(mrn_h5w *w, const mrn_sim *sim, const mrn_stash *stash) {
   save_root(w);
   save_simulation(w, sim);
@@ -305,6 +334,7 @@ static void save_all(mrn_h5w *w, const mrn_sim *sim, const mrn_stash *stash) {
   save_particles(w, sim);
   save_user_fields(w, &sim->particles);
   save_grid_nodes(w, &sim->grid);
+  save_sources(w, sim);
   ck_save_stash(w, stash);
 }
 
@@ -438,6 +468,7 @@ static mrn_sim *build_sim(const ck_data *d, mrn_checkpoint_info *info) {
   for (int i = 0; i < d->nmaterials; i++)
     if (mrn_sim_add_material(sim, d->materials[i]) < 0) goto fail;
   if (take_particles(sim, d)) goto fail;
+  if (mrn_sim_keep_source_states(sim, d->sources, d->nsources)) goto fail;
   mrn_sim_particles_changed(sim);
   /* last: mass_floor as saved, whatever rule computed it */
   MRN_SIM_SCALARS(TAKE_SCALAR)

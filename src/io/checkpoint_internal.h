@@ -51,6 +51,9 @@ typedef struct ck_data {
   int32_t *material;
   int64_t *id;
   double *state; /* n * state_stride */
+  /* /sources: the sources' states (optional) */
+  int nsources;
+  mrn_source_state sources[2 * MRN_MAX_SOURCES];
 } ck_data;
 
 /* the array of the particle field `name` (one of the table's) */

@@ -526,6 +526,30 @@ void ck_free(ck_data *d) {
   memset(d, 0, sizeof *d);
 }
 
+/* /sources, when the simulation had sources (files without it: none) */
+static void read_sources(mrn_h5r *r, ck_data *d) {
+  const char *g = "/sources";
+  if (mrn_h5r_exists(r, g) != 1) return;
+  int64_t count = 0;
+  read_int_in(r, g, "count", 0, 2 * MRN_MAX_SOURCES, &count);
+  for (int i = 0; i < count && !r->failed; i++) {
+    char path[64];
+    snprintf(path, sizeof path, "%s/%d", g, i);
+    mrn_source_state *st = &d->sources[i];
+    int64_t layers = 0, particles = 0;
+    if (mrn_h5r_string(r, path, "name", st->name, sizeof st->name)) return;
+    read_finite(r, path, "progress", -HUGE_VAL, &st->progress);
+    read_int_in(r, path, "layers", 0, CK_MAX_COUNTER, &layers);
+    read_int_in(r, path, "particles", 0, CK_MAX_COUNTER, &particles);
+    read_finite(r, path, "mass", 0.0, &st->mass);
+    read_finite(r, path, "energy", -HUGE_VAL, &st->energy);
+    read_finite(r, path, "work", -HUGE_VAL, &st->work);
+    st->layers = (long)layers;
+    st->particles = (long)particles;
+  }
+  if (!r->failed) d->nsources = (int)count;
+}
+
 int ck_read(const char *path, ck_data *d) {
   memset(d, 0, sizeof *d);
   /* every byte against the checksums first: HDF5 then parses intact files only */
@@ -540,6 +564,7 @@ int ck_read(const char *path, ck_data *d) {
   read_dt_policy(&r, d);
   read_materials(&r, d);
   read_particles(&r, d);
+  read_sources(&r, d);
   if (!r.failed) check_particles(&r, d);
   mrn_h5r_close(&r);
   if (r.failed) {

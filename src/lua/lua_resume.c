@@ -76,12 +76,13 @@ int mrn_lua_sim_save(sim_box *b, const char *path) {
 /* ---- taking a checkpoint ------------------------------------------------------------ */
 
 /* What a deck sets on its simulation that a checkpoint does not hold — the
- * regions' velocity constraints, the watchdog's bounds, a dt function —
+ * regions' velocity constraints, the sources, the watchdog's bounds, a dt function —
  * carried from the deck's simulation to the loaded one. */
 static void carry_deck_settings(mrn_sim *to, mrn_sim *from, int dt_function_dropped) {
   if (!from) return;
   to->constraints = from->constraints, to->nconstraints = from->nconstraints;
   from->constraints = NULL, from->nconstraints = 0;
+  mrn_sim_move_sources(to, from); /* each takes up its progress from the checkpoint */
   to->watchdog = from->watchdog;
   if (dt_function_dropped && from->dt_policy.kind == MRN_DT_CALLBACK) {
     mrn_dt_policy keep = to->dt_policy;

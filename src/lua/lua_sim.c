@@ -34,6 +34,18 @@ sim_box *mrn_lua_sim_check_idle(lua_State *L, int idx, const char *what) {
   return b;
 }
 
+sim_box *mrn_lua_sim_check_between_steps(lua_State *L, int idx, const char *what) {
+  sim_box *b = mrn_lua_sim_check(L, idx);
+  if (!b->busy) return b;
+  const int hook = b->between_steps && !strcmp(b->busy, "run{}"); /* not inside a seeding a hook started */
+  if (hook && b->sim->integrator.step)
+    mrn_lua_error(L, what, "not allowed inside a hook of a run of the implicit integrator (call it after run{} returns)");
+  if (hook) return b;
+  mrn_lua_error(L, what, "not allowed inside a callback of this simulation's %s (a step is under way); particles may be "
+                "added from a hook (sim:hook{...}) or stop_when, between steps, or after %s returns", b->busy, b->busy);
+  return b;
+}
+
 struct mrn_sim *mrn_lua_check_sim(lua_State *L, int idx) { return mrn_lua_sim_check(L, idx)->sim; }
 
 const char *mrn_lua_output_dir(lua_State *L) {
@@ -127,8 +139,8 @@ static int l_sim_tostring(lua_State *L) {
 
 /* The method table: sim:NAME is the C function l_sim_NAME, and the
  * metamethod __NAME is l_sim_NAME too, except __close, which is sim:free.
- * The methods of lua_fields.c, lua_loads.c, lua_watchdog.c and
- * lua_implicit.c join the table after these. */
+ * The methods of lua_fields.c, lua_loads.c, lua_watchdog.c,
+ * lua_sim_source.c and lua_implicit.c join the table after these. */
 static const luaL_Reg methods[] = {
     {"add_particles", l_sim_add_particles},
     {"run", l_sim_run},
@@ -186,6 +198,7 @@ void mrn_lua_open_simulation(lua_State *L, int module) {
   mrn_lua_add_field_methods(L, lua_gettop(L));
   mrn_lua_add_load_methods(L, lua_gettop(L));
   mrn_lua_add_watchdog_methods(L, lua_gettop(L));
+  mrn_lua_add_source_methods(L, lua_gettop(L));
   mrn_lua_strict(L, -1, "simulation", "method");
   lua_setfield(L, -2, "__index");
   lua_pop(L, 1);

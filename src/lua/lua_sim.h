@@ -6,6 +6,7 @@
  *                         simulation{} and by the set_*() methods
  *   lua_sim_set.c         the set_*() methods and the velocity constraints
  *   lua_sim_seed.c        add_particles()
+ *   lua_sim_source.c      add_source() and source(): inflow sources
  *   lua_sim_run.c         run{}, hook{} and the errors a run raises
  *   lua_sim_query.c       reading the state: time, energy, field, particle, ...
  *   lua_sim_reduce.c      reduce()
@@ -59,6 +60,7 @@ typedef struct sim_box {
   int progress;
   char name[64];
   const char *busy; /* "run{}" or "add_particles()" while deck callbacks can run inside it */
+  int between_steps; /* 1 while a hook or stop_when of a run is called: the step is over */
   long invalid_step; /* > 0: a run stopped keeping an invalid state (a particle outside the grid) at this step */
   int interrupted;   /* a run stopped on a signal and wrote <name>_interrupted.h5 */
   int summary_record; /* its line of the end-of-run summary (io/summary.h), 0 before its first run */
@@ -78,6 +80,9 @@ sim_box *mrn_lua_sim_check(lua_State *L, int idx);
 sim_box *mrn_lua_sim_check_valid(lua_State *L, int idx, const char *what);
 /* the same, refused from inside the simulation's own hooks and callbacks */
 sim_box *mrn_lua_sim_check_idle(lua_State *L, int idx, const char *what);
+/* the same, but let through from a hook of an explicit run (between its
+ * steps), where particles may be added */
+sim_box *mrn_lua_sim_check_between_steps(lua_State *L, int idx, const char *what);
 /* a new simulation userdata with its outputs ready and no engine simulation yet */
 sim_box *mrn_lua_sim_push(lua_State *L);
 /* the output directory of the deck (-o) */
@@ -170,6 +175,8 @@ int l_sim_reduce(lua_State *L);
 int l_sim_record(lua_State *L);
 int l_sim_particle(lua_State *L);
 int l_sim_info(lua_State *L);
+/* sim:add_source{} and sim:source(i) into the method table at `methods` (lua_sim_source.c) */
+void mrn_lua_add_source_methods(lua_State *L, int methods);
 
 /* ---- the option groups, for --list-options (registered by lua_sim.c in one order) */
 

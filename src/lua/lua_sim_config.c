@@ -42,6 +42,8 @@ static const mrn_spec sim_specs[] = {
      "options of the implicit integrator (the keys of sim:implicit{}), with integrator = \"implicit\"", NULL},
     {"sort_every", MRN_SPEC_INTEGER, 0, 0, 0, 1e12, 0, 0, "steps",
      "reorder the particles by grid block every N explicit steps (0: never; indices change, ids stay)", NULL},
+    {"mass_scaling", MRN_SPEC_NUMBER, 0, 1, 1, 1e12, 0, 0, "",
+     "factor on the particles' inertial mass (explicit; gravity acts on the true mass; stable dt x sqrt)", NULL},
 };
 
 static const mrn_spec grid_specs[] = {
@@ -255,6 +257,7 @@ int l_simulation(lua_State *L) {
   if (!b->sim) mrn_lua_engine_error(L, where);
   mrn_lua_read_on_leave(L, 1, where, SIM_SPECS, b->sim);
   mrn_sim_set_sort_every(b->sim, mrn_lua_get_integer(L, 1, where, SIM_SPECS, "sort_every"));
+  b->sim->mass_scaling = mrn_lua_get_number(L, 1, where, SIM_SPECS, "mass_scaling");
   for (int i = 0; i < MRN_FACE_COUNT; i++) b->sim->boundary.face[i].kind = MRN_BC_SLIP;
   mrn_output_set_csv(&b->out, "diagnostics.csv", 10);
   const char *name = mrn_lua_get_string(L, 1, where, SIM_SPECS, "name");

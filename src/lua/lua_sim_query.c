@@ -55,6 +55,9 @@ int l_sim_energy(lua_State *L) {
   lua_pushnumber(L, d.friction); lua_setfield(L, -2, "friction");
   lua_pushnumber(L, d.damping); lua_setfield(L, -2, "damping");
   lua_pushnumber(L, d.external); lua_setfield(L, -2, "external");
+  lua_pushnumber(L, d.inflow); lua_setfield(L, -2, "inflow");
+  lua_pushnumber(L, d.inflow_work); lua_setfield(L, -2, "inflow_work");
+  lua_pushnumber(L, d.outflow); lua_setfield(L, -2, "outflow");
   lua_pushnumber(L, d.mpm_error); lua_setfield(L, -2, "mpm_error");
   return 1;
 }
@@ -81,6 +84,9 @@ int l_sim_diagnostics(lua_State *L) {
   lua_pushinteger(L, b->sim->outflow_particles); lua_setfield(L, -2, "outflow_particles");
   lua_pushnumber(L, b->sim->outflow_mass); lua_setfield(L, -2, "outflow_mass");
   lua_pushnumber(L, b->sim->energy_outflow); lua_setfield(L, -2, "energy_outflow");
+  lua_pushinteger(L, b->sim->inflow_particles); lua_setfield(L, -2, "inflow_particles");
+  lua_pushnumber(L, b->sim->inflow_mass); lua_setfield(L, -2, "inflow_mass");
+  lua_pushnumber(L, b->sim->mass_scaling); lua_setfield(L, -2, "mass_scaling");
   return 1;
 }
 

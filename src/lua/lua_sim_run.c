@@ -36,12 +36,21 @@ static const mrn_spec hook_specs[] = {
     {"fn", MRN_SPEC_FUNCTION, 1, 0, 0, 0, 0, 0, NULL, "function(sim)", NULL},
 };
 
+/* hooks and stop_when run between steps: they may add particles */
+static int call_between_steps(lua_State *L, int nresults) {
+  sim_box *b = lua_touserdata(L, 1);
+  b->between_steps = 1;
+  int rc = mrn_lua_callback_pcall(L, 1, nresults);
+  b->between_steps = 0;
+  return rc;
+}
+
 static int call_hook(void *ctx, mrn_sim *sim) {
   (void)sim;
   lua_State *L = mrn_lua_active;
   mrn_lua_callback_push(L, ctx);
   lua_pushvalue(L, 1);
-  return mrn_lua_callback_pcall(L, 1, 0);
+  return call_between_steps(L, 0);
 }
 
 static int call_stop_when(void *ctx, mrn_sim *sim) {
@@ -49,7 +58,7 @@ static int call_stop_when(void *ctx, mrn_sim *sim) {
   lua_State *L = mrn_lua_active;
   mrn_lua_callback_push(L, ctx);
   lua_pushvalue(L, 1);
-  int rc = mrn_lua_callback_pcall(L, 1, 1);
+  int rc = call_between_steps(L, 1);
   if (rc != MRN_OK) return rc;
   int stop = lua_toboolean(L, -1);
   lua_pop(L, 1);
@@ -166,7 +175,8 @@ int l_sim_run(lua_State *L) {
   sim_box *b = mrn_lua_sim_check_idle(L, 1, where);
   mrn_lua_check_table(L, 2, where, RUN_SPECS);
   if (mrn_lua_restart_at_run(L, b, where) == MRN_LUA_RESTART_SKIP) return 0;
-  if (b->sim->particles.n == 0) mrn_lua_error(L, where, "the simulation has no particles (add_particles first)");
+  if (b->sim->particles.n == 0 && b->sim->nsources == 0)
+    mrn_lua_error(L, where, "the simulation has no particles (add_particles or add_source first)");
   mrn_lua_implicit_prepare(L, 1, where); /* integrator = "implicit": made at the first run */
   /* a resumed simulation keeps the outputs the checkpoint continues */
   if (mrn_lua_has(L, 2, "output") && !b->resumed) {

@@ -59,7 +59,9 @@ static int init_particle_fields(lua_State *L) {
     lua_getfield(L, 2, "velocity");
     init_vector_field(L, -1, where, "velocity", b, first, count, ps->v, 3, b->sim->dim);
     lua_pop(L, 1);
-    b->sim->affine_pending = 1; /* grad v / C follow at the next run (000 §3.2) */
+    /* grad v / C follow at the next run (000 §3.2); particles added during
+     * a run start with C = 0, as a source's, and leave the others' alone */
+    if (!lua_toboolean(L, 5)) b->sim->affine_pending = 1;
   }
   if (mrn_lua_has(L, 2, "stress")) {
     lua_getfield(L, 2, "stress");
@@ -78,7 +80,8 @@ static int init_particle_fields(lua_State *L) {
 
 int l_sim_add_particles(lua_State *L) {
   const char *where = "add_particles()";
-  sim_box *b = mrn_lua_sim_check_idle(L, 1, where);
+  sim_box *b = mrn_lua_sim_check_between_steps(L, 1, where);
+  const char *outer = b->busy; /* "run{}" from a hook between steps, else NULL */
   mrn_region *region = mrn_lua_check_region(L, 2, where);
   mrn_lua_check_table(L, 3, where, particle_specs, MRN_COUNT(particle_specs));
   lua_getfield(L, 3, "material");
@@ -111,7 +114,7 @@ int l_sim_add_particles(lua_State *L) {
   mrn_lua_active = L;
   b->busy = where; /* region functions run inside the seeding */
   int seeded = mrn_sim_seed(b->sim, region, mat_index, per_axis, pl, &first, &count);
-  b->busy = NULL;
+  b->busy = outer;
   if (seeded != MRN_OK) mrn_lua_engine_error(L, where);
   if (count == 0) mrn_lua_error(L, where, "the region seeds no particle on this grid (is it inside the domain?)");
   mrn_suspicious_seed(b->sim, per_axis, count);
@@ -124,9 +127,10 @@ int l_sim_add_particles(lua_State *L) {
   lua_pushvalue(L, 3);
   lua_pushinteger(L, (lua_Integer)first);
   lua_pushinteger(L, count);
+  lua_pushboolean(L, outer != NULL);
   b->busy = where; /* and so do the velocity and stress functions */
-  int status = lua_pcall(L, 4, 0, 0);
-  b->busy = NULL;
+  int status = lua_pcall(L, 5, 0, 0);
+  b->busy = outer;
   if (status != LUA_OK) {
     b->sim->particles.n = first;
     mrn_sim_particles_changed(b->sim);
@@ -139,6 +143,7 @@ int l_sim_add_particles(lua_State *L) {
     }
     return lua_error(L);
   }
+  mrn_sim_book_inflow(b->sim, first, (size_t)count); /* once the energy balance runs, W_MPM books them */
   lua_pushinteger(L, count);
   return 1;
 }

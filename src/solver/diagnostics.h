@@ -11,7 +11,11 @@ typedef struct mrn_diagnostics {
   double friction;     /* W_frict, accumulated, <= 0 (000, Eq. 66) */
   double damping;      /* W_damp, work of the damping forces, accumulated, <= 0 */
   double external;     /* W_ext, work of the point forces, accumulated */
-  double mpm_error;    /* W_MPM = E - E_ref - W_pl - W_frict - W_damp - W_ext (000, Eqs. 67-68) */
+  double inflow;       /* E_in, E_k + E_g + E_el of the particles added (sources, hooks), accumulated */
+  double inflow_work;  /* W_in, work of the sources' inlet nodes, accumulated */
+  double outflow;      /* E_out, E_k + E_g + E_el - W_pl of the particles deleted on leaving, accumulated */
+  double mpm_error;    /* W_MPM = E - E_ref - W_pl - W_frict - W_damp - W_ext - E_in - W_in + E_out
+                        * (000, Eqs. 67-68) */
   double total;        /* E_k + E_g + E_el */
   double mass;
   double momentum[3];  /* sum m v */

@@ -60,6 +60,13 @@
   X(double, outflow_mass, F64, MRN_AT_LEAST(0.0), 2, 0.0, "kg", "their mass")                               \
   X(double, energy_outflow, F64, MRN_ANY, 2, 0.0, "J",                                                      \
     "their E_k + E_g + E_el - W_pl when deleted, added back in W_MPM")                                            \
+  X(long, inflow_particles, I64, MRN_COUNTER, 3, 0, "", "particles added by sources or during a run")          \
+  X(double, inflow_mass, F64, MRN_AT_LEAST(0.0), 3, 0.0, "kg", "their mass")                                \
+  X(double, energy_inflow, F64, MRN_ANY, 3, 0.0, "J",                                                       \
+    "their E_k + E_g + E_el when added, taken off in W_MPM")                                                      \
+  X(double, work_inflow, F64, MRN_ANY, 3, 0.0, "J", "work of the sources' inlet nodes on the material")    \
+  X(double, mass_scaling, F64, MRN_AT_LEAST(1.0), 3, 1.0, "",                                               \
+    "factor on the inertial mass of every particle (gravity acts on the true mass)")                              \
   X(double, mass_floor, F64, MRN_AT_LEAST(0.0), 1, 0.0, "kg", "nodes lighter than this count as empty")    \
   X(long, sort_every, I64, MRN_COUNTER, 2, 0, "steps",                                                   \
     "reorder the particles by grid block every this many steps, 0: never")                                        \

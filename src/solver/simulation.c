@@ -96,6 +96,7 @@ void mrn_sim_free(mrn_sim *sim) {
   for (int i = 0; i < sim->nmaterials; i++) mrn_material_unref(sim->materials[i]);
   mrn_dt_policy_release(&sim->dt_policy);
   for (int i = 0; i < sim->nconstraints; i++) mrn_constraint_free(&sim->constraints[i]);
+  mrn_sim_free_sources(sim);
   free(sim->constraints);
   free(sim->scratch);
   free(sim);
@@ -168,10 +169,14 @@ void mrn_sim_energies(const mrn_sim *sim, mrn_diagnostics *out) {
   out->damping = sim->work_damping;
   out->external = sim->work_external;
   out->total = ek + eg + eel;
-  /* (000, Eq. 68) summed over the steps since the balance started */
+  out->inflow = sim->energy_inflow;
+  out->inflow_work = sim->work_inflow;
+  out->outflow = sim->energy_outflow;
+  /* (000, Eq. 68) summed over the steps since the balance started, with what
+   * came in and went out through sources and free faces */
   out->mpm_error = sim->energy_ref_set
                        ? out->total - sim->energy_ref - wpl - sim->work_friction - sim->work_damping - sim->work_external +
-                             sim->energy_outflow
+                             sim->energy_outflow - sim->energy_inflow - sim->work_inflow
                        : 0.0;
   out->mass = mass;
   for (int d = 0; d < 3; d++) {
@@ -262,7 +267,17 @@ double mrn_sim_slowness(const mrn_sim *sim) {
     double s = sqrt(mrn_material_density(sim->materials[i]) / mrn_material_young(sim->materials[i]));
     if (s < best) best = s;
   }
-  return best;
+  return best * sqrt(sim->mass_scaling);
+}
+
+void mrn_sim_book_inflow(mrn_sim *sim, size_t first, size_t count) {
+  if (!sim->energy_ref_set) return; /* before the balance starts, E_ref takes them in */
+  const mrn_particles *ps = &sim->particles;
+  for (size_t p = first; p < first + count; p++) {
+    sim->energy_inflow += mrn_sim_particle_kinetic(sim, p) + mrn_sim_particle_gravity(sim, p) + ps->e_elastic[p];
+    sim->inflow_mass += ps->mass[p];
+    sim->inflow_particles++;
+  }
 }
 
 typedef struct seed_ctx {
@@ -355,7 +370,8 @@ void mrn_sim_energy_balance_start(mrn_sim *sim) {
   mrn_diagnostics d;
   sim->energy_ref_set = 0;
   mrn_sim_diagnostics(sim, &d);
-  sim->energy_ref = d.total - d.plastic - d.friction - d.damping + sim->energy_outflow;
+  sim->energy_ref = d.total - d.plastic - d.friction - d.damping + sim->energy_outflow - sim->energy_inflow -
+                    sim->work_inflow;
   sim->energy_ref_set = 1;
 }
 

@@ -18,6 +18,7 @@
 #include "shape/shape.h"
 #include "solver/diagnostics.h"
 #include "solver/sim_scalars.h"
+#include "solver/source.h"
 #include "solver/timestep.h"
 #include "solver/watchdog.h"
 #include "transfer/context.h"
@@ -66,6 +67,13 @@ typedef struct mrn_sim {
    * (the implicit one attaches itself: implicit/implicit.h); step == NULL:
    * the explicit step */
   mrn_integrator integrator;
+
+  /* inflow sources (solver/source.h), and the states a loaded checkpoint
+   * kept for sources not added again yet */
+  mrn_source *sources;
+  int nsources;
+  mrn_source_state *source_states;
+  int nsource_states;
 
   mrn_watchdog watchdog;        /* the bounds of the physical-sanity checks of mrn_run */
   mrn_watchdog_state watch;     /* what those checks saw */
@@ -194,10 +202,12 @@ static inline int mrn_sim_particle_ok(const mrn_sim *sim, size_t p) {
 
 /* A particle's kinetic energy 1/2 m |v|^2 (000, Eq. 47) and gravitational
  * energy -m g . x, zero at the origin's height (000, Eq. 48): the terms the
- * diagnostics sum, and what a deleted particle carries out of the balance. */
+ * diagnostics sum, and what a deleted particle carries out of the balance.
+ * The kinetic energy is that of the inertial mass, mass_scaling m: the one
+ * the scaled equations of motion conserve with E_g and E_el. */
 static inline double mrn_sim_particle_kinetic(const mrn_sim *sim, size_t p) {
   const double *v = sim->particles.v + 3 * p;
-  return 0.5 * sim->particles.mass[p] * (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+  return 0.5 * sim->particles.mass[p] * (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]) * sim->mass_scaling;
 }
 static inline double mrn_sim_particle_gravity(const mrn_sim *sim, size_t p) {
   const double *x = sim->particles.x + 3 * p, *g = sim->gravity;
@@ -207,7 +217,13 @@ static inline double mrn_sim_particle_gravity(const mrn_sim *sim, size_t p) {
 /* The error of mrn_sim_check_state for a particle that failed the test */
 int mrn_sim_particle_error(const mrn_sim *sim, size_t p);
 
-/* smallest sqrt(rho/E) over the materials in use, for the a_tau step */
+/* The energy a particle added to a running simulation brings in, E_k + E_g
+ * + E_el, booked as inflow with its mass once the energy balance has started
+ * (W_MPM then does not jump). For particles first .. first + count - 1. */
+void mrn_sim_book_inflow(mrn_sim *sim, size_t first, size_t count);
+
+/* smallest sqrt(rho/E) over the materials in use, for the a_tau step; with
+ * mass scaling that of the inertial density, mass_scaling rho */
 double mrn_sim_slowness(const mrn_sim *sim);
 
 #endif

@@ -26,12 +26,28 @@
 #include "transfer/profile.h"
 #include "transfer/xpic.h"
 
+/* Mass scaling: the nodal masses and momenta P2G just formed become those
+ * of the inertial mass, mass_scaling m. The velocities do not change; the
+ * forces accelerate the heavier nodes less, and the boundary conditions,
+ * constraints and damping see the inertial mass. */
+static void scale_grid_mass(mrn_sim *sim, const mrn_node_ranges *r) {
+  mrn_grid *g = &sim->grid;
+  const double f = sim->mass_scaling;
+#pragma omp parallel for schedule(static) if (r->nodes > MRN_OMP_MIN_NODES)
+  for (long k = 0; k < r->count; k++)
+    for (long i = r->lo[k]; i < r->hi[k]; i++) {
+      g->mass[i] *= f;
+      for (int d = 0; d < 3; d++) g->mom[3 * i + d] *= f;
+    }
+}
+
 /* nodal velocity from momentum, for nodes above the mass floor */
 static void grid_velocity(mrn_sim *sim) {
   const double t0 = mrn_phase_begin();
   mrn_grid *g = &sim->grid;
   const double floor_mass = sim->mass_floor;
   const mrn_node_ranges r = mrn_grid_active_ranges(g); /* every nodal array is zero elsewhere */
+  if (sim->mass_scaling != 1.0) scale_grid_mass(sim, &r);
 #pragma omp parallel for schedule(static) if (r.nodes > MRN_OMP_MIN_NODES)
   for (long k = 0; k < r.count; k++)
     for (long i = r.lo[k]; i < r.hi[k]; i++) {
@@ -40,6 +56,7 @@ static void grid_velocity(mrn_sim *sim) {
     }
   mrn_boundary_apply(&sim->boundary, g, floor_mass, g->vel, 0);
   for (int c = 0; c < sim->nconstraints; c++) mrn_constraint_apply(&sim->constraints[c], g, g->vel, floor_mass, 0.0);
+  if (sim->nsources) mrn_sources_apply(sim, g->vel, 0.0);
   mrn_phase_end(MRN_PHASE_GRID, t0);
 }
 
@@ -64,6 +81,9 @@ static void grid_update(mrn_sim *sim, double dt) {
   const double floor_mass = sim->mass_floor;
   const double D = sim->damping_cundall, alpha = sim->damping_viscous;
   const int damped = D > 0.0 || alpha > 0.0;
+  /* gravity acts on the true mass, the nodal mass over mass_scaling */
+  double gravity[3];
+  for (int d = 0; d < 3; d++) gravity[d] = sim->gravity[d] / sim->mass_scaling;
   const mrn_node_ranges r = mrn_grid_active_ranges(g); /* every nodal array is zero elsewhere */
   mrn_point_forces_to_grid(sim);
 #pragma omp parallel for schedule(static) if (r.nodes > MRN_OMP_MIN_NODES)
@@ -77,7 +97,7 @@ static void grid_update(mrn_sim *sim, double dt) {
           continue;
         }
         double v = g->vel[3 * i + d];
-        double f = g->force[3 * i + d] + m * sim->gravity[d];
+        double f = g->force[3 * i + d] + m * gravity[d];
         double fd = damped ? damping_force(D, alpha, f, v, m) : 0.0;
         double v_new = v + dt * (f + fd) / m;
         g->vel_new[3 * i + d] = v_new;
@@ -89,8 +109,12 @@ static void grid_update(mrn_sim *sim, double dt) {
   double work = 0.0;
   for (long k = 0; k < r.count; k++) work += r.sum[k]; /* fixed order: the same for any thread count */
   sim->work_damping += work;
+  /* the inlets' work is that on the velocity the forces gave, before any
+   * face condition: booked here, and the inlets held again after the faces */
+  if (sim->nsources) mrn_sources_apply(sim, g->vel_new, dt);
   sim->work_friction += mrn_boundary_apply(&sim->boundary, g, floor_mass, g->vel_new, 1);
   for (int c = 0; c < sim->nconstraints; c++) mrn_constraint_apply(&sim->constraints[c], g, g->vel_new, floor_mass, dt);
+  if (sim->nsources) mrn_sources_apply(sim, g->vel_new, 0.0);
   sim->work_external += mrn_point_forces_work(sim, dt);
   mrn_phase_end(MRN_PHASE_GRID, t0);
 }
@@ -385,6 +409,8 @@ static int step_usavg(mrn_sim *sim, mrn_transfer *tr, double dt, step_end *end) 
 int mrn_sim_step_dt(mrn_sim *sim, double dt) {
   if (!(dt > 0.0) || !isfinite(dt)) return mrn_error("step %ld: invalid time step %s", sim->step + 1, mrn_num(dt).s);
   sim->dt = dt;
+  int rc = sim->nsources ? mrn_sources_begin_step(sim, dt) : MRN_OK;
+  if (rc) return rc;
   /* the end of the step inside G2P, chunk by chunk (see end_ctx) */
   end_ctx e = end_setup(sim);
   const mrn_particle_pass end_pass = {end_chunk, &e};
@@ -392,7 +418,6 @@ int mrn_sim_step_dt(mrn_sim *sim, double dt) {
   mrn_boundary_touch(&sim->boundary, &sim->grid, 0.5 * mrn_shape_support(sim->shape), sim->particles.x,
                      sim->particles.vol0, sim->particles.n);
   mrn_transfer tr = mrn_sim_transfer(sim);
-  int rc = MRN_OK;
   switch (sim->scheme.stress_update) {
   case MRN_STRESS_USF: rc = step_usf(sim, &tr, dt, &end); break;
   case MRN_STRESS_USL: rc = step_usl(sim, &tr, dt, &end); break;
@@ -403,8 +428,9 @@ int mrn_sim_step_dt(mrn_sim *sim, double dt) {
   if (rc) return rc;
   sim->time += dt;
   sim->step++;
-  if (!end.pass) return end_of_step(sim);
-  return end.bad >= 0 ? mrn_sim_particle_error(sim, (size_t)end.bad) : MRN_OK;
+  rc = !end.pass ? end_of_step(sim) : end.bad >= 0 ? mrn_sim_particle_error(sim, (size_t)end.bad) : MRN_OK;
+  /* the sources' new particles join the state the step ended on */
+  return rc == MRN_OK && sim->nsources ? mrn_sources_emit(sim, dt) : rc;
 }
 
 int mrn_sim_step(mrn_sim *sim) {

@@ -24,10 +24,13 @@ double mrn_dt_particle_critical_at(const mrn_sim *sim, long *fastest_particle, d
   const mrn_particles *ps = &sim->particles;
   const double h = sim->grid.cell;
   double speed[MRN_MAX_MATERIALS], viscous = HUGE_VAL;
+  /* with mass scaling the inertial density is f rho: the waves are sqrt(f)
+   * slower and the kinematic viscosity eta / (f rho) is f times smaller */
+  const double f = sim->mass_scaling, slower = f != 1.0 ? 1.0 / sqrt(f) : 1.0;
   for (int i = 0; i < sim->nmaterials; i++) {
     const mrn_material *m = sim->materials[i];
-    speed[i] = m->type->wave_speed ? m->type->wave_speed(m) : 0.0; /* (002, Eq. 34) */
-    if (m->type->viscous_dt) viscous = fmin(viscous, m->type->viscous_dt(m, h)); /* h^2 / nu (002, Eq. 36) */
+    speed[i] = (m->type->wave_speed ? m->type->wave_speed(m) : 0.0) * slower; /* (002, Eq. 34) */
+    if (m->type->viscous_dt) viscous = fmin(viscous, f * m->type->viscous_dt(m, h)); /* h^2 / nu (002, Eq. 36) */
   }
   double fastest = 0.0, top = -1.0;
   long top_p = -1;
@@ -39,6 +42,13 @@ double mrn_dt_particle_critical_at(const mrn_sim *sim, long *fastest_particle, d
       top = u;
       top_p = (long)p;
     }
+  }
+  /* the particles a source is about to make (and all there is in a run
+   * that starts empty) */
+  for (int k = 0; k < sim->nsources; k++) {
+    const mrn_source *src = &sim->sources[k];
+    const double *v = src->cfg.fn ? src->v : src->cfg.velocity;
+    fastest = fmax(fastest, speed[src->cfg.material] + sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]));
   }
   if (fastest_particle) *fastest_particle = top_p;
   if (top_speed) *top_speed = top_p >= 0 ? top : 0.0;
@@ -59,7 +69,8 @@ double mrn_dt_grid_critical(mrn_sim *sim) {
   }
   double slowness = sim->dim == 2 ? mrn_grid_slowness_2d(sim, modulus) : mrn_grid_slowness_3d(sim, modulus);
   free(modulus);
-  return sim->grid.cell * slowness; /* (001, Eq. 61) */
+  /* the nodal masses of the inertial mass, mass_scaling m (solver/step.c) */
+  return sim->grid.cell * slowness * sqrt(sim->mass_scaling); /* (001, Eq. 61) */
 }
 
 void mrn_dt_policy_release(mrn_dt_policy *p) {

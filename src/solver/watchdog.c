@@ -37,7 +37,7 @@ static double energy_scale(const mrn_watchdog_state *s, const mrn_sim *sim, cons
   double fall = 0.0; /* |g| L = sum_i |g_i| size_i */
   for (int i = 0; i < sim->dim; i++) fall += fabs(sim->gravity[i]) * sim->grid.size[i];
   double scale = s->e_start + d->mass * fall + fabs(d->plastic) + fabs(d->friction) + fabs(d->damping) +
-                 fabs(d->external);
+                 fabs(d->external) + fabs(d->inflow) + fabs(d->inflow_work) + fabs(d->outflow);
   const double crawl = 1e-3 * sim->grid.cell / sim->dt; /* a thousandth of a cell per step */
   return fmax(scale, 0.5 * d->mass * crawl * crawl);
 }
@@ -96,7 +96,9 @@ static int test_energy(mrn_watchdog_state *s, const mrn_sim *sim, double dt_rati
   if (!(w->energy > 0) || !sim->energy_ref_set || driven(sim)) return MRN_OK;
   mrn_diagnostics d;
   mrn_sim_energies(sim, &d);
-  const double scale = energy_scale(s, sim, &d), ratio = d.mpm_error / scale;
+  const double scale = energy_scale(s, sim, &d);
+  if (!(scale > 0.0)) return MRN_OK; /* no particles yet (a source about to begin): nothing to judge */
+  const double ratio = d.mpm_error / scale;
   s->peak_energy = fmax(s->peak_energy, ratio);
   if (ratio <= w->energy) return MRN_OK;
   char what[512];

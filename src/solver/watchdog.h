@@ -15,6 +15,7 @@
  * E_scale = E_k + E_el when run{} started + M |g| L (the potential energy of
  * all the mass falling across the grid, L the grid's extent along g) + the
  * magnitudes of the booked work W_pl, W_friction, W_damping, W_external,
+ * of the energy in- and outflow E_inflow, W_inflow, E_outflow,
  * and at least 1e-6 * M (h / dt)^2 / 2 (all the mass moving a thousandth of
  * a cell per step), so that a problem with no energy at all has a scale.
  * A velocity face or constraint with a non-zero velocity does work that the

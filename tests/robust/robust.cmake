@@ -55,3 +55,7 @@ add_custom_target(memcheck COMMAND ${CMAKE_SOURCE_DIR}/scripts/memcheck.sh ${CMA
 # --restart leaves a straight run's outputs; refused second and concurrent runs
 add_test(NAME robust.resume COMMAND ${MORAINE_ROBUST_DIR}/resume.sh $<TARGET_FILE:moraine> ${MORAINE_TEST_OUT}/robust_resume ${Python3_EXECUTABLE})
 set_tests_properties(robust.resume PROPERTIES LABELS robust ENVIRONMENT OMP_WAIT_POLICY=PASSIVE TIMEOUT 120)
+# an inflow source continued with --restart: its progress from /sources, bit for bit
+add_test(NAME robust.source_restart COMMAND ${MORAINE_ROBUST_DIR}/source_restart.sh $<TARGET_FILE:moraine>
+                                            ${MORAINE_TEST_OUT}/robust_source_restart ${Python3_EXECUTABLE})
+set_tests_properties(robust.source_restart PROPERTIES LABELS robust ENVIRONMENT OMP_WAIT_POLICY=PASSIVE)
