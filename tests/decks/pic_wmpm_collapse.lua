@@ -71,7 +71,7 @@ for j, dt in ipairs(dts) do
                       dt, runs[j][samples], reach, reach / dt))
 end
 T.expect{ id = "pic_wmpm_collapse.drop", what = "|Delta E_p^stable| of the settled column (000, Eq. 69; 000 Fig. 12: about 2.45 J/m)",
-          value = drop, reference = 2.45, asserted = false, unit = "J/m" }
+          value = drop, reference = 2.45, rtol = 0.05, asserted = false, unit = "J/m" }
 T.expect{ id = "pic_wmpm_collapse.W_end", what = string.format("W_MPM / |Delta E_p^stable| at t * dt = %.3g s^2, smallest dt", reach),
           value = runs[ref][samples] / drop, asserted = false }
 T.expect{ id = "pic_wmpm_collapse.spread", what = "largest departure of W_MPM from the smallest dt's at matched t * dt, over |Delta E_p^stable| (000 Fig. 12b: one curve)",

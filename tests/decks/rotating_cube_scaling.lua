@@ -7,6 +7,8 @@
 --   10x    a_tau = 0.05, 10 omega     (000: "about 95 times faster"; reported)
 -- The loss rate is 000's "%/s": the least-squares slope of 100 L/L0 against t
 -- over the run, L the angular momentum about the centroid (000, Eq. 56).
+-- 000's rates and the 10x ratio are targets within 10 % ("approximately"),
+-- reported, not asserted.
 -- Checks: rate(dt/2) / rate(base) in [0.4, 0.6], rate(5x) / rate(base) in
 -- [18, 30]. --set time=T shortens the runs (the validation case runs 400 s,
 -- as 000 Fig. 9); --set samples=N the number of L samples. The fitted slope
@@ -47,9 +49,9 @@ local base = loss_rate("base", 0.05, 1)
 local half = loss_rate("dt2", 0.025, 1)
 local spin5 = loss_rate("spin5", 0.05, 5)
 T.expect{ id = "rotating_cube_scaling.base", what = "APIC loss rate, a_tau = 0.05 (000 Fig. 8c: about twice 4.6e-5 %/s)",
-          value = base, reference = 9.2e-5, asserted = false, unit = "%/s" }
+          value = base, reference = 9.2e-5, rtol = 0.1, asserted = false, unit = "%/s" }
 T.expect{ id = "rotating_cube_scaling.dt2", what = "APIC loss rate, a_tau = 0.025 (000 Fig. 8b: about 4.6e-5 %/s)",
-          value = half, reference = 4.6e-5, asserted = false, unit = "%/s" }
+          value = half, reference = 4.6e-5, rtol = 0.1, asserted = false, unit = "%/s" }
 T.expect{ id = "rotating_cube_scaling.dt_ratio", what = "loss-rate ratio, dt/2 against dt (000 Fig. 8: halves)",
           value = half / base, reference = 0.5, min = 0.4, max = 0.6 }
 T.expect{ id = "rotating_cube_scaling.spin5_ratio", what = "loss-rate ratio, 5x spin against 1x (000 Fig. 9: about 24)",
@@ -57,6 +59,6 @@ T.expect{ id = "rotating_cube_scaling.spin5_ratio", what = "loss-rate ratio, 5x 
 if mpm.param("spin10", true) then
   local spin10 = loss_rate("spin10", 0.05, 10)
   T.expect{ id = "rotating_cube_scaling.spin10_ratio", what = "loss-rate ratio, 10x spin against 1x (000 Fig. 9: about 95)",
-            value = spin10 / base, reference = 95, asserted = false }
+            value = spin10 / base, reference = 95, rtol = 0.1, asserted = false }
 end
 T.done("rotating_cube_scaling")
