@@ -101,6 +101,10 @@ def rotating_cube_scaling(case, run, records, runs, path):
                 ax.plot(c["time"], 100 * (1 - c["L_centroid"] / c["L_centroid"][0]), label=labels[n])
     b.set_yscale("log")
     a.set_title(f"time step: rate ratio {value.get('dt_ratio', float('nan')):.3f} (000: 0.5)", fontsize=10)
+    a.set_xlabel("t (s)")
+    a.set_ylabel("1 - L / L0 (%)")
+    a.grid(True, alpha=0.3)
+    a.legend(fontsize=8)
     finish(fig, b, path, f"spin: ratios {value.get('spin5_ratio', float('nan')):.1f} (000: 24), "
            f"{value.get('spin10_ratio', float('nan')):.0f} (000: 95)", "t (s)", "1 - L / L0 (%)")
 

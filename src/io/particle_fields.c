@@ -67,7 +67,9 @@ FIELD_FN(f_eps_D) {
 static void particle_gradients(const mrn_sim *sim, size_t first, size_t count, double (*L)[9]) {
   const mrn_kernel_options k = mrn_sim_kernel_options(sim);
   const mrn_particles *ps = &sim->particles;
-  FOR_PARTICLES(first, count) mrn_probe_grid_gradient(&sim->grid, &k, sim->grid.vel_new, ps->x + 3 * p, ps->vol0[p], L[q]);
+  FOR_PARTICLES(first, count) {
+    mrn_probe_grid_gradient(&sim->grid, &k, sim->grid.vel_new, ps->x + 3 * p, ps->vol0[p], L[q]);
+  }
 }
 
 FIELD_FN(f_velocity_gradient) { particle_gradients(sim, first, count, out); }
