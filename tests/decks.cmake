@@ -42,6 +42,9 @@ moraine_deck_test(bouncing_cube_flip_family bouncing_cube_strategies.lua
                   ARGS --set strategies=PIC,FLIP,TFLIP,XPIC\(2\),XPIC\(3\),XPIC\(4\) LABELS long)
 # USAVG against USF, USL strictly dissipative: FLIP at two time steps
 moraine_deck_test(bouncing_cube_updates bouncing_cube_updates.lua ARGS --set strategies=FLIP LABELS long)
+# the PIC family loses about half the energy at the impact under every stress update
+moraine_deck_test(bouncing_cube_updates_pic bouncing_cube_updates.lua ARGS --set strategies=PIC,APIC,TPIC --set a_tau=0.05
+                  LABELS long)
 moraine_deck_test(rotating_disk rotating_disk.lua)
 moraine_deck_test(simple_shear simple_shear.lua)
 moraine_deck_test(settling settling.lua)
@@ -50,6 +53,14 @@ moraine_deck_test(checkpoint_workflow checkpoint_workflow.lua)
 # sort_every: the same physics by id, changed indices, kept by checkpoints
 moraine_deck_test(sort_every sort_every.lua)
 moraine_deck_test(rotating_cube rotating_cube.lua ARGS --set time=10)
+# APIC's angular-momentum loss rate: halves with dt, about 24x at 5x the spin (000 Figs. 8, 9);
+# 5 s here, 000's 400 s as the validation case
+moraine_deck_test(rotating_cube_scaling rotating_cube_scaling.lua ARGS --set time=5 --set spin10=false)
+moraine_deck_test(rotating_cube_scaling_full rotating_cube_scaling.lua LABELS long)
+# PIC's W_MPM during the settling is a function of t * dt (000 Fig. 12b)
+moraine_deck_test(pic_wmpm_collapse pic_wmpm_collapse.lua)
+moraine_deck_test(pic_wmpm_collapse_full pic_wmpm_collapse.lua
+                  ARGS --set dts=2.92e-6,1.46e-6,3.65e-7 --set samples=40 --set steps=1750 LABELS long)
 # linear shapes: APIC, AFLIP and TFLIP keep the angular momentum (mass-weighted affine fit)
 moraine_deck_test(rotating_cube_linear rotating_cube.lua ARGS --set time=10 --set shape=linear
                   --set transfer=APIC)

@@ -143,3 +143,12 @@ add_test(NAME python.run_log
          COMMAND ${Python3_EXECUTABLE} ${CMAKE_CURRENT_SOURCE_DIR}/python/check_run_log.py $<TARGET_FILE:moraine>
                  ${MORAINE_OUTPUTS_DIR}/run_log)
 set_tests_properties(python.run_log PROPERTIES LABELS python ENVIRONMENT OMP_WAIT_POLICY=PASSIVE)
+
+# ---- velocity_gradient and vorticity (tests/decks/velocity_gradient.lua) --------
+# rigid rotations (2D, 3D) and a simple shear: L and curl v exact, in every VTK form
+moraine_deck_test(velocity_gradient velocity_gradient.lua)
+set_tests_properties(deck.velocity_gradient PROPERTIES FIXTURES_SETUP velocity_gradient)
+add_test(NAME python.velocity_gradient
+         COMMAND ${Python3_EXECUTABLE} ${CMAKE_CURRENT_SOURCE_DIR}/python/check_velocity_gradient.py
+                 ${MORAINE_TEST_OUT}/velocity_gradient)
+set_tests_properties(python.velocity_gradient PROPERTIES LABELS python FIXTURES_REQUIRED velocity_gradient)

@@ -88,6 +88,44 @@ def rotating_cube_L(case, run, records, runs, path):
     finish(fig, ax, path, "Rotating cube (000 §4.2): angular momentum about the centroid", "t (s)", "L / L0")
 
 
+def rotating_cube_scaling(case, run, records, runs, path):
+    value = {r["id"].rsplit(".", 1)[1]: r["value"] for r in records}
+    fig, (a, b) = plt.subplots(1, 2, figsize=(10, 4))
+    labels = {"base": "a_tau = 0.05, omega", "dt2": "a_tau = 0.025, omega", "spin5": "a_tau = 0.05, 5 omega",
+              "spin10": "a_tau = 0.05, 10 omega"}
+    for ax, names in ((a, ("base", "dt2")), (b, ("base", "spin5", "spin10"))):
+        for n in names:
+            f = os.path.join(run, f"scaling_{n}.csv")
+            if os.path.isfile(f):
+                c = read_csv(f)
+                ax.plot(c["time"], 100 * (1 - c["L_centroid"] / c["L_centroid"][0]), label=labels[n])
+    b.set_yscale("log")
+    a.set_title(f"time step: rate ratio {value.get('dt_ratio', float('nan')):.3f} (000: 0.5)", fontsize=10)
+    a.set_xlabel("t (s)")
+    a.set_ylabel("1 - L / L0 (%)")
+    a.grid(True, alpha=0.3)
+    a.legend(fontsize=8)
+    finish(fig, b, path, f"spin: ratios {value.get('spin5_ratio', float('nan')):.1f} (000: 24), "
+           f"{value.get('spin10_ratio', float('nan')):.0f} (000: 95)", "t (s)", "1 - L / L0 (%)")
+
+
+def pic_wmpm_collapse(case, run, records, runs, path):
+    drop = next(r["value"] for r in records if r["id"].endswith(".drop"))
+    spread = next(r["value"] for r in records if r["id"].endswith(".spread"))
+    c = read_csv(os.path.join(run, "pic_wmpm.csv"))
+    fig, (a, b) = plt.subplots(1, 2, figsize=(10, 4))
+    for dt in sorted(set(c["dt"]), reverse=True):
+        m = c["dt"] == dt
+        a.plot(c["t_dt"][m], c["W_MPM"][m] / drop, "o-", ms=3, label=f"dt = {dt:.3g} s")
+        b.plot(c["t"][m], c["W_MPM"][m] / drop, "o-", ms=3, label=f"dt = {dt:.3g} s")
+    a.set_xlabel("t dt (s^2)")
+    a.set_ylabel("W_MPM / |dE_p^stable|")
+    a.set_title(f"against t dt: curves within {spread:.1f} % of |dE_p^stable|", fontsize=10)
+    a.grid(True, alpha=0.3)
+    a.legend(fontsize=8)
+    finish(fig, b, path, "against t: the same runs", "t (s)", "W_MPM / |dE_p^stable|")
+
+
 def strip_footing(case, run, records, runs, path):
     c = read_csv(os.path.join(run, "footing.csv"))
     fig, ax = plt.subplots(figsize=(7, 4))
@@ -180,7 +218,7 @@ def collapse_picture(run, path, ratio="2.4"):
 
 
 PLOTTERS = {f.__name__: f for f in (settling_energy, axial_bar, bouncing_cube_energy, bouncing_cube_updates,
-                                    rotating_cube_L, strip_footing,
+                                    rotating_cube_L, rotating_cube_scaling, pic_wmpm_collapse, strip_footing,
                                     channel_convergence, dam_break, sand_column, lube)}
 
 

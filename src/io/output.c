@@ -198,14 +198,15 @@ static char *snapshot_base(mrn_output *o) {
 }
 
 /* the arrays of the fields the deck listed, every field when it listed none
- * (the built-in ones, then those it registered); an error names a field
- * that is neither */
+ * (the built-in ones but those written on request, then those it
+ * registered); an error names a field that is neither */
 static int gather_fields(const mrn_output *o, const mrn_sim *sim, mrn_vtk_array *arrays, field_source *sources,
                          int *nf) {
   const int builtins = mrn_output_field_count();
   int count = o->nfields ? o->nfields : builtins + sim->particles.nuser;
   *nf = 0;
   for (int i = 0; i < count && *nf < MRN_OUTPUT_MAX_FIELDS; i++) {
+    if (!o->nfields && i < builtins && mrn_output_field_at(i)->on_request) continue;
     const char *name = o->nfields      ? o->fields[i]
                        : i < builtins ? mrn_output_field_at(i)->name
                                       : sim->particles.user_fields[i - builtins].name;

@@ -6,6 +6,7 @@
 
 #include "core/tensor.h"
 #include "solver/simulation.h"
+#include "transfer/probe.h"
 
 /* the particles [first, first + count) of a fill, q counting from 0 in out */
 #define FOR_PARTICLES(first, count) for (size_t q = 0, p = (first); q < (count); q++, p++)
@@ -60,6 +61,39 @@ FIELD_FN(f_eps_D) {
   }
 }
 
+/* L = sum_i V~_i (x) grad N_i at each particle (000, Eqs. 44-45), from the
+ * nodal velocities of the last completed step: computed here rather than
+ * stored, so runs that do not write it keep their bytes per particle */
+static void particle_gradients(const mrn_sim *sim, size_t first, size_t count, double (*L)[9]) {
+  const mrn_kernel_options k = mrn_sim_kernel_options(sim);
+  const mrn_particles *ps = &sim->particles;
+  FOR_PARTICLES(first, count) {
+    mrn_probe_grid_gradient(&sim->grid, &k, sim->grid.vel_new, ps->x + 3 * p, ps->vol0[p], L[q]);
+  }
+}
+
+FIELD_FN(f_velocity_gradient) { particle_gradients(sim, first, count, out); }
+
+/* curl v from L (L[3a + b] = dv_a/dx_b); in 2D its z component alone,
+ * dv/dx - du/dy */
+FIELD_FN(f_vorticity) {
+  enum { CHUNK = 256 }; /* particles whose L sit on the stack at once */
+  double *o = out, L[CHUNK][9];
+  for (size_t done = 0; done < count; done += CHUNK) {
+    const size_t n = count - done < CHUNK ? count - done : CHUNK;
+    particle_gradients(sim, first + done, n, L);
+    for (size_t q = 0; q < n; q++) {
+      const double *l = L[q];
+      if (sim->dim == 2) {
+        o[done + q] = l[3] - l[1];
+        continue;
+      }
+      double *w = o + 3 * (done + q);
+      w[0] = l[7] - l[5], w[1] = l[2] - l[6], w[2] = l[3] - l[1];
+    }
+  }
+}
+
 FIELD_FN(f_material) {
   int32_t *o = out;
   FOR_PARTICLES(first, count) o[q] = sim->particles.material[p];
@@ -71,26 +105,29 @@ FIELD_FN(f_id) {
 }
 
 static const mrn_output_field fields[] = {
-    {"velocity", 3, MRN_VTK_FLOAT64, "m/s", "particle velocity", f_velocity},
-    {"displacement", 3, MRN_VTK_FLOAT64, "m", "position minus initial position", f_displacement},
-    {"mass", 1, MRN_VTK_FLOAT64, "kg", "particle mass (kg/m in 2D)", f_mass},
-    {"volume", 1, MRN_VTK_FLOAT64, "m^3", "current particle volume (m^2 in 2D)", f_volume},
-    {"density", 1, MRN_VTK_FLOAT64, "kg/m^3", "mass / volume", f_density},
-    {"stress", 6, MRN_VTK_FLOAT64, "Pa", "Cauchy stress xx, yy, zz, xy, yz, xz (tension positive)", f_stress},
-    {"strain", 6, MRN_VTK_FLOAT64, "", "accumulated small strain xx, yy, zz, xy, yz, xz", f_strain},
-    {"pressure", 1, MRN_VTK_FLOAT64, "Pa", "-tr(stress)/3, compression positive", f_pressure},
-    {"von_mises", 1, MRN_VTK_FLOAT64, "Pa", "von Mises equivalent stress sqrt(3/2 s:s)", f_von_mises},
-    {"eps_D", 1, MRN_VTK_FLOAT64, "", "deviatoric strain norm (000, Eq. 75)", f_eps_D},
-    {"elastic_energy", 1, MRN_VTK_FLOAT64, "J", "elastic energy stored in the particle", f_elastic_energy},
-    {"deformation_gradient", 9, MRN_VTK_FLOAT64, "", "F, row-major", f_F},
-    {"material", 1, MRN_VTK_INT32, "", "material index (order of first use in the simulation)", f_material},
-    {"id", 1, MRN_VTK_INT64, "", "particle id, stable through the run", f_id},
+    {"velocity", 3, MRN_VTK_FLOAT64, "m/s", "particle velocity", f_velocity, 0, 0},
+    {"displacement", 3, MRN_VTK_FLOAT64, "m", "position minus initial position", f_displacement, 0, 0},
+    {"mass", 1, MRN_VTK_FLOAT64, "kg", "particle mass (kg/m in 2D)", f_mass, 0, 0},
+    {"volume", 1, MRN_VTK_FLOAT64, "m^3", "current particle volume (m^2 in 2D)", f_volume, 0, 0},
+    {"density", 1, MRN_VTK_FLOAT64, "kg/m^3", "mass / volume", f_density, 0, 0},
+    {"stress", 6, MRN_VTK_FLOAT64, "Pa", "Cauchy stress xx, yy, zz, xy, yz, xz (tension positive)", f_stress, 0, 0},
+    {"strain", 6, MRN_VTK_FLOAT64, "", "accumulated small strain xx, yy, zz, xy, yz, xz", f_strain, 0, 0},
+    {"pressure", 1, MRN_VTK_FLOAT64, "Pa", "-tr(stress)/3, compression positive", f_pressure, 0, 0},
+    {"von_mises", 1, MRN_VTK_FLOAT64, "Pa", "von Mises equivalent stress sqrt(3/2 s:s)", f_von_mises, 0, 0},
+    {"eps_D", 1, MRN_VTK_FLOAT64, "", "deviatoric strain norm (000, Eq. 75)", f_eps_D, 0, 0},
+    {"elastic_energy", 1, MRN_VTK_FLOAT64, "J", "elastic energy stored in the particle", f_elastic_energy, 0, 0},
+    {"deformation_gradient", 9, MRN_VTK_FLOAT64, "", "F, row-major", f_F, 0, 0},
+    {"material", 1, MRN_VTK_INT32, "", "material index (order of first use in the simulation)", f_material, 0, 0},
+    {"id", 1, MRN_VTK_INT64, "", "particle id, stable through the run", f_id, 0, 0},
+    {"velocity_gradient", 9, MRN_VTK_FLOAT64, "1/s", "grid velocity gradient L at the particle, row-major",
+     f_velocity_gradient, 0, 1},
+    {"vorticity", 3, MRN_VTK_FLOAT64, "1/s", "curl of the grid velocity; 2D: dv/dx - du/dy alone", f_vorticity, 1, 1},
 };
 enum { FIELD_COUNT = sizeof fields / sizeof fields[0] };
 
 static const char *const names[] = {"velocity", "displacement", "mass", "volume", "density", "stress",
                                     "strain", "pressure", "von_mises", "eps_D", "elastic_energy",
-                                    "deformation_gradient", "material", "id", NULL};
+                                    "deformation_gradient", "material", "id", "velocity_gradient", "vorticity", NULL};
 
 int mrn_output_field_count(void) { return FIELD_COUNT; }
 const mrn_output_field *mrn_output_field_at(int i) { return &fields[i]; }
@@ -104,7 +141,8 @@ const char *const *mrn_output_field_names(void) { return names; }
 int mrn_field_lookup(const mrn_sim *sim, const char *name, mrn_field_ref *out) {
   const mrn_output_field *f = mrn_output_field_find(name);
   if (f) {
-    *out = (mrn_field_ref){f->name, f->ncomp, f->type, f, NULL};
+    const int ncomp = sim->dim == 2 && f->ncomp_2d ? f->ncomp_2d : f->ncomp;
+    *out = (mrn_field_ref){f->name, ncomp, f->type, f, NULL};
     return 1;
   }
   const mrn_user_field *u = mrn_particles_user_field(&sim->particles, name);

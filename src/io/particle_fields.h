@@ -22,6 +22,8 @@ typedef struct mrn_output_field {
   const char *doc;
   /* fill `out` with the values of particles [first, first + count) (count * ncomp values of `type`) */
   void (*compute)(const struct mrn_sim *sim, size_t first, size_t count, void *out);
+  int ncomp_2d;   /* values per particle in 2D when not ncomp (0: ncomp) */
+  int on_request; /* written only when named (not among "all fields"): worked out from the grid */
 } mrn_output_field;
 
 int mrn_output_field_count(void);
@@ -40,7 +42,8 @@ typedef struct mrn_field_ref {
   const struct mrn_user_field *user;
 } mrn_field_ref;
 
-/* 1 and *out filled when `name` is a field of sim, else 0 */
+/* 1 and *out filled when `name` is a field of sim, else 0; out->ncomp is
+ * the field's count in sim's dimension */
 int mrn_field_lookup(const struct mrn_sim *sim, const char *name, mrn_field_ref *out);
 /* n * ncomp values of the field (of its type) into out */
 void mrn_field_fill(const struct mrn_sim *sim, const mrn_field_ref *f, void *out);

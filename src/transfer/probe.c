@@ -20,3 +20,20 @@ int mrn_probe_grid(const mrn_transfer *tr, const double *nodal, int ncomp, const
   if (tr->dim == 3) PROBE_BODY(3d) else PROBE_BODY(2d)
   return 0;
 }
+
+#define GRADIENT_BODY(SUFFIX, DIMS)                                                       \
+  {                                                                                      \
+    stencil_##SUFFIX s;                                                                  \
+    stencil_build_##SUFFIX(g, k, x, vol0, &s);                                           \
+    for (int c = 0; c < s.count; c++)                                                    \
+      for (int a = 0; a < DIMS; a++)                                                     \
+        for (int b = 0; b < DIMS; b++) L[3 * a + b] += nodal[3 * s.node[c] + a] * s.dN[c][b]; \
+  }
+
+int mrn_probe_grid_gradient(const mrn_grid *g, const mrn_kernel_options *k, const double *nodal, const double x[3],
+                            double vol0, double L[9]) {
+  for (int c = 0; c < 9; c++) L[c] = 0.0;
+  if (!mrn_grid_contains(g, x)) return -1;
+  if (g->dim == 3) GRADIENT_BODY(3d, 3) else GRADIENT_BODY(2d, 2)
+  return 0;
+}

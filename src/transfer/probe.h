@@ -15,4 +15,13 @@
  * a particle half a cell wide is used (the probe has no size of its own). */
 int mrn_probe_grid(const mrn_transfer *tr, const double *nodal, int ncomp, const double x[3], double *out);
 
+/* The gradient of a nodal vector array (3 values per node) of grid g at
+ * point x, L[3 a + b] = sum_i nodal_i,a dN_i/dx_b (000, Eqs. 44-45: the
+ * velocity gradient of the stress update), row-major 3 x 3, zero beyond the
+ * dimension, with the kernel k (mrn_sim_kernel_options). vol0 is the initial
+ * volume of the particle at x (the uGIMP kernel's width). Returns 0, or -1
+ * when x lies outside the grid (L zeroed). Only reads g. */
+int mrn_probe_grid_gradient(const mrn_grid *g, const mrn_kernel_options *k, const double *nodal, const double x[3],
+                            double vol0, double L[9]);
+
 #endif

@@ -18,19 +18,11 @@ local T = dofile(mpm.deck_dir .. "/testlib.lua")
 local duration = mpm.param("time", 10.0)
 local shape = mpm.param("shape", "quadratic_bspline")
 local tag = shape == "quadratic_bspline" and "" or shape .. "." -- in result ids and file names
-local mat = mpm.material.linear_elastic{ density = 1748, E = 12.84e6, nu = 0.16 }
-local Vc, w = 0.0171, 0.108
-local s3, s23 = 1 / math.sqrt(3), math.sqrt(2 / 3)
+local C = dofile(mpm.deck_dir .. "/rotating_cube_setup.lua")
+local Vc = C.Vc
 
 local function throw(transfer, t_end)
-  local sim = mpm.simulation{ dim = 3, grid = { origin = { -2.5, -2.5, -2.5 }, size = { 8, 8, 8 }, cell = 1.0 },
-                              shape = shape, scheme = { transfer = transfer, stress_update = "USF" },
-                              boundary = { all = "free" }, dt = { a_tau = 0.05 }, thermo = 0,
-                              diagnostics = "cube_" .. tag .. transfer .. ".csv", diagnostics_every = 100 }
-  sim:add_particles(mpm.box{ min = { 0, 0, 0 }, max = { 3, 3, 3 } }, { material = mat, per_axis = 2,
-                    placement = "regular",
-                    velocity = mpm.rigid_rotation{ omega = w, axis = { 0.5 * s23, 0.5 * s23, s23 }, center = { 1.5, 1.5, 1.5 },
-                                                   velocity = { Vc * s3, Vc * s3, Vc * s3 } } })
+  local sim = C.throw{ transfer = transfer, shape = shape, diagnostics = "cube_" .. tag .. transfer .. ".csv" }
   local c0 = sim:diagnostics()
   local L0 = c0.L_centroid
   sim:run{ time = t_end }
