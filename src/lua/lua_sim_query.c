@@ -55,6 +55,7 @@ int l_sim_energy(lua_State *L) {
   lua_pushnumber(L, d.friction); lua_setfield(L, -2, "friction");
   lua_pushnumber(L, d.damping); lua_setfield(L, -2, "damping");
   lua_pushnumber(L, d.external); lua_setfield(L, -2, "external");
+  lua_pushnumber(L, d.walls); lua_setfield(L, -2, "walls");
   lua_pushnumber(L, d.mpm_error); lua_setfield(L, -2, "mpm_error");
   return 1;
 }

@@ -11,7 +11,8 @@ typedef struct mrn_diagnostics {
   double friction;     /* W_frict, accumulated, <= 0 (000, Eq. 66) */
   double damping;      /* W_damp, work of the damping forces, accumulated, <= 0 */
   double external;     /* W_ext, work of the point forces, accumulated */
-  double mpm_error;    /* W_MPM = E - E_ref - W_pl - W_frict - W_damp - W_ext (000, Eqs. 67-68) */
+  double walls;        /* W_walls, work of the rigid walls on the material, accumulated */
+  double mpm_error;    /* W_MPM = E - E_ref - W_pl - W_frict - W_damp - W_ext - W_walls (000, Eqs. 67-68) */
   double total;        /* E_k + E_g + E_el */
   double mass;
   double momentum[3];  /* sum m v */

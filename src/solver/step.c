@@ -22,6 +22,7 @@
 #include "solver/simulation.h"
 #include "solver/update.h"
 #include "grid/active.h"
+#include "grid/wall.h"
 #include "transfer/kernels.h"
 #include "transfer/profile.h"
 #include "transfer/xpic.h"
@@ -391,8 +392,12 @@ int mrn_sim_step_dt(mrn_sim *sim, double dt) {
   step_end end = {sim->on_leave == MRN_LEAVE_DELETE ? NULL : &end_pass, -1};
   mrn_boundary_touch(&sim->boundary, &sim->grid, 0.5 * mrn_shape_support(sim->shape), sim->particles.x,
                      sim->particles.vol0, sim->particles.n);
-  mrn_transfer tr = mrn_sim_transfer(sim);
   int rc = MRN_OK;
+  if (sim->boundary.walls && (rc = mrn_walls_touch(sim->boundary.walls, &sim->grid, sim->time + 0.5 * dt,
+                                                   0.5 * mrn_shape_support(sim->shape), sim->particles.x,
+                                                   sim->particles.vol0, sim->particles.n)))
+    return rc;
+  mrn_transfer tr = mrn_sim_transfer(sim);
   switch (sim->scheme.stress_update) {
   case MRN_STRESS_USF: rc = step_usf(sim, &tr, dt, &end); break;
   case MRN_STRESS_USL: rc = step_usl(sim, &tr, dt, &end); break;
@@ -401,6 +406,7 @@ int mrn_sim_step_dt(mrn_sim *sim, double dt) {
   }
   mrn_sim_transfer_end(sim, &tr);
   if (rc) return rc;
+  if (sim->boundary.walls) sim->work_walls += mrn_walls_step_end(sim->boundary.walls, dt);
   sim->time += dt;
   sim->step++;
   if (!end.pass) return end_of_step(sim);
