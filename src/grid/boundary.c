@@ -59,7 +59,10 @@ static double column_push(const mrn_contact_column *c, const mrn_grid *g, double
     const size_t n = column_node(c, l);
     if (!(g->mass[n] > mass_floor)) continue;
     const double *v = vel + 3 * n;
-    N += g->mass[n] * ((v[0] - c->w[0]) * c->n[0] + (v[1] - c->w[1]) * c->n[1] + (v[2] - c->w[2]) * c->n[2]);
+    /* a face's (m v) n_axis as one product: a compiler that fuses the
+     * multiply-add then rounds as it always did */
+    if (c->axis >= 0) N += g->mass[n] * (v[c->axis] - c->w[c->axis]) * c->n[c->axis];
+    else N += g->mass[n] * ((v[0] - c->w[0]) * c->n[0] + (v[1] - c->w[1]) * c->n[1] + (v[2] - c->w[2]) * c->n[2]);
   }
   return N;
 }
@@ -227,6 +230,7 @@ static double apply_friction_face(const mrn_face_bc *f, mrn_grid *g, double mass
   /* the columns start at the face node and run outwards */
   mrn_contact_column c = {.step = side == 0 ? -g->stride[axis] : g->stride[axis], .count = hi[axis] - lo[axis] + 1};
   c.n[axis] = side == 0 ? -1.0 : 1.0;
+  c.axis = axis;
   const unsigned char bit = (unsigned char)(1u << (2 * axis + side));
   lo[axis] = hi[axis] = side == 0 ? 0 : g->ncell[axis];
   double work = 0.0;

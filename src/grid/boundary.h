@@ -59,6 +59,7 @@ typedef struct mrn_contact_column {
   long step;
   int count;
   const size_t *nodes;
+  int axis;    /* the normal's axis when it is one (a face), else -1 */
   double n[3]; /* unit normal pointing into the obstacle */
   double w[3]; /* the obstacle's velocity there (m/s) */
 } mrn_contact_column;

@@ -467,7 +467,7 @@ static double column_apply(mrn_wall *w, size_t c, mrn_grid *g, double mass_floor
     for (size_t k = lo; k < hi; k++) wall_fix(g, mass_floor, vel + 3 * w->col_node[k], w->col_node[k], w->col_w + 3 * c, J);
     return 0.0;
   }
-  mrn_contact_column col = {.count = (int)(hi - lo), .nodes = w->col_node + lo};
+  mrn_contact_column col = {.count = (int)(hi - lo), .nodes = w->col_node + lo, .axis = -1};
   memcpy(col.n, w->col_n + 3 * c, sizeof col.n);
   memcpy(col.w, w->col_w + 3 * c, sizeof col.w);
   unsigned char state = 0;
