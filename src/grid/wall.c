@@ -440,7 +440,10 @@ int mrn_walls_touch(mrn_walls *ws, const mrn_grid *g, double t_mid, double reach
     if (rc) return rc;
     memset(w->impulse, 0, sizeof w->impulse);
     memset(w->angular, 0, sizeof w->angular);
-    w->step_work = 0.0;
+    memset(w->hold_impulse, 0, sizeof w->hold_impulse);
+    memset(w->hold_angular, 0, sizeof w->hold_angular);
+    w->step_work = w->hold_work = 0.0;
+    w->v_done = 0;
     w->contacts = 0;
     if ((rc = wall_touch(w, g, reach, x, vol0, n))) return rc;
   }
@@ -481,26 +484,34 @@ static double column_apply(mrn_wall *w, size_t c, mrn_grid *g, double mass_floor
   return work;
 }
 
+/* add the impulse J of column c and its moment about ref to imp, ang; the
+ * wall's work J . w to *work */
+static void book(const mrn_wall *w, const mrn_grid *g, size_t c, const double J[3], double imp[3], double ang[3],
+                 double *work) {
+  double pos[3], r[3];
+  mrn_grid_node_position(g, w->col_node[w->col_start[c]], pos);
+  for (int d = 0; d < 3; d++) {
+    imp[d] += J[d];
+    r[d] = pos[d] - w->ref[d];
+  }
+  ang[0] += r[1] * J[2] - r[2] * J[1];
+  ang[1] += r[2] * J[0] - r[0] * J[2];
+  ang[2] += r[0] * J[1] - r[1] * J[0];
+  *work += dot3(J, w->col_w + 3 * c);
+}
+
 static double wall_apply(mrn_wall *w, mrn_grid *g, double mass_floor, double *vel, int with_friction) {
-  double work = 0.0, pos[3] = {0, 0, 0};
+  double work = 0.0;
+  /* the reaction: the impulses of V~ and of the step's first V (the nodal
+   * velocity, not XPIC's smoothed fields), acting at the column's first node */
+  const int hold = !with_friction && !w->v_done && vel == g->vel;
   for (size_t c = 0; c < w->ncol; c++) {
     double J[3] = {0.0, 0.0, 0.0};
     work += column_apply(w, c, g, mass_floor, vel, with_friction, J);
-    if (!with_friction) continue;
-    /* the reaction and the wall's work: the impulse of V~ (as the friction
-     * work), acting at the column's first node */
-    mrn_grid_node_position(g, w->col_node[w->col_start[c]], pos);
-    double r[3];
-    for (int d = 0; d < 3; d++) {
-      w->impulse[d] += J[d];
-      r[d] = pos[d] - w->ref[d];
-    }
-    w->angular[0] += r[1] * J[2] - r[2] * J[1];
-    w->angular[1] += r[2] * J[0] - r[0] * J[2];
-    w->angular[2] += r[0] * J[1] - r[1] * J[0];
-    w->step_work += dot3(J, w->col_w + 3 * c);
+    if (with_friction) book(w, g, c, J, w->impulse, w->angular, &w->step_work);
+    else if (hold) book(w, g, c, J, w->hold_impulse, w->hold_angular, &w->hold_work);
   }
-  if (with_friction) w->work_friction += work;
+  if (with_friction) w->work_friction += work, w->v_done = 1;
   return work;
 }
 
@@ -525,10 +536,15 @@ static void rotate(double R[9], const double omega[3], double dt) {
   memcpy(R, out, sizeof out);
 }
 
-double mrn_walls_step_end(mrn_walls *ws, double dt) {
+double mrn_walls_step_end(mrn_walls *ws, double dt, double hold_share) {
   double work = 0.0;
   for (int i = 0; ws && i < ws->count; i++) {
     mrn_wall *w = &ws->wall[i];
+    for (int d = 0; d < 3; d++) {
+      w->impulse[d] += hold_share * w->hold_impulse[d];
+      w->angular[d] += hold_share * w->hold_angular[d];
+    }
+    w->step_work += hold_share * w->hold_work;
     for (int d = 0; d < 3; d++) {
       w->force[d] = -w->impulse[d] / dt;
       w->moment[d] = -w->angular[d] / dt;

@@ -67,6 +67,10 @@ typedef struct mrn_wall {
   /* the last step: impulse on the material and its moment about ref (in
    * V~), and the reaction on the wall, -impulse / dt (N, N m; per metre in 2D) */
   double impulse[3], angular[3];
+  /* the same of the holds in V, before the forces (the first V of the step
+   * only): they reach the particles' momentum under PIC-like updates */
+  double hold_impulse[3], hold_angular[3], hold_work;
+  int v_done; /* V~ reached: later holds (a re-map) are not the step's */
   double force[3], moment[3];
   double total_impulse[3]; /* accumulated impulse of the material on the wall (N s) */
   double work_friction; /* accumulated frictional work, <= 0 (J) */
@@ -127,8 +131,10 @@ int mrn_walls_touch(mrn_walls *ws, const mrn_grid *g, double t_mid, double reach
 /* Impose the walls on vel, as mrn_boundary_apply (which calls it); returns
  * the frictional work (with_friction only) */
 double mrn_walls_apply(mrn_walls *ws, mrn_grid *g, double mass_floor, double *vel, int with_friction);
-/* End of a step of dt: the reactions, and the walls moved on. Returns the
+/* End of a step of dt: the reactions, and the walls moved on. `hold_share`
+ * is the part of the holds in V that reaches the particles' momentum (1 for
+ * PIC-like velocity updates, 0 for FLIP, 1 - X for blends). Returns the
  * work the walls did on the material in the step. */
-double mrn_walls_step_end(mrn_walls *ws, double dt);
+double mrn_walls_step_end(mrn_walls *ws, double dt, double hold_share);
 
 #endif

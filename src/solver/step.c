@@ -383,6 +383,17 @@ static int step_usavg(mrn_sim *sim, mrn_transfer *tr, double dt, step_end *end) 
   return move_remap_update(sim, tr, dt, 0.5 * dt, end);
 }
 
+/* The part of the walls' holds in V that reaches the particles' momentum:
+ * PIC-like updates take V~ whole, FLIP only V~ - V (which the holds in V do
+ * not change), a blend X of FLIP. XPIC is counted with FLIP. */
+static double hold_share(const mrn_scheme *s) {
+  switch (s->velocity_update) {
+  case MRN_VUPDATE_PIC: return 1.0;
+  case MRN_VUPDATE_BLEND: return 1.0 - s->flip_fraction;
+  default: return 0.0;
+  }
+}
+
 int mrn_sim_step_dt(mrn_sim *sim, double dt) {
   if (!(dt > 0.0) || !isfinite(dt)) return mrn_error("step %ld: invalid time step %s", sim->step + 1, mrn_num(dt).s);
   sim->dt = dt;
@@ -406,7 +417,7 @@ int mrn_sim_step_dt(mrn_sim *sim, double dt) {
   }
   mrn_sim_transfer_end(sim, &tr);
   if (rc) return rc;
-  if (sim->boundary.walls) sim->work_walls += mrn_walls_step_end(sim->boundary.walls, dt);
+  if (sim->boundary.walls) sim->work_walls += mrn_walls_step_end(sim->boundary.walls, dt, hold_share(&sim->scheme));
   sim->time += dt;
   sim->step++;
   if (!end.pass) return end_of_step(sim);
