@@ -432,6 +432,16 @@ static int wall_motion(mrn_wall *w, int dim, double t) {
   return MRN_OK;
 }
 
+int mrn_wall_restore(mrn_wall *w, const size_t *contact, size_t n) {
+  const double zero[3] = {0, 0, 0};
+  const long long key[3] = {0, 0, 0};
+  for (size_t k = 0; k < n; k++) {
+    w->state[contact[k]] |= MRN_WALL_TOUCH | MRN_WALL_CONTACT;
+    if (touched_push(w, contact[k], zero, zero, key)) return MRN_ERR;
+  }
+  return MRN_OK;
+}
+
 int mrn_walls_touch(mrn_walls *ws, const mrn_grid *g, double t_mid, double reach, const double *x, const double *vol0,
                     size_t n) {
   for (int i = 0; ws && i < ws->count; i++) {

@@ -122,6 +122,11 @@ double mrn_wall_distance(const mrn_wall *w, int dim, const double x[3], double n
 /* the wall's velocity at x */
 void mrn_wall_velocity_at(const mrn_wall *w, int dim, const double x[3], double v[3]);
 
+/* A wall as a checkpoint left it: its placement, accumulators and the
+ * nodes in contact at the end of the last step (which also stand for the
+ * nodes it touched then, so the next step forgets the same contacts) */
+int mrn_wall_restore(mrn_wall *w, const size_t *contact, size_t n);
+
 /* Start of a step at t_mid, its middle: the walls' motions for the step,
  * the nodes each wall's material touches (positions x, initial volumes vol0
  * of n particles, `reach` cells the shape functions reach), and the step's
