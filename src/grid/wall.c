@@ -1,6 +1,7 @@
 #include "grid/wall.h"
 
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -219,6 +220,15 @@ static int reaches_grid(const mrn_wall *w, const mrn_grid *g) {
   return 0;
 }
 
+static int outside_error(const char *name, const mrn_grid *g) {
+  char box[192] = "";
+  for (int d = 0; d < g->dim; d++) {
+    const size_t len = strlen(box);
+    snprintf(box + len, sizeof box - len, "%s[%g, %g]", d ? " x " : "", g->origin[d], g->origin[d] + g->size[d]);
+  }
+  return mrn_error("wall '%s' lies entirely outside the grid (no node within a cell of it): the domain is %s", name, box);
+}
+
 static int check_spec(mrn_walls *ws, const mrn_wall_spec *s, int dim) {
   if (!s->name[0]) return mrn_error("name: expected a non-empty name");
   if (ws && mrn_walls_find(ws, s->name)) return mrn_error("name: a wall named '%s' exists already", s->name);
@@ -260,8 +270,7 @@ int mrn_walls_add(mrn_walls **wsp, const mrn_grid *g, const mrn_wall_spec *spec)
   if (!rc) rc = check_shape(&w.spec, g->dim);
   memcpy(w.ref, w.spec.center, sizeof w.ref);
   w.rot[0] = w.rot[4] = w.rot[8] = 1.0;
-  if (!rc && !reaches_grid(&w, g))
-    rc = mrn_error("wall '%s' lies entirely outside the grid: place it so that it reaches the domain", spec->name);
+  if (!rc && !reaches_grid(&w, g)) rc = outside_error(spec->name, g);
   if (!rc && !(w.state = calloc(g->n, 1))) rc = mrn_error("out of memory for a wall");
   mrn_walls *ws = *wsp;
   if (!rc && !ws && !(ws = *wsp = calloc(1, sizeof *ws))) rc = mrn_error("out of memory for a wall");
@@ -343,7 +352,9 @@ static int touch_mark(mrn_wall *w, const mrn_grid *g, const double *x, double re
         if (w->state[node] & MRN_WALL_TOUCH) continue;
         double xn[3], n[3], v[3], uv[3];
         mrn_grid_node_position(g, node, xn);
-        if (!(wall_distance_uv(w, g->dim, xn, n, uv) <= 0.0)) continue;
+        /* on the surface counts as inside: a node of a grid-aligned plane must not
+         * drop out by the round-off of its position */
+        if (!(wall_distance_uv(w, g->dim, xn, n, uv) <= 1e-9 * g->cell)) continue;
         mrn_wall_velocity_at(w, g->dim, xn, v);
         /* the patch: the cell-sized piece of the surface nearest the node */
         const long long key[3] = {(long long)uv[2], llround(uv[0] * g->inv_cell), llround(uv[1] * g->inv_cell)};

@@ -13,6 +13,8 @@
 --          normal and shear stresses of the middle third against the infinite
 --          slope's (a finite undamped block is not an infinite slope: they
 --          miss 3 % by several times).
+-- face     a friction plane through a row of nodes (gravity tilted by 35 deg,
+--          mu = 0.3, 2000 steps) slides as the friction face, to 1e-6.
 -- plate    a plate wall (velocity 0.05 m/s) pushes a block along a slip floor
 --          (0.3 s): the impulse the plate took equals minus the block's
 --          momentum (1 %), W_walls is the plate's work, and under FLIP W_MPM
@@ -63,7 +65,7 @@ local function incline(o)
 end
 
 local function label(o) return string.format("%s theta %g mu %g", o.strategy, o.theta, o.mu) end
-local worst = { slide = 0, creep = 0, stress = 0, shear = 0, reaction = 0, impulse = 0, budget = 0 }
+local worst = { face = 0, slide = 0, creep = 0, stress = 0, shear = 0, reaction = 0, impulse = 0, budget = 0 }
 
 -- the mean sigma_nn and sigma_nt of the middle third, with the slope's
 local function middle_stress(o, sim, n, t, p, sum)
@@ -120,6 +122,31 @@ for _, strategy in ipairs(strategies) do
   worst.shear = math.max(worst.shear, ent)
 end
 
+-- a grid-aligned plane through a row of nodes is a friction face: the block
+-- tilted gravity on each, the same slide to 1e-6
+for _, strategy in ipairs(strategies) do
+  local th, mu = math.rad(35), 0.3
+  local gravity = { g * math.sin(th), -g * math.cos(th) }
+  local slid = {}
+  for _, face in ipairs{ true, false } do
+    local sim = mpm.simulation{ dim = 2, grid = { size = { 2.0, 0.8 }, cell = cell }, shape = "quadratic_bspline",
+                                scheme = strategy, gravity = gravity, dt = { a_tau = 0.2 }, diagnostics = false,
+                                thermo = 0, progress = false,
+                                boundary = { all = "slip", top = "free", bottom = face and { "friction", mu = mu } or nil } }
+    local y0 = face and 0 or 0.3
+    if not face then sim:add_wall{ name = "floor", shape = "plane", point = { 0, y0 }, normal = { 0, 1 }, kind = "friction", mu = mu } end
+    sim:add_particles(mpm.box{ min = { 0.2, y0 }, max = { 0.2 + L, y0 + H } },
+                      { material = mpm.material.linear_elastic{ density = rho, E = E, nu = 0.3 }, per_cell = 4 })
+    local c0 = sim:diagnostics().center_of_mass[1]
+    sim:run{ steps = 2000 }
+    slid[#slid + 1] = sim:diagnostics().center_of_mass[1] - c0
+  end
+  local off = math.abs(slid[2] / slid[1] - 1)
+  worst.face = math.max(worst.face, off)
+  T.check(off <= 1e-6, "%s: a grid-aligned friction plane slid %.9g m, the friction face %.9g m", strategy, slid[2],
+          slid[1])
+end
+
 -- a plate pushing a block along a slip floor
 for _, strategy in ipairs(strategies) do
   local sim = simulation(strategy, { 0, -g })
@@ -155,6 +182,8 @@ T.expect{ id = "walls.incline.stress", asserted = false, value = 100 * worst.str
           what = "block at rest: mean sigma_nn of the middle third off the infinite slope's" }
 T.expect{ id = "walls.incline.shear", asserted = false, value = 100 * worst.shear, max = 3, unit = "%",
           what = "block at rest: mean sigma_nt of the middle third off the infinite slope's" }
+T.expect{ id = "walls.incline.face", what = "grid-aligned friction plane against the friction face: slide off",
+          value = worst.face, max = 1e-6, unit = "" }
 T.expect{ id = "walls.plate.impulse", what = "plate: |impulse + block momentum| / |momentum|",
           value = 100 * worst.impulse, max = 1, unit = "%" }
 T.expect{ id = "walls.plate.budget", what = "plate, FLIP: |W_MPM| / plate work", value = 100 * worst.budget, max = 1,
