@@ -364,13 +364,18 @@ static int touch_mark(mrn_wall *w, const mrn_grid *g, const double *x, double re
   return MRN_OK;
 }
 
-/* the touched nodes in order of patch (then of node): a sort key */
-static const mrn_wall *sorting;
+/* a touched node as the sort sees it: its patch, its node, its place */
+typedef struct patch_entry {
+  long long key[3];
+  size_t node, k;
+} patch_entry;
+
+/* the touched nodes in order of patch, then of node */
 static int by_patch(const void *a, const void *b) {
-  const size_t i = *(const size_t *)a, j = *(const size_t *)b;
+  const patch_entry *p = a, *q = b;
   for (int d = 0; d < 3; d++)
-    if (sorting->key[3 * i + d] != sorting->key[3 * j + d]) return sorting->key[3 * i + d] < sorting->key[3 * j + d] ? -1 : 1;
-  return sorting->node[i] < sorting->node[j] ? -1 : sorting->node[i] > sorting->node[j];
+    if (p->key[d] != q->key[d]) return p->key[d] < q->key[d] ? -1 : 1;
+  return p->node < q->node ? -1 : p->node > q->node;
 }
 
 /* close the column of order[lo .. hi - 1]: its mean normal and velocity */
@@ -389,21 +394,27 @@ static void column_close(mrn_wall *w, const size_t *order, size_t lo, size_t hi)
 static int build_columns(mrn_wall *w) {
   w->ncol = 0;
   if (!w->count) return MRN_OK;
+  patch_entry *e = malloc(w->count * sizeof *e);
   size_t *order = malloc(w->count * sizeof *order);
-  if (!order) return mrn_error("out of memory for a wall's contacts");
-  for (size_t k = 0; k < w->count; k++) order[k] = k;
-  sorting = w;
-  qsort(order, w->count, sizeof *order, by_patch);
+  if (!e || !order) {
+    free(e), free(order);
+    return mrn_error("out of memory for a wall's contacts");
+  }
+  for (size_t k = 0; k < w->count; k++) {
+    memcpy(e[k].key, w->key + 3 * k, sizeof e[k].key);
+    e[k].node = w->node[k], e[k].k = k;
+  }
+  qsort(e, w->count, sizeof *e, by_patch);
   w->col_start[0] = 0;
   size_t lo = 0;
   for (size_t k = 0; k < w->count; k++) {
-    w->col_node[k] = w->node[order[k]];
-    if (k + 1 < w->count && memcmp(w->key + 3 * order[k], w->key + 3 * order[k + 1], 3 * sizeof *w->key) == 0)
-      continue;
+    order[k] = e[k].k;
+    w->col_node[k] = e[k].node;
+    if (k + 1 < w->count && memcmp(e[k].key, e[k + 1].key, sizeof e[k].key) == 0) continue;
     column_close(w, order, lo, k + 1);
     lo = k + 1;
   }
-  free(order);
+  free(e), free(order);
   return MRN_OK;
 }
 
