@@ -75,48 +75,51 @@ static int motion_call(void *ctx, double t, double v[3], double o[3]) {
   return rc;
 }
 
-/* velocity or omega at idx: a constant into out (keeping what was there when
- * absent), or a function into *cb; returns 1 when a function */
-static int read_motion(lua_State *L, int idx, const char *where, const char *key, const mrn_spec *specs, int nspecs,
-                       int dim, double out[3], mrn_lua_callback **cb) {
+/* velocity or omega at idx, when a constant: into out (kept when absent or
+ * a function); raises on a bad value before anything is allocated */
+static void read_constant(lua_State *L, int idx, const char *where, const char *key, const mrn_spec *specs,
+                          int nspecs, int dim, double out[3]) {
   lua_getfield(L, idx, key);
   const mrn_spec *s = mrn_spec_find(specs, nspecs, key);
-  int fn = 0;
-  if (lua_isfunction(L, -1)) {
-    *cb = mrn_lua_callback_new(L, -1, strcmp(key, "omega") == 0 ? "wall omega function" : "wall velocity function");
-    fn = 1;
-  } else if (strcmp(key, "omega") == 0 && dim == 2 && lua_type(L, -1) == LUA_TNUMBER) {
+  const int omega = strcmp(key, "omega") == 0;
+  if (omega && dim == 2 && lua_type(L, -1) == LUA_TNUMBER) {
     out[2] = lua_tonumber(L, -1);
     mrn_lua_check_number(L, where, s, "omega", out[2]);
-  } else if (!lua_isnil(L, -1)) {
+  } else if (!lua_isnil(L, -1) && !lua_isfunction(L, -1)) {
     if (!lua_istable(L, -1))
-      mrn_lua_error(L, where, "%s: expected %s or a function of time", key,
-                    strcmp(key, "omega") == 0 && dim == 2 ? "a number" : "a vector");
+      mrn_lua_error(L, where, "%s: expected %s or a function of time", key, omega && dim == 2 ? "a number" : "a vector");
     mrn_lua_to_vector(L, -1, where, s, dim, out);
   }
   lua_pop(L, 1);
-  return fn;
 }
 
-/* polygon vertices {{x, y}, ...} into a malloc'd array */
+/* the function at key, referenced, or NULL */
+static mrn_lua_callback *read_function(lua_State *L, int idx, const char *key) {
+  lua_getfield(L, idx, key);
+  mrn_lua_callback *cb =
+      lua_isfunction(L, -1)
+          ? mrn_lua_callback_new(L, -1, strcmp(key, "omega") == 0 ? "wall omega function" : "wall velocity function")
+          : NULL;
+  lua_pop(L, 1);
+  return cb;
+}
+
+/* polygon vertices {{x, y}, ...} into an array that lives in a userdata
+ * left on the stack (collected even when an error follows) */
 static double *read_vertices(lua_State *L, int idx, const char *where, int *count) {
   lua_getfield(L, idx, "vertices");
   if (!lua_istable(L, -1)) mrn_lua_error(L, where, "vertices: a polygon needs a table of {x, y} points");
   const int n = (int)luaL_len(L, -1);
   if (n < 3 || n > MRN_WALL_MAX_VERTICES)
     mrn_lua_error(L, where, "vertices: expected 3 to %d points, got %d", MRN_WALL_MAX_VERTICES, n);
-  double *v = malloc(2 * (size_t)n * sizeof *v);
-  if (!v) luaL_error(L, "out of memory");
+  double *v = lua_newuserdatauv(L, 2 * (size_t)n * sizeof *v, 0);
   for (int i = 0; i < n; i++) {
-    lua_geti(L, -1, i + 1);
+    lua_geti(L, -2, i + 1);
     const int ok = mrn_lua_read_numbers(L, -1, 2, v + 2 * i) && isfinite(v[2 * i]) && isfinite(v[2 * i + 1]);
     lua_pop(L, 1);
-    if (!ok) {
-      free(v);
-      mrn_lua_error(L, where, "vertices[%d]: expected a point {x, y} of finite numbers", i + 1);
-    }
+    if (!ok) mrn_lua_error(L, where, "vertices[%d]: expected a point {x, y} of finite numbers", i + 1);
   }
-  lua_pop(L, 1);
+  lua_remove(L, -2); /* the table; the userdata stays */
   *count = n;
   return v;
 }
@@ -163,22 +166,28 @@ static void read_shape(lua_State *L, int idx, const char *where, int dim, mrn_wa
   memcpy(s->center, s->point, sizeof s->center);
 }
 
-/* read the motion keys of the table at idx into w: constants into its spec,
- * functions into its motion (replacing any) */
-static void read_wall_motion(lua_State *L, int idx, const char *where, const mrn_spec *specs, int nspecs, int dim,
-                             mrn_wall *w) {
-  wall_motion *m = calloc(1, sizeof *m);
-  if (!m) luaL_error(L, "out of memory");
-  m->dim = dim;
-  int fn = read_motion(L, idx, where, "velocity", specs, nspecs, dim, w->spec.velocity, &m->velocity);
-  fn |= read_motion(L, idx, where, "omega", specs, nspecs, dim, w->spec.omega, &m->omega);
-  if (!fn) { /* constants: they replace a motion function */
-    free(m);
-    if (w->motion_release && (mrn_lua_has(L, idx, "velocity") || mrn_lua_has(L, idx, "omega")))
-      w->motion_release(w->motion_ctx), w->motion = NULL, w->motion_ctx = NULL, w->motion_release = NULL;
-    return;
-  }
+/* the motion keys of the table at idx, checked: constants into s */
+static void read_constants(lua_State *L, int idx, const char *where, const mrn_spec *specs, int nspecs, int dim,
+                           mrn_wall_spec *s) {
+  read_constant(L, idx, where, "velocity", specs, nspecs, dim, s->velocity);
+  read_constant(L, idx, where, "omega", specs, nspecs, dim, s->omega);
+}
+
+/* the motion functions of the table at idx (already checked) into w,
+ * replacing any; constants given alone replace a motion function too */
+static void attach_functions(lua_State *L, int idx, int dim, mrn_wall *w) {
+  const int given = mrn_lua_has(L, idx, "velocity") || mrn_lua_has(L, idx, "omega");
+  mrn_lua_callback *v = read_function(L, idx, "velocity"), *o = read_function(L, idx, "omega");
+  if (!given) return;
   if (w->motion_release) w->motion_release(w->motion_ctx);
+  w->motion = NULL, w->motion_ctx = NULL, w->motion_release = NULL;
+  if (!v && !o) return;
+  wall_motion *m = malloc(sizeof *m);
+  if (!m) {
+    mrn_lua_callback_release(v), mrn_lua_callback_release(o);
+    luaL_error(L, "out of memory");
+  }
+  m->velocity = v, m->omega = o, m->dim = dim;
   w->motion = motion_call, w->motion_ctx = m, w->motion_release = motion_release;
 }
 
@@ -204,12 +213,10 @@ static int l_sim_add_wall(lua_State *L) {
   s.inside = mrn_lua_get_boolean(L, 2, where, wall_specs, NSPECS, "inside", 0);
   read_shape(L, 2, where, dim, &s);
   mrn_lua_get_vector(L, 2, where, wall_specs, NSPECS, "pivot", dim, s.center, 0);
+  read_constants(L, 2, where, wall_specs, NSPECS, dim, &s);
   mrn_lua_active = L;
-  int rc = mrn_walls_add(&b->sim->boundary.walls, &b->sim->grid, &s);
-  free(s.vertex);
-  if (rc) mrn_lua_engine_error(L, where);
-  mrn_wall *w = mrn_walls_find(b->sim->boundary.walls, s.name);
-  read_wall_motion(L, 2, where, wall_specs, NSPECS, dim, w);
+  if (mrn_walls_add(&b->sim->boundary.walls, &b->sim->grid, &s)) mrn_lua_engine_error(L, where);
+  attach_functions(L, 2, dim, mrn_walls_find(b->sim->boundary.walls, s.name));
   return 0;
 }
 
@@ -250,7 +257,11 @@ static int l_sim_set_wall(lua_State *L) {
   const char *where = "set_wall()";
   mrn_wall *w = check_wall(L, b, 2, where);
   mrn_lua_check_table(L, 3, where, set_specs, MRN_COUNT(set_specs));
-  read_wall_motion(L, 3, where, set_specs, MRN_COUNT(set_specs), b->sim->dim, w);
+  mrn_wall_spec s = w->spec;
+  read_constants(L, 3, where, set_specs, MRN_COUNT(set_specs), b->sim->dim, &s);
+  memcpy(w->spec.velocity, s.velocity, sizeof s.velocity);
+  memcpy(w->spec.omega, s.omega, sizeof s.omega);
+  attach_functions(L, 3, b->sim->dim, w);
   return 0;
 }
 
