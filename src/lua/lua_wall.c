@@ -197,6 +197,8 @@ static int l_sim_add_wall(lua_State *L) {
   const char *where = "add_wall{}";
   const int dim = b->sim->dim;
   mrn_lua_check_table(L, 2, where, wall_specs, NSPECS);
+  if (b->sim->integrator.step)
+    mrn_lua_error(L, where, "the simulation steps with the implicit integrator, which does not take rigid walls");
   mrn_wall_spec s;
   memset(&s, 0, sizeof s);
   const char *name = mrn_lua_get_string(L, 2, where, wall_specs, NSPECS, "name");
