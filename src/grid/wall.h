@@ -138,7 +138,7 @@ int mrn_walls_touch(mrn_walls *ws, const mrn_grid *g, double t_mid, double reach
 double mrn_walls_apply(mrn_walls *ws, mrn_grid *g, double mass_floor, double *vel, int with_friction);
 /* End of a step of dt: the reactions, and the walls moved on. `hold_share`
  * is the part of the holds in V that reaches the particles' momentum (1 for
- * PIC-like velocity updates, 0 for FLIP, 1 - X for blends). Returns the
+ * PIC-like velocity updates and XPIC, 0 for FLIP, 1 - X for blends). Returns the
  * work the walls did on the material in the step. */
 double mrn_walls_step_end(mrn_walls *ws, double dt, double hold_share);
 

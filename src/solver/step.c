@@ -385,12 +385,13 @@ static int step_usavg(mrn_sim *sim, mrn_transfer *tr, double dt, step_end *end) 
 
 /* The part of the walls' holds in V that reaches the particles' momentum:
  * PIC-like updates take V~ whole, FLIP only V~ - V (which the holds in V do
- * not change), a blend X of FLIP. XPIC is counted with FLIP. */
+ * not change), a blend X of FLIP; XPIC takes V* + V~ - V, V* being V
+ * smoothed, so with the holds. */
 static double hold_share(const mrn_scheme *s) {
   switch (s->velocity_update) {
-  case MRN_VUPDATE_PIC: return 1.0;
+  case MRN_VUPDATE_FLIP: return 0.0;
   case MRN_VUPDATE_BLEND: return 1.0 - s->flip_fraction;
-  default: return 0.0;
+  default: return 1.0;
   }
 }
 
