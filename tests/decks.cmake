@@ -31,6 +31,10 @@ moraine_deck_test(lithostatic lithostatic.lua)
 # for every strategy of 000 Table 1, two shape functions each
 moraine_deck_test(friction_2d friction.lua)
 moraine_deck_test(friction_3d friction.lua ARGS --set dim=3 LABELS slow)
+# rigid walls: an inclined plane (slide, stick, reaction at rest) and a pushing plate
+moraine_deck_test(walls walls.lua)
+moraine_deck_test(walls_restart walls_restart.lua)
+moraine_deck_test(walls_3d walls_3d.lua LABELS slow)
 moraine_deck_test(axial_bar_linear axial_bar.lua ARGS --set shape=linear --set cells=16)
 moraine_deck_test(axial_bar_quadratic axial_bar.lua ARGS --set shape=quadratic_bspline --set cells=32)
 # "long": physics runs of a minute or more; the sanitizer pass of

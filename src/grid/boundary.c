@@ -4,6 +4,7 @@
 #include <string.h>
 
 #include "core/error.h"
+#include "grid/wall.h"
 
 static const char *const kind_names[] = {"free", "fixed", "slip", "friction", "velocity", "periodic", NULL};
 
@@ -24,7 +25,7 @@ const char *mrn_face_name(int face) {
   return face >= 0 && face < MRN_FACE_COUNT ? names[face] : "?";
 }
 
-/* Apply one face condition (not friction: see contact_apply) to the node
+/* Apply one face condition (not friction: see mrn_contact_apply) to the node
  * velocity v (3 components); `axis` is the face normal axis. */
 static void apply_face(const mrn_face_bc *f, double *v, int axis) {
   switch (f->kind) {
@@ -44,96 +45,110 @@ static void apply_face(const mrn_face_bc *f, double *v, int axis) {
   }
 }
 
-/* One column of a friction face: the face node and the ghost nodes beyond
- * it along the normal, which all stand for the same point of the face and
- * share one contact. */
-typedef struct contact_column {
-  size_t face_node;  /* holds the column's contact bit */
-  long step;         /* index distance between the column's nodes */
-  int count;         /* nodes in the column */
-  int axis;          /* the face normal */
-  double outward;    /* -1 on a min face, +1 on a max face */
-  unsigned char bit; /* 1 << face */
-} contact_column;
+/* the index of node l of the column */
+static inline size_t column_node(const mrn_contact_column *c, int l) {
+  return c->nodes ? c->nodes[l] : (size_t)((long)c->first + l * c->step);
+}
 
-/* the index of node l of the column (l = 0: the face node) */
-static inline size_t column_node(const contact_column *c, int l) { return (size_t)((long)c->face_node + l * c->step); }
-
-/* The column's normal momentum into the face, N = sum m v.n_out, over the
- * nodes above the mass floor (lighter ones are empty, or hold a kernel's
- * negative weight with `wls`). */
-static double column_push(const contact_column *c, const mrn_grid *g, double mass_floor, const double *vel) {
+/* The column's normal momentum into the obstacle, relative to it,
+ * N = sum m (v - w) . n, over the nodes above the mass floor (lighter ones
+ * are empty, or hold a kernel's negative weight with `wls`). */
+static double column_push(const mrn_contact_column *c, const mrn_grid *g, double mass_floor, const double *vel) {
   double N = 0.0;
   for (int l = 0; l < c->count; l++) {
     const size_t n = column_node(c, l);
-    if (g->mass[n] > mass_floor) N += g->mass[n] * vel[3 * n + c->axis] * c->outward;
+    if (!(g->mass[n] > mass_floor)) continue;
+    const double *v = vel + 3 * n;
+    /* a face's (m v) n_axis as one product: a compiler that fuses the
+     * multiply-add then rounds as it always did */
+    if (c->axis >= 0) N += g->mass[n] * (v[c->axis] - c->w[c->axis]) * c->n[c->axis];
+    else N += g->mass[n] * ((v[0] - c->w[0]) * c->n[0] + (v[1] - c->w[1]) * c->n[1] + (v[2] - c->w[2]) * c->n[2]);
   }
   return N;
 }
 
+/* remove the normal velocity relative to the obstacle from every node of
+ * the column, adding the impulse to J */
+static void column_hold(const mrn_contact_column *c, const mrn_grid *g, double mass_floor, double *vel, double J[3]) {
+  for (int l = 0; l < c->count; l++) {
+    const size_t n = column_node(c, l);
+    if (!(g->mass[n] > mass_floor)) continue;
+    double *v = vel + 3 * n;
+    const double vn = (v[0] - c->w[0]) * c->n[0] + (v[1] - c->w[1]) * c->n[1] + (v[2] - c->w[2]) * c->n[2];
+    for (int d = 0; d < 3; d++)
+      if (c->n[d] != 0.0) { /* a face's tangential components stay untouched, the sign of a zero included */
+        v[d] -= vn * c->n[d];
+        J[d] -= g->mass[n] * vn * c->n[d];
+      }
+  }
+}
+
 /* Coulomb friction on a column in contact whose normal momentum N was just
- * removed: the column's tangential momentum P_t is reduced by
- * min(mu N, |P_t|) along -P_t, the same velocity change for every node (the
- * column's mean velocity never reverses). Returns the frictional work
- * sum m dV . V_after (000, Eq. 66). */
-static double column_friction(const contact_column *c, const mrn_grid *g, double mass_floor, double *vel, double mu,
-                              double N) {
+ * removed: the column's tangential momentum relative to the obstacle, P_t,
+ * is reduced by min(mu N, |P_t|) along -P_t, the same velocity change for
+ * every node (the column's mean relative velocity never reverses). Adds the
+ * impulse to J and returns the frictional work sum m dV . (V_after - w)
+ * (000, Eq. 66, in the obstacle's frame). */
+static double column_friction(const mrn_contact_column *c, const mrn_grid *g, double mass_floor, double *vel,
+                              double mu, double N, double J[3]) {
   double M = 0.0, P[3] = {0.0, 0.0, 0.0};
   for (int l = 0; l < c->count; l++) {
     const size_t n = column_node(c, l);
     if (!(g->mass[n] > mass_floor)) continue;
     M += g->mass[n];
-    for (int d = 0; d < 3; d++) P[d] += g->mass[n] * vel[3 * n + d];
+    for (int d = 0; d < 3; d++) P[d] += g->mass[n] * (vel[3 * n + d] - c->w[d]);
   }
+  /* what is left of the normal part is round-off (none on a face) */
+  const double Pn = P[0] * c->n[0] + P[1] * c->n[1] + P[2] * c->n[2];
+  if (Pn != 0.0)
+    for (int d = 0; d < 3; d++) P[d] -= Pn * c->n[d];
   const double pt = sqrt(P[0] * P[0] + P[1] * P[1] + P[2] * P[2]);
   if (mu <= 0.0 || pt <= 0.0) return 0.0;
-  const double J = fmin(mu * N, pt);
+  const double Jt = fmin(mu * N, pt);
   double work = 0.0;
   for (int l = 0; l < c->count; l++) {
     const size_t n = column_node(c, l);
     if (!(g->mass[n] > mass_floor)) continue;
     for (int d = 0; d < 3; d++) {
-      const double dv = -J * P[d] / (pt * M);
+      const double dv = -Jt * P[d] / (pt * M);
       vel[3 * n + d] += dv;
-      work += g->mass[n] * dv * vel[3 * n + d];
+      work += g->mass[n] * dv * (vel[3 * n + d] - c->w[d]);
+      J[d] += g->mass[n] * dv;
     }
   }
   return work;
 }
 
-/* A friction face on one column: a unilateral contact (Signorini) with
- * Coulomb friction (Bardenhagen et al. 2000, with the face as a rigid second
- * body; see doc/numerics.md, "Friction faces").
+/* A unilateral contact (Signorini) with Coulomb friction on one column
+ * (Bardenhagen et al. 2000, with the face or wall as a rigid second body;
+ * see doc/numerics.md, "Friction faces" and "Rigid walls").
  *
  * With friction (the updated velocity V~, once the forces of the step are
  * known) the column is in contact when its normal momentum points into the
- * face, N > 0: N is removed and friction bounds the tangential impulse by
- * mu N. A column moving away is left free, so the face never pulls. The
- * outcome is kept in the column's contact bit.
+ * obstacle, N > 0: N is removed and friction bounds the tangential impulse
+ * by mu N. A column moving away is left free, so the obstacle never pulls.
+ * The outcome is kept in the column's contact bit.
  *
  * Without friction (the velocity V of P2G, for the stress update) the
- * column is held, its normal velocity removed, when it moves into the face
- * or when it ended the last step in contact.
- * Either way only a column the material touches (mrn_boundary_touch) can
- * be held: material away from the face moves freely until it reaches it. V carries the particles'
- * own velocities (FLIP keeps what the grid does not show), so a column
- * resting on the face can seem to leave it before the forces have acted;
- * letting it go then, and catching it again in V~, gave the stress update a
- * velocity field the step did not follow. Separation is decided with the
- * forces, in V~. */
-static double contact_apply(const mrn_face_bc *f, const contact_column *c, mrn_grid *g, double mass_floor, double *vel,
-                            int with_friction) {
+ * column is held, its normal velocity removed, when it moves into the
+ * obstacle or when it ended the last step in contact.
+ * Either way only a column the material touches can be held: material away
+ * from the obstacle moves freely until it reaches it. V carries the
+ * particles' own velocities (FLIP keeps what the grid does not show), so a
+ * column resting on the obstacle can seem to leave it before the forces have
+ * acted; letting it go then, and catching it again in V~, gave the stress
+ * update a velocity field the step did not follow. Separation is decided with
+ * the forces, in V~. */
+double mrn_contact_apply(const mrn_contact_column *c, mrn_grid *g, double mass_floor, double *vel, double mu,
+                         int with_friction, int touching, unsigned char *state, unsigned char bit, double J[3]) {
   const double N = column_push(c, g, mass_floor, vel);
-  unsigned char *state = g->contact + c->face_node;
-  const int touching = (g->touch[c->face_node] & c->bit) != 0;
-  const int held = touching && (N > 0.0 || (!with_friction && (*state & c->bit)));
-  if (with_friction) *state = (unsigned char)(held ? *state | c->bit : *state & ~c->bit);
+  const int held = touching && (N > 0.0 || (!with_friction && (*state & bit)));
+  if (with_friction) *state = (unsigned char)(held ? *state | bit : *state & ~bit);
   if (!held) return 0.0;
-  for (int l = 0; l < c->count; l++) {
-    const size_t n = column_node(c, l);
-    if (g->mass[n] > mass_floor) vel[3 * n + c->axis] = 0.0;
-  }
-  return with_friction ? column_friction(c, g, mass_floor, vel, f->mu, N) : 0.0;
+  double scratch[3] = {0.0, 0.0, 0.0};
+  if (!J) J = scratch;
+  column_hold(c, g, mass_floor, vel, J);
+  return with_friction ? column_friction(c, g, mass_floor, vel, mu, N, J) : 0.0;
 }
 
 /* the node index range [lo, hi] of the layers on and beyond one face
@@ -205,24 +220,26 @@ void mrn_boundary_touch(const mrn_boundary *bc, mrn_grid *g, double reach, const
   }
 }
 
-/* one friction face, column by column */
+/* one friction face, column by column: the face node and the ghost nodes
+ * beyond it along the normal stand for the same point of the face and share
+ * one contact, whose bit 1 << face is kept at the face node in g->contact */
 static double apply_friction_face(const mrn_face_bc *f, mrn_grid *g, double mass_floor, double *vel, int axis, int side,
                                   int with_friction) {
   int lo[3], hi[3];
   face_layers(g, axis, side, lo, hi);
   /* the columns start at the face node and run outwards */
-  contact_column c = {.step = side == 0 ? -g->stride[axis] : g->stride[axis],
-                      .count = hi[axis] - lo[axis] + 1,
-                      .axis = axis,
-                      .outward = side == 0 ? -1.0 : 1.0,
-                      .bit = (unsigned char)(1u << (2 * axis + side))};
+  mrn_contact_column c = {.step = side == 0 ? -g->stride[axis] : g->stride[axis], .count = hi[axis] - lo[axis] + 1};
+  c.n[axis] = side == 0 ? -1.0 : 1.0;
+  c.axis = axis;
+  const unsigned char bit = (unsigned char)(1u << (2 * axis + side));
   lo[axis] = hi[axis] = side == 0 ? 0 : g->ncell[axis];
   double work = 0.0;
   for (int k = lo[2]; k <= hi[2]; k++)
     for (int j = lo[1]; j <= hi[1]; j++)
       for (int i = lo[0]; i <= hi[0]; i++) {
-        c.face_node = mrn_grid_index(g, i, j, k);
-        work += contact_apply(f, &c, g, mass_floor, vel, with_friction);
+        c.first = mrn_grid_index(g, i, j, k);
+        work += mrn_contact_apply(&c, g, mass_floor, vel, f->mu, with_friction, (g->touch[c.first] & bit) != 0,
+                                  g->contact + c.first, bit, NULL);
       }
   return work;
 }
@@ -248,6 +265,7 @@ double mrn_boundary_apply(const mrn_boundary *bc, mrn_grid *g, double mass_floor
           }
     }
   }
+  if (bc->walls) work += mrn_walls_apply(bc->walls, g, mass_floor, vel, with_friction);
   return work;
 }
 

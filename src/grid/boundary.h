@@ -41,9 +41,38 @@ typedef struct mrn_face_bc {
   double velocity[3]; /* prescribed velocity for MRN_BC_VELOCITY (m/s) */
 } mrn_face_bc;
 
+struct mrn_walls;
+
 typedef struct mrn_boundary {
   mrn_face_bc face[MRN_FACE_COUNT];
+  /* rigid walls of any shape (grid/wall.h), applied after the faces; NULL:
+   * none. Owned by the simulation. */
+  struct mrn_walls *walls;
 } mrn_boundary;
+
+/* A contact between the material and a rigid obstacle (a friction face or a
+ * wall) at one point of it: `count` nodes that stand for that point and share
+ * one contact, nodes[0 .. count-1], or first, first + step, ... when nodes is
+ * NULL. */
+typedef struct mrn_contact_column {
+  size_t first;
+  long step;
+  int count;
+  const size_t *nodes;
+  int axis;    /* the normal's axis when it is one (a face), else -1 */
+  double n[3]; /* unit normal pointing into the obstacle */
+  double w[3]; /* the obstacle's velocity there (m/s) */
+} mrn_contact_column;
+
+/* The unilateral Coulomb contact of one column on `vel` (see boundary.c):
+ * held (normal velocity relative to the obstacle removed) only when
+ * `touching` and moving into the obstacle, or, without friction, when in
+ * contact at the end of the last step (bit `bit` of *state, which the call
+ * with friction updates). With friction, the tangential impulse is bounded by
+ * mu times the normal one. The impulse on the material is added to J (may be
+ * NULL); returns the frictional work sum m dV . (V - w), <= 0. */
+double mrn_contact_apply(const mrn_contact_column *c, mrn_grid *g, double mass_floor, double *vel, double mu,
+                         int with_friction, int touching, unsigned char *state, unsigned char bit, double J[3]);
 
 const char *mrn_bc_kind_name(mrn_bc_kind k);
 /* NULL-terminated list of kind names, in enum order */
@@ -64,7 +93,8 @@ int mrn_boundary_validate(const mrn_boundary *bc, int dim);
  * velocity V of P2G, or XPIC's smoothed fields) they hold the columns moving
  * into the face or in contact at the end of the last step, without friction.
  * Friction faces take the nodes above `mass_floor` (the simulation's; lighter
- * nodes are empty). `dt` only enters the work through F * V * dt = m dV . V. */
+ * nodes are empty). `dt` only enters the work through F * V * dt = m dV . V.
+ * The walls of bc->walls follow the faces (grid/wall.h, mrn_walls_apply). */
 double mrn_boundary_apply(const mrn_boundary *bc, mrn_grid *g, double mass_floor, double *vel, int with_friction);
 /* Mark in g->touch the face nodes of friction faces where the material
  * touches the face: for each particle (positions x, initial volumes vol0, 3

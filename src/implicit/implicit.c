@@ -8,6 +8,7 @@
 
 #include "core/error.h"
 #include "core/tensor.h"
+#include "grid/wall.h"
 #include "implicit/implicit_internal.h"
 #include "solver/timestep.h"
 
@@ -79,6 +80,9 @@ static int check_setup(const mrn_sim *sim, const mrn_implicit_options *o) {
                                      "and velocity faces",
                             mrn_face_name(f), mrn_bc_kind_name(kind));
   }
+  if (sim->boundary.walls && sim->boundary.walls->count)
+    return mrn_error_code(MRN_ERR, "implicit: the simulation has rigid walls (sim:add_wall), which the implicit "
+                                   "integrator does not take");
   if (sim->shape == MRN_SHAPE_CUBIC_BSPLINE)
     return mrn_error_code(MRN_ERR, "implicit: shape functions of support 4 are not supported (use linear, gimp or "
                                    "quadratic)");

@@ -329,6 +329,7 @@ static void save_all(mrn_h5w *w, const mrn_sim *sim, const mrn_stash *stash) {
   save_grid(w, &sim->grid);
   save_scheme(w, &sim->scheme);
   save_boundary(w, &sim->boundary);
+  ck_save_walls(w, sim);
   save_dt_policy(w, &sim->dt_policy);
   save_materials(w, sim);
   save_particles(w, sim);
@@ -463,6 +464,8 @@ static mrn_sim *build_sim(const ck_data *d, mrn_checkpoint_info *info) {
   if (!sim) return NULL;
   sim->scheme = d->scheme;
   sim->boundary = d->boundary;
+  sim->boundary.walls = NULL;
+  if (ck_take_walls(sim, d)) goto fail;
   take_dt_policy(sim, d, info);
   for (int64_t k = 0; k < d->ncontact; k++) sim->grid.contact[d->contact[2 * k]] = (unsigned char)d->contact[2 * k + 1];
   for (int i = 0; i < d->nmaterials; i++)

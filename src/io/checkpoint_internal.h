@@ -9,6 +9,7 @@
 #include <stdint.h>
 
 #include "io/h5util.h"
+#include "grid/wall.h"
 #include "io/stash.h"
 #include "solver/simulation.h"
 
@@ -34,6 +35,9 @@ typedef struct ck_data {
   /* /scheme, /boundary */
   mrn_scheme scheme;
   mrn_boundary boundary;
+  /* /walls: each wall's spec (vertices malloc'd), its state and contacts */
+  int nwalls;
+  struct ck_wall *walls;
   /* /dt_policy */
   mrn_dt_kind dt_kind;
   double dt_value, dt_min, dt_max;
@@ -55,6 +59,18 @@ typedef struct ck_data {
   int nsources;
   mrn_source_state sources[2 * MRN_MAX_SOURCES];
 } ck_data;
+
+/* a wall as read (checkpoint_walls.c) */
+typedef struct ck_wall {
+  mrn_wall_spec spec;
+  double ref[3], rot[9], force[3], moment[3], total_impulse[3], work, work_friction;
+  int64_t ncontact;
+  int64_t *contact;
+} ck_wall;
+void ck_save_walls(mrn_h5w *w, const mrn_sim *sim);
+void ck_read_walls(mrn_h5r *r, ck_data *d, int64_t nodes);
+int ck_take_walls(mrn_sim *sim, const ck_data *d);
+void ck_free_walls(ck_data *d);
 
 /* the array of the particle field `name` (one of the table's) */
 static inline double *ck_field(const ck_data *d, const char *name) {

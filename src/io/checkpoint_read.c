@@ -522,6 +522,7 @@ void ck_free(ck_data *d) {
   free(d->id);
   free(d->state);
   free(d->contact);
+  ck_free_walls(d);
   for (int i = 0; i < d->nuser; i++) free(d->user_values[i]);
   memset(d, 0, sizeof *d);
 }
@@ -561,6 +562,11 @@ int ck_read(const char *path, ck_data *d) {
   read_grid(&r, d);
   read_scheme(&r, d);
   read_boundary(&r, d);
+  if (!r.failed) {
+    int64_t nodes = 1;
+    for (int k = 0; k < d->dim; k++) nodes *= d->ncell[k] + 1 + 2 * MRN_GRID_PAD;
+    ck_read_walls(&r, d, nodes);
+  }
   read_dt_policy(&r, d);
   read_materials(&r, d);
   read_particles(&r, d);

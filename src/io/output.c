@@ -11,6 +11,7 @@
 
 #include "core/error.h"
 #include "core/spec.h"
+#include "grid/wall.h"
 #include "io/atomic_file.h"
 #include "io/output_internal.h"
 #include "io/particle_fields.h"
@@ -375,11 +376,62 @@ static int close_csv(mrn_output *o) {
 }
 
 /* the header, or nothing: a new file whose header cannot be written is removed */
-static int csv_header(mrn_output *o) {
+/* ---- the walls' columns: wall.<name>.<what>, after the diagnostics ---- */
+
+enum { WALL_COLUMNS_MAX = 8 };
+
+/* the columns of wall i of a `dim`-dimensional simulation: names, units
+ * and values (NULL: not wanted); returns their count */
+static int wall_columns(const mrn_wall *w, int dim, const char **what, const char **unit, double *value) {
+  static const char *const names2[] = {"force_x", "force_y", "moment", "work", "work_friction"};
+  static const char *const names3[] = {"force_x", "force_y", "force_z", "moment_x", "moment_y", "moment_z", "work",
+                                       "work_friction"};
+  static const char *const units2[] = {"N/m", "N/m", "N m/m", "J/m", "J/m"};
+  static const char *const units3[] = {"N", "N", "N", "N m", "N m", "N m", "J", "J"};
+  const double v2[] = {w->force[0], w->force[1], w->moment[2], w->work, w->work_friction};
+  const double v3[] = {w->force[0], w->force[1], w->force[2], w->moment[0], w->moment[1], w->moment[2], w->work,
+                       w->work_friction};
+  const int n = dim == 2 ? 5 : 8;
+  for (int k = 0; k < n; k++) {
+    if (what) what[k] = dim == 2 ? names2[k] : names3[k];
+    if (unit) unit[k] = dim == 2 ? units2[k] : units3[k];
+    if (value) value[k] = dim == 2 ? v2[k] : v3[k];
+  }
+  return n;
+}
+
+static int wall_count(const mrn_sim *sim) { return sim->boundary.walls ? sim->boundary.walls->count : 0; }
+
+/* the walls' values into the series' staged row, declaring their columns */
+static int series_walls(mrn_series *s, const mrn_sim *sim) {
+  int rc = MRN_OK;
+  for (int i = 0; rc == MRN_OK && i < wall_count(sim); i++) {
+    const mrn_wall *w = &sim->boundary.walls->wall[i];
+    const char *what[WALL_COLUMNS_MAX], *unit[WALL_COLUMNS_MAX];
+    double value[WALL_COLUMNS_MAX];
+    const int n = wall_columns(w, sim->dim, what, unit, value);
+    for (int k = 0; rc == MRN_OK && k < n; k++) {
+      char name[MRN_WALL_NAME_MAX + 32];
+      snprintf(name, sizeof name, "wall.%s.%s", w->spec.name, what[k]);
+      rc = mrn_series_add_column(s, name, unit[k], "a rigid wall's reaction (last step) or work (accumulated)");
+      if (rc == MRN_OK) rc = mrn_series_set(s, name, value[k]);
+    }
+  }
+  return rc;
+}
+
+static int csv_header(mrn_output *o, const mrn_sim *sim) {
   char header[4096];
   size_t len = (size_t)snprintf(header, sizeof header, "step,time,dt");
   for (int i = 0; i < mrn_diagnostics_column_count() && len < sizeof header; i++)
     len += (size_t)snprintf(header + len, sizeof header - len, ",%s", mrn_diagnostics_column_name(i));
+  for (int i = 0; i < wall_count(sim) && len < sizeof header; i++) {
+    const char *what[WALL_COLUMNS_MAX];
+    const int n = wall_columns(&sim->boundary.walls->wall[i], sim->dim, what, NULL, NULL);
+    for (int k = 0; k < n && len < sizeof header; k++)
+      len += (size_t)snprintf(header + len, sizeof header - len, ",wall.%s.%s", sim->boundary.walls->wall[i].spec.name,
+                              what[k]);
+  }
   if (len + 1 >= sizeof header) return mrn_error_code(MRN_ERR_IO, "cannot write '%s': header too long", o->csv_path);
   header[len++] = '\n';
   int rc = csv_append(o, header, len);
@@ -387,7 +439,7 @@ static int csv_header(mrn_output *o) {
   return rc;
 }
 
-static int open_csv(mrn_output *o) {
+static int open_csv(mrn_output *o, const mrn_sim *sim) {
   char *path = mrn_path_join(o->dir, o->csv_name);
   char *slash = strrchr(path, '/');
   if (slash) { /* the output directory and any directory in the file name */
@@ -410,7 +462,7 @@ static int open_csv(mrn_output *o) {
   }
   mrn_summary_note_file(path);
   o->csv_size = append ? lseek(o->csv_fd, 0, SEEK_END) : 0;
-  int rc = o->csv_size < 0 ? csv_error(o, errno, "") : append ? MRN_OK : csv_header(o);
+  int rc = o->csv_size < 0 ? csv_error(o, errno, "") : append ? MRN_OK : csv_header(o, sim);
   if (rc != MRN_OK) close_csv(o);
   return rc;
 }
@@ -426,6 +478,7 @@ int mrn_output_maybe_csv(mrn_output *o, const mrn_sim *sim, const mrn_diagnostic
     int rc = mrn_series_set_at(o->series, 0, sim->dt);
     for (int i = 0; rc == MRN_OK && i < mrn_diagnostics_column_count(); i++)
       rc = mrn_series_set_at(o->series, i + 1, values[i]);
+    if (rc == MRN_OK) rc = series_walls(o->series, sim);
     if (rc == MRN_OK) rc = mrn_series_append(o->series, sim->step, sim->time);
     if (rc != MRN_OK) return rc;
     o->series_rows++;
@@ -434,15 +487,22 @@ int mrn_output_maybe_csv(mrn_output *o, const mrn_sim *sim, const mrn_diagnostic
     o->csv_last_step = sim->step;
     return MRN_OK;
   }
-  if (o->csv_fd < 0 && open_csv(o) != MRN_OK) return MRN_ERR_IO;
+  if (o->csv_fd < 0 && open_csv(o, sim) != MRN_OK) return MRN_ERR_IO;
   /* the row is formatted first and handed over in one write: a kill never
    * leaves part of a row in the file, and a full disk is taken back */
-  char row[64 * 26 + 64];
-  int len = snprintf(row, sizeof row, "%ld,%.17g,%.17g", sim->step, sim->time, sim->dt);
-  for (int i = 0; i < mrn_diagnostics_column_count(); i++)
-    len += snprintf(row + len, sizeof row - (size_t)len, ",%.17g", values[i]);
-  len += snprintf(row + len, sizeof row - (size_t)len, "\n");
+  const size_t cap = (size_t)(64 + wall_count(sim) * WALL_COLUMNS_MAX) * 26 + 64;
+  char *row = malloc(cap);
+  if (!row) return mrn_error_code(MRN_ERR_IO, "cannot write '%s': out of memory", o->csv_path);
+  int len = snprintf(row, cap, "%ld,%.17g,%.17g", sim->step, sim->time, sim->dt);
+  for (int i = 0; i < mrn_diagnostics_column_count(); i++) len += snprintf(row + len, cap - (size_t)len, ",%.17g", values[i]);
+  for (int i = 0; i < wall_count(sim); i++) {
+    double wv[WALL_COLUMNS_MAX];
+    const int n = wall_columns(&sim->boundary.walls->wall[i], sim->dim, NULL, NULL, wv);
+    for (int k = 0; k < n; k++) len += snprintf(row + len, cap - (size_t)len, ",%.17g", wv[k]);
+  }
+  len += snprintf(row + len, cap - (size_t)len, "\n");
   int rc = csv_append(o, row, (size_t)len);
+  free(row);
   if (rc == MRN_OK) o->csv_last_step = sim->step;
   return rc;
 }

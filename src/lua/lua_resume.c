@@ -9,6 +9,7 @@
 #include <unistd.h>
 
 #include "core/error.h"
+#include "grid/wall.h"
 #include "core/log.h"
 #include "io/atomic_file.h"
 #include "io/checkpoint.h"
@@ -76,7 +77,8 @@ int mrn_lua_sim_save(sim_box *b, const char *path) {
 /* ---- taking a checkpoint ------------------------------------------------------------ */
 
 /* What a deck sets on its simulation that a checkpoint does not hold — the
- * regions' velocity constraints, the sources, the watchdog's bounds, a dt function —
+ * regions' velocity constraints, the sources, the watchdog's bounds, a dt
+ * function, the walls' motion functions —
  * carried from the deck's simulation to the loaded one. */
 static void carry_deck_settings(mrn_sim *to, mrn_sim *from, int dt_function_dropped) {
   if (!from) return;
@@ -84,6 +86,13 @@ static void carry_deck_settings(mrn_sim *to, mrn_sim *from, int dt_function_drop
   from->constraints = NULL, from->nconstraints = 0;
   mrn_sim_move_sources(to, from); /* each takes up its progress from the checkpoint */
   to->watchdog = from->watchdog;
+  /* a wall's motion function, to the loaded wall of the same name */
+  for (int i = 0; from->boundary.walls && i < from->boundary.walls->count; i++) {
+    mrn_wall *f = &from->boundary.walls->wall[i], *t = mrn_walls_find(to->boundary.walls, f->spec.name);
+    if (!t || !f->motion || t->motion) continue;
+    t->motion = f->motion, t->motion_ctx = f->motion_ctx, t->motion_release = f->motion_release;
+    f->motion = NULL, f->motion_ctx = NULL, f->motion_release = NULL;
+  }
   if (dt_function_dropped && from->dt_policy.kind == MRN_DT_CALLBACK) {
     mrn_dt_policy keep = to->dt_policy;
     to->dt_policy = from->dt_policy;

@@ -7,6 +7,7 @@
 #include <string.h>
 
 #include "core/error.h"
+#include "grid/wall.h"
 #include "core/log.h"
 #include "core/memory.h"
 #include "core/parallel.h"
@@ -95,6 +96,7 @@ void mrn_sim_free(mrn_sim *sim) {
   mrn_particles_free(&sim->particles);
   for (int i = 0; i < sim->nmaterials; i++) mrn_material_unref(sim->materials[i]);
   mrn_dt_policy_release(&sim->dt_policy);
+  mrn_walls_free(sim->boundary.walls);
   for (int i = 0; i < sim->nconstraints; i++) mrn_constraint_free(&sim->constraints[i]);
   mrn_sim_free_sources(sim);
   free(sim->constraints);
@@ -168,6 +170,7 @@ void mrn_sim_energies(const mrn_sim *sim, mrn_diagnostics *out) {
   out->friction = sim->work_friction;
   out->damping = sim->work_damping;
   out->external = sim->work_external;
+  out->walls = sim->work_walls;
   out->total = ek + eg + eel;
   out->inflow = sim->energy_inflow;
   out->inflow_work = sim->work_inflow;
@@ -175,8 +178,8 @@ void mrn_sim_energies(const mrn_sim *sim, mrn_diagnostics *out) {
   /* (000, Eq. 68) summed over the steps since the balance started, with what
    * came in and went out through sources and free faces */
   out->mpm_error = sim->energy_ref_set
-                       ? out->total - sim->energy_ref - wpl - sim->work_friction - sim->work_damping - sim->work_external +
-                             sim->energy_outflow - sim->energy_inflow - sim->work_inflow
+                       ? out->total - sim->energy_ref - wpl - sim->work_friction - sim->work_damping - sim->work_external -
+                             sim->work_walls + sim->energy_outflow - sim->energy_inflow - sim->work_inflow
                        : 0.0;
   out->mass = mass;
   for (int d = 0; d < 3; d++) {

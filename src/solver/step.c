@@ -22,6 +22,7 @@
 #include "solver/simulation.h"
 #include "solver/update.h"
 #include "grid/active.h"
+#include "grid/wall.h"
 #include "transfer/kernels.h"
 #include "transfer/profile.h"
 #include "transfer/xpic.h"
@@ -406,6 +407,18 @@ static int step_usavg(mrn_sim *sim, mrn_transfer *tr, double dt, step_end *end) 
   return move_remap_update(sim, tr, dt, 0.5 * dt, end);
 }
 
+/* The part of the walls' holds in V that reaches the particles' momentum:
+ * PIC-like updates take V~ whole, FLIP only V~ - V (which the holds in V do
+ * not change), a blend X of FLIP; XPIC takes V* + V~ - V, V* being V
+ * smoothed, so with the holds. */
+static double hold_share(const mrn_scheme *s) {
+  switch (s->velocity_update) {
+  case MRN_VUPDATE_FLIP: return 0.0;
+  case MRN_VUPDATE_BLEND: return 1.0 - s->flip_fraction;
+  default: return 1.0;
+  }
+}
+
 int mrn_sim_step_dt(mrn_sim *sim, double dt) {
   if (!(dt > 0.0) || !isfinite(dt)) return mrn_error("step %ld: invalid time step %s", sim->step + 1, mrn_num(dt).s);
   sim->dt = dt;
@@ -417,6 +430,10 @@ int mrn_sim_step_dt(mrn_sim *sim, double dt) {
   step_end end = {sim->on_leave == MRN_LEAVE_DELETE ? NULL : &end_pass, -1};
   mrn_boundary_touch(&sim->boundary, &sim->grid, 0.5 * mrn_shape_support(sim->shape), sim->particles.x,
                      sim->particles.vol0, sim->particles.n);
+  if (sim->boundary.walls && (rc = mrn_walls_touch(sim->boundary.walls, &sim->grid, sim->time + 0.5 * dt,
+                                                   0.5 * mrn_shape_support(sim->shape), sim->particles.x,
+                                                   sim->particles.vol0, sim->particles.n)))
+    return rc;
   mrn_transfer tr = mrn_sim_transfer(sim);
   switch (sim->scheme.stress_update) {
   case MRN_STRESS_USF: rc = step_usf(sim, &tr, dt, &end); break;
@@ -426,6 +443,7 @@ int mrn_sim_step_dt(mrn_sim *sim, double dt) {
   }
   mrn_sim_transfer_end(sim, &tr);
   if (rc) return rc;
+  if (sim->boundary.walls) sim->work_walls += mrn_walls_step_end(sim->boundary.walls, dt, hold_share(&sim->scheme));
   sim->time += dt;
   sim->step++;
   rc = !end.pass ? end_of_step(sim) : end.bad >= 0 ? mrn_sim_particle_error(sim, (size_t)end.bad) : MRN_OK;

@@ -21,6 +21,7 @@ local sim = new_sim()
 sim:add_particles(mpm.box{ min = { 0.2, 0.2 }, max = { 0.6, 0.6 } }, { material = mat })
 sim:particle_field{ name = "damage" }
 sim:constrain{ region = mpm.box{ min = { 0, 0 }, max = { 1, 0.1 } }, vx = 0 }
+sim:add_wall{ name = "plate", shape = "plane", point = { 0, 0.05 }, normal = { 0, 1 } }
 
 -- finite: the range named for NaN and the infinities; bad, range: a finite
 -- value beyond the bound and the range named for it (nil: only finiteness)
@@ -77,6 +78,12 @@ local cases = {
   set_constraint = {
     { where = "set_constraint()", key = "vx", finite = "a finite value, in m/s",
       call = function(s, v) s:set_constraint(1, { vx = v }) end },
+  },
+  set_wall = {
+    { where = "set_wall()", key = "velocity[1]", finite = "a finite value, in m/s",
+      call = function(s, v) s:set_wall("plate", { velocity = { v, 0 } }) end },
+    { where = "set_wall()", key = "omega", finite = "a finite value, in rad/s",
+      call = function(s, v) s:set_wall("plate", { omega = v }) end },
   },
   set_value = {
     { where = "set_value()", key = "damage", finite = "a finite value",

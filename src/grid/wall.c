@@ -1,0 +1,591 @@
+#include "grid/wall.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "core/error.h"
+#include "grid/boundary.h"
+
+static const char *const shape_names[] = {"plane", "box", "cylinder", "polygon", NULL};
+static const char *const kind_names[] = {"slip", "friction", "fixed", NULL};
+const char *const *mrn_wall_shape_names(void) { return shape_names; }
+const char *const *mrn_wall_kind_names(void) { return kind_names; }
+
+static double dot3(const double a[3], const double b[3]) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+
+/* ---- geometry, in the reference placement ------------------------------------------ */
+
+/* Each shape also gives the point of its surface nearest to x in surface
+ * coordinates uv = (u, v, patch): lengths along the surface (u only in 2D)
+ * and which smooth piece of it (a box's face). Nodes whose nearest points
+ * fall in one cell-sized patch of the surface form one contact column. */
+
+/* two unit vectors across the unit vector a (2D: one, in the xy plane) */
+static void across(const double a[3], int dim, double e1[3], double e2[3]) {
+  e2[0] = e2[1] = e2[2] = 0.0;
+  if (dim == 2) {
+    e1[0] = -a[1], e1[1] = a[0], e1[2] = 0.0;
+    return;
+  }
+  const double t[3] = {fabs(a[0]) < 0.6 ? 1.0 : 0.0, fabs(a[0]) < 0.6 ? 0.0 : 1.0, 0.0};
+  e1[0] = a[1] * t[2] - a[2] * t[1], e1[1] = a[2] * t[0] - a[0] * t[2], e1[2] = a[0] * t[1] - a[1] * t[0];
+  const double l = sqrt(dot3(e1, e1));
+  for (int d = 0; d < 3; d++) e1[d] /= l;
+  e2[0] = a[1] * e1[2] - a[2] * e1[1], e2[1] = a[2] * e1[0] - a[0] * e1[2], e2[2] = a[0] * e1[1] - a[1] * e1[0];
+}
+
+static double plane_distance(const mrn_wall_spec *s, int dim, const double x[3], double n[3], double uv[3]) {
+  double r[3] = {0, 0, 0}, e1[3], e2[3];
+  for (int d = 0; d < dim; d++) r[d] = x[d] - s->point[d];
+  memcpy(n, s->normal, 3 * sizeof(double));
+  across(s->normal, dim, e1, e2);
+  uv[0] = dot3(r, e1), uv[1] = dot3(r, e2), uv[2] = 0.0;
+  return dot3(r, s->normal);
+}
+
+/* the box: distance to its surface, the normal of the nearest face inside */
+static double box_distance(const mrn_wall_spec *s, int dim, const double x[3], double n[3], double uv[3]) {
+  double q[3] = {0, 0, 0}, out = 0.0, in = -HUGE_VAL;
+  int face = 0;
+  for (int d = 0; d < dim; d++) {
+    const double r = x[d] - s->point[d];
+    q[d] = fabs(r) - s->half[d];
+    if (q[d] > 0.0) out += q[d] * q[d];
+    if (q[d] > in) in = q[d], face = d;
+  }
+  const double side = copysign(1.0, x[face] - s->point[face]);
+  uv[2] = 2 * face + (side > 0.0);
+  for (int d = 0, k = 0; d < dim; d++)
+    if (d != face) uv[k++] = x[d] - s->point[d];
+  if (out > 0.0) {
+    const double len = sqrt(out);
+    for (int d = 0; d < dim; d++) n[d] = q[d] > 0.0 ? copysign(q[d], x[d] - s->point[d]) / len : 0.0;
+    return len;
+  }
+  n[face] = side;
+  return in;
+}
+
+static double cylinder_distance(const mrn_wall_spec *s, int dim, const double x[3], double n[3], double uv[3]) {
+  double r[3] = {0, 0, 0}, e1[3], e2[3];
+  for (int d = 0; d < dim; d++) r[d] = x[d] - s->point[d];
+  uv[1] = uv[2] = 0.0;
+  if (dim == 3) { /* the part across the axis */
+    const double a = dot3(r, s->normal);
+    for (int d = 0; d < 3; d++) r[d] -= a * s->normal[d];
+    uv[1] = a;
+    across(s->normal, dim, e1, e2);
+    uv[0] = s->radius * atan2(dot3(r, e2), dot3(r, e1));
+  } else {
+    uv[0] = s->radius * atan2(r[1], r[0]);
+  }
+  const double len = sqrt(dot3(r, r));
+  if (len > 0.0)
+    for (int d = 0; d < 3; d++) n[d] = r[d] / len;
+  else
+    n[0] = 1.0; /* the axis itself: any direction across it */
+  return len - s->radius;
+}
+
+/* The polygon: the distance to the nearest edge, negative inside (an odd
+ * number of edges crossed by a ray along +x); the normal points from the
+ * nearest point of the boundary to x, or is the edge's own normal on it.
+ * u: the length along the boundary to the nearest point. */
+static double polygon_distance(const mrn_wall_spec *s, const double x[3], double n[3], double uv[3]) {
+  const int nv = s->nvertex;
+  const double *v = s->vertex;
+  double best = HUGE_VAL, cx = 0.0, cy = 0.0, ex = 1.0, ey = 0.0, along = 0.0, u = 0.0;
+  int inside = 0;
+  for (int i = 0, j = nv - 1; i < nv; j = i++) {
+    const double ax = v[2 * j], ay = v[2 * j + 1], bx = v[2 * i], by = v[2 * i + 1];
+    const double dx = bx - ax, dy = by - ay, l2 = dx * dx + dy * dy;
+    double t = l2 > 0.0 ? ((x[0] - ax) * dx + (x[1] - ay) * dy) / l2 : 0.0;
+    t = t < 0.0 ? 0.0 : t > 1.0 ? 1.0 : t;
+    const double px = ax + t * dx, py = ay + t * dy;
+    const double dist = hypot(x[0] - px, x[1] - py);
+    if (dist < best) best = dist, cx = px, cy = py, ex = dx, ey = dy, u = along + t * sqrt(l2);
+    if ((ay > x[1]) != (by > x[1]) && x[0] < ax + (x[1] - ay) * dx / (by - ay)) inside = !inside;
+    along += sqrt(l2);
+  }
+  uv[0] = u, uv[1] = uv[2] = 0.0;
+  const double sign = inside ? -1.0 : 1.0;
+  if (best > 1e-12 * (fabs(cx) + fabs(cy) + 1.0)) {
+    n[0] = sign * (x[0] - cx) / best;
+    n[1] = sign * (x[1] - cy) / best;
+  } else { /* on an edge: its normal, turned outwards by the orientation */
+    const double le = hypot(ex, ey), o = s->normal[2] > 0.0 ? 1.0 : -1.0;
+    n[0] = o * ey / le;
+    n[1] = -o * ex / le;
+  }
+  return sign * best;
+}
+
+/* signed distance, outward normal and surface coordinates in the reference
+ * placement: the one place a new shape is added */
+static double wall_distance_body(const mrn_wall_spec *s, int dim, const double x[3], double n[3], double uv[3]) {
+  double d;
+  n[0] = n[1] = n[2] = 0.0;
+  switch (s->shape) {
+  case MRN_WALL_PLANE: d = plane_distance(s, dim, x, n, uv); break;
+  case MRN_WALL_BOX: d = box_distance(s, dim, x, n, uv); break;
+  case MRN_WALL_CYLINDER: d = cylinder_distance(s, dim, x, n, uv); break;
+  case MRN_WALL_POLYGON: d = polygon_distance(s, x, n, uv); break;
+  default: return HUGE_VAL;
+  }
+  if (s->inside) {
+    for (int k = 0; k < 3; k++) n[k] = -n[k];
+    d = -d;
+  }
+  return d;
+}
+
+/* mrn_wall_distance, with the surface coordinates of the nearest point */
+static double wall_distance_uv(const mrn_wall *w, int dim, const double x[3], double n[3], double uv[3]) {
+  /* into the reference placement: x_ref = R^T (x - ref) + center */
+  const double *R = w->rot;
+  double r[3], xb[3], nb[3];
+  for (int d = 0; d < 3; d++) r[d] = x[d] - w->ref[d];
+  for (int d = 0; d < 3; d++) xb[d] = R[d] * r[0] + R[3 + d] * r[1] + R[6 + d] * r[2] + w->spec.center[d];
+  if (dim == 2) xb[2] = 0.0;
+  const double dist = wall_distance_body(&w->spec, dim, xb, nb, uv);
+  for (int d = 0; d < 3; d++) n[d] = R[3 * d] * nb[0] + R[3 * d + 1] * nb[1] + R[3 * d + 2] * nb[2];
+  if (dim == 2) n[2] = 0.0;
+  return dist;
+}
+
+double mrn_wall_distance(const mrn_wall *w, int dim, const double x[3], double n[3]) {
+  double uv[3];
+  return wall_distance_uv(w, dim, x, n, uv);
+}
+
+void mrn_wall_velocity_at(const mrn_wall *w, int dim, const double x[3], double v[3]) {
+  const double *o = w->spec.omega, *u = w->spec.velocity;
+  double r[3];
+  for (int d = 0; d < 3; d++) r[d] = x[d] - w->ref[d];
+  v[0] = u[0] + o[1] * r[2] - o[2] * r[1];
+  v[1] = u[1] + o[2] * r[0] - o[0] * r[2];
+  v[2] = u[2] + o[0] * r[1] - o[1] * r[0];
+  if (dim == 2) v[2] = 0.0;
+}
+
+/* ---- making walls ------------------------------------------------------------------ */
+
+static int normalise(double v[3], int dim, const char *key) {
+  if (dim == 2) v[2] = 0.0;
+  const double len = sqrt(dot3(v, v));
+  if (!(len > 0.0) || !isfinite(len)) return mrn_error("%s: expected a nonzero finite vector", key);
+  for (int d = 0; d < 3; d++) v[d] /= len;
+  return MRN_OK;
+}
+
+/* the checks of the shape's own keys; the polygon's orientation goes to
+ * normal[2] (+1: counter-clockwise) */
+static int check_shape(mrn_wall_spec *s, int dim) {
+  switch (s->shape) {
+  case MRN_WALL_PLANE: return normalise(s->normal, dim, "normal");
+  case MRN_WALL_BOX:
+    for (int d = 0; d < dim; d++)
+      if (!(s->half[d] > 0.0) || !isfinite(s->half[d]))
+        return mrn_error("size: expected positive finite sides, got %g along axis %d", 2 * s->half[d], d + 1);
+    return MRN_OK;
+  case MRN_WALL_CYLINDER:
+    if (!(s->radius > 0.0) || !isfinite(s->radius)) return mrn_error("radius: expected > 0, got %g", s->radius);
+    return dim == 3 ? normalise(s->normal, dim, "axis") : MRN_OK;
+  case MRN_WALL_POLYGON: {
+    if (dim != 2) return mrn_error("shape: a polygon wall is 2D only");
+    if (s->nvertex < 3 || s->nvertex > MRN_WALL_MAX_VERTICES)
+      return mrn_error("vertices: expected 3 to %d points, got %d", MRN_WALL_MAX_VERTICES, s->nvertex);
+    double area = 0.0;
+    for (int i = 0, j = s->nvertex - 1; i < s->nvertex; j = i++)
+      area += s->vertex[2 * j] * s->vertex[2 * i + 1] - s->vertex[2 * i] * s->vertex[2 * j + 1];
+    if (!(fabs(area) > 0.0) || !isfinite(area)) return mrn_error("vertices: the polygon encloses no area");
+    s->normal[0] = s->normal[1] = 0.0;
+    s->normal[2] = area > 0.0 ? 1.0 : -1.0;
+    return MRN_OK;
+  }
+  default: return mrn_error("shape: unknown wall shape");
+  }
+}
+
+/* 1 when some node of the grid (ghosts included) lies inside the wall or
+ * within a cell of it */
+static int reaches_grid(const mrn_wall *w, const mrn_grid *g) {
+  double x[3], n[3];
+  for (size_t i = 0; i < g->n; i++) {
+    mrn_grid_node_position(g, i, x);
+    if (mrn_wall_distance(w, g->dim, x, n) <= g->cell) return 1;
+  }
+  return 0;
+}
+
+static int outside_error(const char *name, const mrn_grid *g) {
+  char box[192] = "";
+  for (int d = 0; d < g->dim; d++) {
+    const size_t len = strlen(box);
+    snprintf(box + len, sizeof box - len, "%s[%g, %g]", d ? " x " : "", g->origin[d], g->origin[d] + g->size[d]);
+  }
+  return mrn_error("wall '%s' lies entirely outside the grid (no node within a cell of it): the domain is %s", name, box);
+}
+
+static int check_spec(mrn_walls *ws, const mrn_wall_spec *s, int dim) {
+  if (!s->name[0]) return mrn_error("name: expected a non-empty name");
+  if (ws && mrn_walls_find(ws, s->name)) return mrn_error("name: a wall named '%s' exists already", s->name);
+  if (s->kind >= MRN_WALL_KIND_COUNT) return mrn_error("kind: unknown wall kind");
+  if (!(s->mu >= 0.0) || !isfinite(s->mu)) return mrn_error("mu: expected a finite number >= 0, got %g", s->mu);
+  for (int d = 0; d < 3; d++)
+    if (!isfinite(s->velocity[d]) || !isfinite(s->omega[d]) || !isfinite(s->point[d]) || !isfinite(s->center[d]))
+      return mrn_error("point, center, velocity, omega: expected finite numbers");
+  if (dim == 2 && (s->omega[0] != 0.0 || s->omega[1] != 0.0))
+    return mrn_error("omega: a 2D wall turns about z only (give one number)");
+  return MRN_OK;
+}
+
+static void wall_release(mrn_wall *w) {
+  if (w->motion_release) w->motion_release(w->motion_ctx);
+  free(w->spec.vertex);
+  free(w->state);
+  free(w->node);
+  free(w->n);
+  free(w->w);
+  free(w->key);
+  free(w->col_node);
+  free(w->col_start);
+  free(w->col_n);
+  free(w->col_w);
+}
+
+int mrn_walls_add(mrn_walls **wsp, const mrn_grid *g, const mrn_wall_spec *spec) {
+  mrn_wall w;
+  memset(&w, 0, sizeof w);
+  w.spec = *spec;
+  w.spec.vertex = NULL;
+  int rc = check_spec(*wsp, &w.spec, g->dim);
+  if (!rc && spec->shape == MRN_WALL_POLYGON && spec->nvertex > 0) {
+    w.spec.vertex = malloc(2 * (size_t)spec->nvertex * sizeof(double));
+    if (!w.spec.vertex) return mrn_error("out of memory for a wall");
+    memcpy(w.spec.vertex, spec->vertex, 2 * (size_t)spec->nvertex * sizeof(double));
+  }
+  if (!rc) rc = check_shape(&w.spec, g->dim);
+  memcpy(w.ref, w.spec.center, sizeof w.ref);
+  w.rot[0] = w.rot[4] = w.rot[8] = 1.0;
+  if (!rc && !reaches_grid(&w, g)) rc = outside_error(spec->name, g);
+  if (!rc && !(w.state = calloc(g->n, 1))) rc = mrn_error("out of memory for a wall");
+  mrn_walls *ws = *wsp;
+  if (!rc && !ws && !(ws = *wsp = calloc(1, sizeof *ws))) rc = mrn_error("out of memory for a wall");
+  mrn_wall *grown = rc ? NULL : realloc(ws->wall, (size_t)(ws->count + 1) * sizeof *grown);
+  if (!rc && !grown) rc = mrn_error("out of memory for a wall");
+  if (rc) {
+    wall_release(&w);
+    return rc;
+  }
+  ws->wall = grown;
+  ws->dim = g->dim;
+  ws->wall[ws->count++] = w;
+  return MRN_OK;
+}
+
+void mrn_walls_free(mrn_walls *ws) {
+  if (!ws) return;
+  for (int i = 0; i < ws->count; i++) wall_release(&ws->wall[i]);
+  free(ws->wall);
+  free(ws);
+}
+
+mrn_wall *mrn_walls_find(mrn_walls *ws, const char *name) {
+  for (int i = 0; ws && i < ws->count; i++)
+    if (strcmp(ws->wall[i].spec.name, name) == 0) return &ws->wall[i];
+  return NULL;
+}
+
+/* ---- touching ---------------------------------------------------------------------- */
+
+/* How far, in initial half sides, a particle's extent may stand off a wall
+ * and still touch it: as for the friction faces (boundary.c), which this
+ * slack was chosen for */
+#define WALL_TOUCH_SLACK 0.5
+
+static int grow(void **p, size_t bytes) {
+  void *q = realloc(*p, bytes);
+  if (!q) return mrn_error("out of memory for a wall's contacts");
+  *p = q;
+  return MRN_OK;
+}
+
+static int touched_push(mrn_wall *w, size_t node, const double n[3], const double v[3], const long long key[3]) {
+  if (w->count == w->cap) {
+    size_t cap = w->cap ? 2 * w->cap : 256;
+    if (grow((void **)&w->node, cap * sizeof *w->node) || grow((void **)&w->n, 3 * cap * sizeof *w->n) ||
+        grow((void **)&w->w, 3 * cap * sizeof *w->w) || grow((void **)&w->key, 3 * cap * sizeof *w->key) ||
+        grow((void **)&w->col_node, cap * sizeof *w->col_node) ||
+        grow((void **)&w->col_start, (cap + 1) * sizeof *w->col_start) ||
+        grow((void **)&w->col_n, 3 * cap * sizeof *w->col_n) || grow((void **)&w->col_w, 3 * cap * sizeof *w->col_w))
+      return MRN_ERR;
+    w->cap = cap;
+  }
+  w->node[w->count] = node;
+  for (int d = 0; d < 3; d++) {
+    w->n[3 * w->count + d] = n[d];
+    w->w[3 * w->count + d] = v[d];
+    w->key[3 * w->count + d] = key[d];
+  }
+  w->count++;
+  return MRN_OK;
+}
+
+/* mark the nodes inside the wall (signed distance <= 0) within `reach`
+ * cells of a particle at x, the nodes its momentum lands in */
+static int touch_mark(mrn_wall *w, const mrn_grid *g, const double *x, double reach) {
+  int lo[3] = {0, 0, 0}, hi[3] = {0, 0, 0};
+  for (int d = 0; d < g->dim; d++) {
+    const double xi = (x[d] - g->origin[d]) * g->inv_cell;
+    lo[d] = (int)floor(xi - reach) + 1;
+    hi[d] = (int)ceil(xi + reach) - 1;
+    if (lo[d] < -g->pad) lo[d] = -g->pad;
+    if (hi[d] > g->ncell[d] + g->pad) hi[d] = g->ncell[d] + g->pad;
+  }
+  for (int k = lo[2]; k <= hi[2]; k++)
+    for (int j = lo[1]; j <= hi[1]; j++)
+      for (int i = lo[0]; i <= hi[0]; i++) {
+        const size_t node = mrn_grid_index(g, i, j, k);
+        if (w->state[node] & MRN_WALL_TOUCH) continue;
+        double xn[3], n[3], v[3], uv[3];
+        mrn_grid_node_position(g, node, xn);
+        /* on the surface counts as inside: a node of a grid-aligned plane must not
+         * drop out by the round-off of its position */
+        if (!(wall_distance_uv(w, g->dim, xn, n, uv) <= 1e-9 * g->cell)) continue;
+        mrn_wall_velocity_at(w, g->dim, xn, v);
+        /* the patch: the cell-sized piece of the surface nearest the node */
+        const long long key[3] = {(long long)uv[2], llround(uv[0] * g->inv_cell), llround(uv[1] * g->inv_cell)};
+        w->state[node] |= MRN_WALL_TOUCH;
+        if (touched_push(w, node, n, v, key)) return MRN_ERR;
+      }
+  return MRN_OK;
+}
+
+/* a touched node as the sort sees it: its patch, its node, its place */
+typedef struct patch_entry {
+  long long key[3];
+  size_t node, k;
+} patch_entry;
+
+/* the touched nodes in order of patch, then of node */
+static int by_patch(const void *a, const void *b) {
+  const patch_entry *p = a, *q = b;
+  for (int d = 0; d < 3; d++)
+    if (p->key[d] != q->key[d]) return p->key[d] < q->key[d] ? -1 : 1;
+  return p->node < q->node ? -1 : p->node > q->node;
+}
+
+/* close the column of order[lo .. hi - 1]: its mean normal and velocity */
+static void column_close(mrn_wall *w, const size_t *order, size_t lo, size_t hi) {
+  double *n = w->col_n + 3 * w->ncol, *v = w->col_w + 3 * w->ncol;
+  for (int d = 0; d < 3; d++) n[d] = v[d] = 0.0;
+  for (size_t k = lo; k < hi; k++)
+    for (int d = 0; d < 3; d++) n[d] -= w->n[3 * order[k] + d], v[d] += w->w[3 * order[k] + d] / (double)(hi - lo);
+  const double len = sqrt(dot3(n, n));
+  for (int d = 0; d < 3; d++) n[d] = len > 0.0 ? n[d] / len : 0.0;
+  w->ncol++;
+  w->col_start[w->ncol] = hi;
+}
+
+/* group the touched nodes into columns, one per surface patch */
+static int build_columns(mrn_wall *w) {
+  w->ncol = 0;
+  if (!w->count) return MRN_OK;
+  patch_entry *e = malloc(w->count * sizeof *e);
+  size_t *order = malloc(w->count * sizeof *order);
+  if (!e || !order) {
+    free(e), free(order);
+    return mrn_error("out of memory for a wall's contacts");
+  }
+  for (size_t k = 0; k < w->count; k++) {
+    memcpy(e[k].key, w->key + 3 * k, sizeof e[k].key);
+    e[k].node = w->node[k], e[k].k = k;
+  }
+  qsort(e, w->count, sizeof *e, by_patch);
+  w->col_start[0] = 0;
+  size_t lo = 0;
+  for (size_t k = 0; k < w->count; k++) {
+    order[k] = e[k].k;
+    w->col_node[k] = e[k].node;
+    if (k + 1 < w->count && memcmp(e[k].key, e[k + 1].key, sizeof e[k].key) == 0) continue;
+    column_close(w, order, lo, k + 1);
+    lo = k + 1;
+  }
+  free(e), free(order);
+  return MRN_OK;
+}
+
+/* One wall: the nodes of the last step lose their touch bit; those no
+ * longer touched lose their contact too (as a face's untouched column). */
+static int wall_touch(mrn_wall *w, const mrn_grid *g, double reach, const double *x, const double *vol0, size_t np) {
+  const size_t old = w->count;
+  for (size_t k = 0; k < old; k++) w->state[w->node[k]] &= (unsigned char)~MRN_WALL_TOUCH;
+  w->count = 0;
+  /* the old list is read again below: keep it aside while the new one grows */
+  size_t *prev = old ? malloc(old * sizeof *prev) : NULL;
+  if (old && !prev) return mrn_error("out of memory for a wall's contacts");
+  if (old) memcpy(prev, w->node, old * sizeof *prev);
+  int rc = MRN_OK;
+  for (size_t p = 0; p < np && !rc; p++) {
+    const double r = 0.5 * (g->dim == 2 ? sqrt(vol0[p]) : cbrt(vol0[p]));
+    double n[3];
+    if (mrn_wall_distance(w, g->dim, x + 3 * p, n) - r <= WALL_TOUCH_SLACK * r) rc = touch_mark(w, g, x + 3 * p, reach);
+  }
+  for (size_t k = 0; k < old; k++)
+    if (!(w->state[prev[k]] & MRN_WALL_TOUCH)) w->state[prev[k]] &= (unsigned char)~MRN_WALL_CONTACT;
+  free(prev);
+  return rc ? rc : build_columns(w);
+}
+
+/* the motion function's velocities, checked */
+static int wall_motion(mrn_wall *w, int dim, double t) {
+  double v[3] = {0, 0, 0}, o[3] = {0, 0, 0};
+  int rc = w->motion(w->motion_ctx, t, v, o);
+  if (rc) return rc;
+  if (dim == 2) v[2] = o[0] = o[1] = 0.0;
+  for (int d = 0; d < 3; d++)
+    if (!isfinite(v[d]) || !isfinite(o[d]))
+      return mrn_error("wall '%s': its motion function gave a non-finite velocity at t = %g s", w->spec.name, t);
+  memcpy(w->spec.velocity, v, sizeof v);
+  memcpy(w->spec.omega, o, sizeof o);
+  return MRN_OK;
+}
+
+int mrn_wall_restore(mrn_wall *w, const size_t *contact, size_t n) {
+  const double zero[3] = {0, 0, 0};
+  const long long key[3] = {0, 0, 0};
+  for (size_t k = 0; k < n; k++) {
+    w->state[contact[k]] |= MRN_WALL_TOUCH | MRN_WALL_CONTACT;
+    if (touched_push(w, contact[k], zero, zero, key)) return MRN_ERR;
+  }
+  return MRN_OK;
+}
+
+int mrn_walls_touch(mrn_walls *ws, const mrn_grid *g, double t_mid, double reach, const double *x, const double *vol0,
+                    size_t n) {
+  for (int i = 0; ws && i < ws->count; i++) {
+    mrn_wall *w = &ws->wall[i];
+    int rc = w->motion ? wall_motion(w, g->dim, t_mid) : MRN_OK;
+    if (rc) return rc;
+    memset(w->impulse, 0, sizeof w->impulse);
+    memset(w->angular, 0, sizeof w->angular);
+    memset(w->hold_impulse, 0, sizeof w->hold_impulse);
+    memset(w->hold_angular, 0, sizeof w->hold_angular);
+    w->step_work = w->hold_work = 0.0;
+    w->v_done = 0;
+    w->contacts = 0;
+    if ((rc = wall_touch(w, g, reach, x, vol0, n))) return rc;
+  }
+  return MRN_OK;
+}
+
+/* ---- the contact ------------------------------------------------------------------- */
+
+/* a fixed wall: the node moves with the wall; the impulse goes to J */
+static void wall_fix(const mrn_grid *g, double mass_floor, double *v, size_t node, const double w[3], double J[3]) {
+  if (!(g->mass[node] > mass_floor)) return;
+  for (int d = 0; d < 3; d++) {
+    J[d] += g->mass[node] * (w[d] - v[d]);
+    v[d] = w[d];
+  }
+}
+
+/* One column: the contact of grid/boundary.h, its state the union of its
+ * nodes' (a column's nodes change as the material and the wall move) */
+static double column_apply(mrn_wall *w, size_t c, mrn_grid *g, double mass_floor, double *vel, int with_friction,
+                           double J[3]) {
+  const size_t lo = w->col_start[c], hi = w->col_start[c + 1];
+  if (w->spec.kind == MRN_WALL_FIXED) {
+    for (size_t k = lo; k < hi; k++) wall_fix(g, mass_floor, vel + 3 * w->col_node[k], w->col_node[k], w->col_w + 3 * c, J);
+    return 0.0;
+  }
+  mrn_contact_column col = {.count = (int)(hi - lo), .nodes = w->col_node + lo, .axis = -1};
+  memcpy(col.n, w->col_n + 3 * c, sizeof col.n);
+  memcpy(col.w, w->col_w + 3 * c, sizeof col.w);
+  unsigned char state = 0;
+  for (size_t k = lo; k < hi; k++) state |= w->state[w->col_node[k]];
+  const double mu = w->spec.kind == MRN_WALL_FRICTION ? w->spec.mu : 0.0;
+  const double work = mrn_contact_apply(&col, g, mass_floor, vel, mu, with_friction, 1, &state, MRN_WALL_CONTACT, J);
+  if (!with_friction) return work;
+  for (size_t k = lo; k < hi; k++)
+    w->state[w->col_node[k]] = (unsigned char)((w->state[w->col_node[k]] & ~MRN_WALL_CONTACT) | (state & MRN_WALL_CONTACT));
+  w->contacts += (state & MRN_WALL_CONTACT) != 0;
+  return work;
+}
+
+/* add the impulse J of column c and its moment about ref to imp, ang; the
+ * wall's work J . w to *work */
+static void book(const mrn_wall *w, const mrn_grid *g, size_t c, const double J[3], double imp[3], double ang[3],
+                 double *work) {
+  double pos[3], r[3];
+  mrn_grid_node_position(g, w->col_node[w->col_start[c]], pos);
+  for (int d = 0; d < 3; d++) {
+    imp[d] += J[d];
+    r[d] = pos[d] - w->ref[d];
+  }
+  ang[0] += r[1] * J[2] - r[2] * J[1];
+  ang[1] += r[2] * J[0] - r[0] * J[2];
+  ang[2] += r[0] * J[1] - r[1] * J[0];
+  *work += dot3(J, w->col_w + 3 * c);
+}
+
+static double wall_apply(mrn_wall *w, mrn_grid *g, double mass_floor, double *vel, int with_friction) {
+  double work = 0.0;
+  /* the reaction: the impulses of V~ and of the step's first V (the nodal
+   * velocity, not XPIC's smoothed fields), acting at the column's first node */
+  const int hold = !with_friction && !w->v_done && vel == g->vel;
+  for (size_t c = 0; c < w->ncol; c++) {
+    double J[3] = {0.0, 0.0, 0.0};
+    work += column_apply(w, c, g, mass_floor, vel, with_friction, J);
+    if (with_friction) book(w, g, c, J, w->impulse, w->angular, &w->step_work);
+    else if (hold) book(w, g, c, J, w->hold_impulse, w->hold_angular, &w->hold_work);
+  }
+  if (with_friction) w->work_friction += work, w->v_done = 1;
+  return work;
+}
+
+double mrn_walls_apply(mrn_walls *ws, mrn_grid *g, double mass_floor, double *vel, int with_friction) {
+  double work = 0.0;
+  for (int i = 0; ws && i < ws->count; i++) work += wall_apply(&ws->wall[i], g, mass_floor, vel, with_friction);
+  return work;
+}
+
+/* R <- exp([omega dt]x) R (Rodrigues' formula) */
+static void rotate(double R[9], const double omega[3], double dt) {
+  const double th = sqrt(dot3(omega, omega)) * dt;
+  if (!(th > 0.0)) return;
+  double k[3], Q[9], out[9];
+  for (int d = 0; d < 3; d++) k[d] = omega[d] * dt / th;
+  const double c = cos(th), s = sin(th), t = 1.0 - c;
+  Q[0] = c + t * k[0] * k[0], Q[1] = t * k[0] * k[1] - s * k[2], Q[2] = t * k[0] * k[2] + s * k[1];
+  Q[3] = t * k[1] * k[0] + s * k[2], Q[4] = c + t * k[1] * k[1], Q[5] = t * k[1] * k[2] - s * k[0];
+  Q[6] = t * k[2] * k[0] - s * k[1], Q[7] = t * k[2] * k[1] + s * k[0], Q[8] = c + t * k[2] * k[2];
+  for (int i = 0; i < 3; i++)
+    for (int j = 0; j < 3; j++) out[3 * i + j] = Q[3 * i] * R[j] + Q[3 * i + 1] * R[3 + j] + Q[3 * i + 2] * R[6 + j];
+  memcpy(R, out, sizeof out);
+}
+
+double mrn_walls_step_end(mrn_walls *ws, double dt, double hold_share) {
+  double work = 0.0;
+  for (int i = 0; ws && i < ws->count; i++) {
+    mrn_wall *w = &ws->wall[i];
+    for (int d = 0; d < 3; d++) {
+      w->impulse[d] += hold_share * w->hold_impulse[d];
+      w->angular[d] += hold_share * w->hold_angular[d];
+    }
+    w->step_work += hold_share * w->hold_work;
+    for (int d = 0; d < 3; d++) {
+      w->force[d] = -w->impulse[d] / dt;
+      w->moment[d] = -w->angular[d] / dt;
+      w->total_impulse[d] -= w->impulse[d];
+    }
+    w->work += w->step_work;
+    work += w->step_work;
+    for (int d = 0; d < 3; d++) w->ref[d] += w->spec.velocity[d] * dt;
+    rotate(w->rot, w->spec.omega, dt);
+  }
+  return work;
+}

@@ -1,0 +1,145 @@
+/* moraine: rigid walls of any shape on the grid.
+ *
+ * A wall is a rigid obstacle given by its signed distance: negative inside
+ * the wall, positive in the material's space, with the outward normal its
+ * gradient. Shapes (mrn_wall_shape; a new shape is one case in
+ * wall_distance_body, wall.c):
+ *   plane     the half-space behind a plane at any angle (2D and 3D)
+ *   box       an axis-aligned box (in the wall's reference placement)
+ *   cylinder  a disk (2D) or an infinite cylinder along `axis` (3D)
+ *   polygon   a closed polygon (2D), vertices in either orientation
+ * With `inside` set the material is inside the shape and the wall outside
+ * it (a drum, a container). Kinds:
+ *   slip      a unilateral contact without friction
+ *   friction  a unilateral contact with Coulomb friction, coefficient mu
+ *   fixed     the material it touches moves with the wall (no-slip, bilateral)
+ * A wall moves rigidly with a prescribed velocity and angular velocity about
+ * its reference point (both set between steps, e.g. from a function of
+ * time). Each step the nodes the material touches inside the wall (signed
+ * distance <= 0, within the reach of a particle that touches the wall) get
+ * the contact of grid/boundary.h (mrn_contact_apply) with the wall's normal
+ * and velocity there; the wall keeps the reaction (force and moment about its
+ * reference point) and the work it does. doc/numerics.md, "Rigid walls". */
+#ifndef MRN_GRID_WALL_H
+#define MRN_GRID_WALL_H
+
+#include <stddef.h>
+
+#include "grid/grid.h"
+
+typedef enum { MRN_WALL_PLANE = 0, MRN_WALL_BOX, MRN_WALL_CYLINDER, MRN_WALL_POLYGON, MRN_WALL_SHAPE_COUNT } mrn_wall_shape;
+typedef enum { MRN_WALL_SLIP = 0, MRN_WALL_FRICTION, MRN_WALL_FIXED, MRN_WALL_KIND_COUNT } mrn_wall_kind;
+
+/* NULL-terminated names, in enum order */
+const char *const *mrn_wall_shape_names(void);
+const char *const *mrn_wall_kind_names(void);
+
+#define MRN_WALL_NAME_MAX 64
+#define MRN_WALL_MAX_VERTICES 1024
+
+/* what a wall is made of: shape and placement at creation (the reference
+ * placement), kind, and its motion */
+typedef struct mrn_wall_spec {
+  char name[MRN_WALL_NAME_MAX];
+  mrn_wall_shape shape;
+  int inside;       /* 1: the material is inside the shape */
+  double point[3];  /* plane: a point of it; box: its centre; cylinder: a point of its axis */
+  double normal[3]; /* plane: the normal out of the wall (any length > 0); cylinder (3D): the axis */
+  double half[3];   /* box: half its sides */
+  double radius;    /* cylinder */
+  double *vertex;   /* polygon: nvertex (x, y) pairs; copied */
+  int nvertex;
+  mrn_wall_kind kind;
+  double mu;          /* friction */
+  double velocity[3]; /* m/s */
+  double omega[3];    /* rad/s, about `center` (2D: only z) */
+  double center[3];   /* the reference point: rotation, moment */
+} mrn_wall_spec;
+
+/* A motion given as a function of time: fills the velocity and angular
+ * velocity at time t; 0 or an error code (message set) */
+typedef int (*mrn_wall_motion_fn)(void *ctx, double t, double velocity[3], double omega[3]);
+
+typedef struct mrn_wall {
+  mrn_wall_spec spec; /* as made: placement, kind, mu, motion as set last */
+  double ref[3];      /* where the reference point is now */
+  double rot[9];      /* rotation from the reference placement, row-major */
+  /* the last step: impulse on the material and its moment about ref (in
+   * V~), and the reaction on the wall, -impulse / dt (N, N m; per metre in 2D) */
+  double impulse[3], angular[3];
+  /* the same of the holds in V, before the forces (the first V of the step
+   * only): they reach the particles' momentum under PIC-like updates */
+  double hold_impulse[3], hold_angular[3], hold_work;
+  int v_done; /* V~ reached: later holds (a re-map) are not the step's */
+  double force[3], moment[3];
+  double total_impulse[3]; /* accumulated impulse of the material on the wall (N s) */
+  double work_friction; /* accumulated frictional work, <= 0 (J) */
+  double work;          /* accumulated work the wall did on the material (J) */
+  double step_work;     /* that of the current step */
+  long contacts;        /* nodes held with friction in the last step */
+  /* the motion as a function of time (NULL: spec.velocity and spec.omega
+   * as set), asked at the middle of each step; release(ctx) on free */
+  mrn_wall_motion_fn motion;
+  void *motion_ctx;
+  void (*motion_release)(void *ctx);
+  /* per node of the grid: bit 0 touched this step, bit 1 in contact at the
+   * end of the last step */
+  unsigned char *state;
+  /* the nodes touched this step, with the wall's normal (out of the wall),
+   * velocity and the surface patch of the nearest point there */
+  size_t *node;
+  double *n, *w;
+  long long *key;
+  size_t count, cap;
+  /* those nodes in columns, one per surface patch: column c holds
+   * col_node[col_start[c] .. col_start[c + 1] - 1], its normal into the wall
+   * col_n and the wall's velocity col_w (3 each) */
+  size_t *col_node, *col_start;
+  double *col_n, *col_w;
+  size_t ncol;
+} mrn_wall;
+
+typedef struct mrn_walls {
+  mrn_wall *wall;
+  int count;
+  int dim;
+} mrn_walls;
+
+#define MRN_WALL_TOUCH 1u
+#define MRN_WALL_CONTACT 2u
+
+/* Check a spec against the grid (shape, normal, radius, vertices, mu, a wall
+ * that reaches the grid) and append the wall; *ws is created on first use.
+ * Returns 0 or an error (message names the key at fault). */
+int mrn_walls_add(mrn_walls **ws, const mrn_grid *g, const mrn_wall_spec *spec);
+void mrn_walls_free(mrn_walls *ws);
+/* the wall of that name, or NULL */
+mrn_wall *mrn_walls_find(mrn_walls *ws, const char *name);
+
+/* The signed distance of x from the wall's surface in its current placement
+ * (positive outside the wall) and the outward unit normal there */
+double mrn_wall_distance(const mrn_wall *w, int dim, const double x[3], double n[3]);
+/* the wall's velocity at x */
+void mrn_wall_velocity_at(const mrn_wall *w, int dim, const double x[3], double v[3]);
+
+/* A wall as a checkpoint left it: its placement, accumulators and the
+ * nodes in contact at the end of the last step (which also stand for the
+ * nodes it touched then, so the next step forgets the same contacts) */
+int mrn_wall_restore(mrn_wall *w, const size_t *contact, size_t n);
+
+/* Start of a step at t_mid, its middle: the walls' motions for the step,
+ * the nodes each wall's material touches (positions x, initial volumes vol0
+ * of n particles, `reach` cells the shape functions reach), and the step's
+ * reaction cleared. 0 or an error (a motion function's). */
+int mrn_walls_touch(mrn_walls *ws, const mrn_grid *g, double t_mid, double reach, const double *x, const double *vol0,
+                    size_t n);
+/* Impose the walls on vel, as mrn_boundary_apply (which calls it); returns
+ * the frictional work (with_friction only) */
+double mrn_walls_apply(mrn_walls *ws, mrn_grid *g, double mass_floor, double *vel, int with_friction);
+/* End of a step of dt: the reactions, and the walls moved on. `hold_share`
+ * is the part of the holds in V that reaches the particles' momentum (1 for
+ * PIC-like velocity updates and XPIC, 0 for FLIP, 1 - X for blends). Returns the
+ * work the walls did on the material in the step. */
+double mrn_walls_step_end(mrn_walls *ws, double dt, double hold_share);
+
+#endif
