@@ -163,8 +163,9 @@ static void face_layers(const mrn_grid *g, int axis, int side, int lo[3], int hi
 }
 
 /* Mark the face nodes of face `face` whose columns the momentum of a
- * particle at x reaches: those within `reach` cells of it along the face. */
-static void touch_mark(mrn_grid *g, const double *x, int face, double reach) {
+ * particle at x reaches: those within `reach` cells of it along the face;
+ * with `held_only`, only those whose column ended the last step in contact. */
+static void touch_mark(mrn_grid *g, const double *x, int face, double reach, int held_only) {
   const int axis = face / 2;
   int lo[3] = {0, 0, 0}, hi[3] = {0, 0, 0};
   for (int d = 0; d < g->dim; d++) {
@@ -180,7 +181,10 @@ static void touch_mark(mrn_grid *g, const double *x, int face, double reach) {
   }
   for (int k = lo[2]; k <= hi[2]; k++)
     for (int j = lo[1]; j <= hi[1]; j++)
-      for (int i = lo[0]; i <= hi[0]; i++) g->touch[mrn_grid_index(g, i, j, k)] |= (unsigned char)(1u << face);
+      for (int i = lo[0]; i <= hi[0]; i++) {
+        const size_t n = mrn_grid_index(g, i, j, k);
+        if (!held_only || (g->contact[n] & (1u << face))) g->touch[n] |= (unsigned char)(1u << face);
+      }
 }
 
 /* clear the touch bits of one face's face nodes */
@@ -194,11 +198,13 @@ static void touch_clear(mrn_grid *g, int face) {
 }
 
 /* How far, in initial half sides, a particle's extent may stand off a face
- * and still touch it. A body resting on a face sits with its particles' half
- * sides just on it; with no slack, vibrations of a fraction of a micrometre
- * made its contact flicker and friction act only part of the time (a block
- * sliding 3 % too fast); a larger slack lets a layer float that far above the
- * face before it is caught. */
+ * and keep a contact it has: a body resting on a face sits with its
+ * particles' half sides just on it, and without this slack vibrations of a
+ * fraction of a micrometre made its contact flicker and friction act only
+ * part of the time (a block sliding 3 % too fast). A new contact needs the
+ * material on the face: a column caught within the slack holds the material
+ * where it is, above the face, so a vibrating block that lifted off was
+ * caught higher each time and climbed by the slack. */
 #define MRN_TOUCH_SLACK 0.5
 
 void mrn_boundary_touch(const mrn_boundary *bc, mrn_grid *g, double reach, const double *x, const double *vol0,
@@ -215,7 +221,7 @@ void mrn_boundary_touch(const mrn_boundary *bc, mrn_grid *g, double reach, const
       const int axis = faces[k] / 2;
       const double lo = g->origin[axis], hi = lo + g->size[axis];
       const double gap = (faces[k] % 2 == 0 ? x[3 * p + axis] - lo : hi - x[3 * p + axis]) - r;
-      if (gap <= MRN_TOUCH_SLACK * r) touch_mark(g, x + 3 * p, faces[k], reach);
+      if (gap <= MRN_TOUCH_SLACK * r) touch_mark(g, x + 3 * p, faces[k], reach, gap > 0.0);
     }
   }
 }

@@ -100,7 +100,9 @@ double mrn_boundary_apply(const mrn_boundary *bc, mrn_grid *g, double mass_floor
  * touches the face: for each particle (positions x, initial volumes vol0, 3
  * and 1 values per particle) whose initial half side reaches a friction
  * face, the face nodes within `reach` cells of it along the face (the reach
- * of its shape functions), whose columns its momentum lands in. */
+ * of its shape functions), whose columns its momentum lands in. A column not
+ * in contact is touched only by material on the face; one in contact stays
+ * touched while material is within a slack of it (see boundary.c). */
 void mrn_boundary_touch(const mrn_boundary *bc, mrn_grid *g, double reach, const double *x, const double *vol0,
                         size_t n);
 

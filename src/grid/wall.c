@@ -302,8 +302,8 @@ mrn_wall *mrn_walls_find(mrn_walls *ws, const char *name) {
 /* ---- touching ---------------------------------------------------------------------- */
 
 /* How far, in initial half sides, a particle's extent may stand off a wall
- * and still touch it: as for the friction faces (boundary.c), which this
- * slack was chosen for */
+ * and keep a contact it has; a new contact needs the material on the wall:
+ * as for the friction faces (boundary.c), which this rule was chosen for */
 #define WALL_TOUCH_SLACK 0.5
 
 static int grow(void **p, size_t bytes) {
@@ -335,8 +335,9 @@ static int touched_push(mrn_wall *w, size_t node, const double n[3], const doubl
 }
 
 /* mark the nodes inside the wall (signed distance <= 0) within `reach`
- * cells of a particle at x, the nodes its momentum lands in */
-static int touch_mark(mrn_wall *w, const mrn_grid *g, const double *x, double reach) {
+ * cells of a particle at x, the nodes its momentum lands in; with
+ * `held_only`, only those that ended the last step in contact */
+static int touch_mark(mrn_wall *w, const mrn_grid *g, const double *x, double reach, int held_only) {
   int lo[3] = {0, 0, 0}, hi[3] = {0, 0, 0};
   for (int d = 0; d < g->dim; d++) {
     const double xi = (x[d] - g->origin[d]) * g->inv_cell;
@@ -350,6 +351,7 @@ static int touch_mark(mrn_wall *w, const mrn_grid *g, const double *x, double re
       for (int i = lo[0]; i <= hi[0]; i++) {
         const size_t node = mrn_grid_index(g, i, j, k);
         if (w->state[node] & MRN_WALL_TOUCH) continue;
+        if (held_only && !(w->state[node] & MRN_WALL_CONTACT)) continue;
         double xn[3], n[3], v[3], uv[3];
         mrn_grid_node_position(g, node, xn);
         /* on the surface counts as inside: a node of a grid-aligned plane must not
@@ -432,7 +434,8 @@ static int wall_touch(mrn_wall *w, const mrn_grid *g, double reach, const double
   for (size_t p = 0; p < np && !rc; p++) {
     const double r = 0.5 * (g->dim == 2 ? sqrt(vol0[p]) : cbrt(vol0[p]));
     double n[3];
-    if (mrn_wall_distance(w, g->dim, x + 3 * p, n) - r <= WALL_TOUCH_SLACK * r) rc = touch_mark(w, g, x + 3 * p, reach);
+    const double gap = mrn_wall_distance(w, g->dim, x + 3 * p, n) - r;
+    if (gap <= WALL_TOUCH_SLACK * r) rc = touch_mark(w, g, x + 3 * p, reach, gap > 0.0);
   }
   for (size_t k = 0; k < old; k++)
     if (!(w->state[prev[k]] & MRN_WALL_TOUCH)) w->state[prev[k]] &= (unsigned char)~MRN_WALL_CONTACT;

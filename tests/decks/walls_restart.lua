@@ -12,7 +12,7 @@ local function build()
   local th = math.rad(30)
   sim:add_wall{ name = "plane", shape = "plane", point = { 0.1, 0.9 }, normal = { math.sin(th), math.cos(th) },
                 kind = "friction", mu = 0.3 }
-  sim:add_wall{ name = "plate", shape = "polygon", vertices = { { 1.3, 0.2 }, { 1.4, 0.2 }, { 1.4, 0.5 }, { 1.3, 0.5 } },
+  sim:add_wall{ name = "plate", shape = "polygon", vertices = { { 1.3, 0.05 }, { 1.4, 0.05 }, { 1.4, 0.35 }, { 1.3, 0.35 } },
                 kind = "friction", mu = 0.2, velocity = function(t) return { -0.1 * t, 0 } end, omega = 0.05 }
   sim:add_particles(mpm.box{ min = { 0.3, 0.85 }, max = { 0.5, 1.0 } },
                     { material = mpm.material.linear_elastic{ density = 1000, E = 1e6, nu = 0.3 }, per_cell = 4 })
