@@ -35,6 +35,9 @@ moraine_deck_test(friction_3d friction.lua ARGS --set dim=3 LABELS slow)
 moraine_deck_test(walls walls.lua)
 moraine_deck_test(walls_restart walls_restart.lua)
 moraine_deck_test(walls_3d walls_3d.lua LABELS slow)
+# what feeds a sliding body's vibration: a long wave that friction makes grow
+# under every strategy that keeps energy, and FLIP's short waves
+moraine_deck_test(friction_layer friction_layer.lua)
 moraine_deck_test(axial_bar_linear axial_bar.lua ARGS --set shape=linear --set cells=16)
 moraine_deck_test(axial_bar_quadratic axial_bar.lua ARGS --set shape=quadratic_bspline --set cells=32)
 # "long": physics runs of a minute or more; the sanitizer pass of
