@@ -167,18 +167,9 @@ static void face_layers(const mrn_grid *g, int axis, int side, int lo[3], int hi
  * with `held_only`, only those whose column ended the last step in contact. */
 static void touch_mark(mrn_grid *g, const double *x, int face, double reach, int held_only) {
   const int axis = face / 2;
-  int lo[3] = {0, 0, 0}, hi[3] = {0, 0, 0};
-  for (int d = 0; d < g->dim; d++) {
-    if (d == axis) {
-      lo[d] = hi[d] = face % 2 == 0 ? 0 : g->ncell[d];
-      continue;
-    }
-    const double xi = (x[d] - g->origin[d]) * g->inv_cell;
-    lo[d] = (int)floor(xi - reach) + 1;
-    hi[d] = (int)ceil(xi + reach) - 1;
-    if (lo[d] < -g->pad) lo[d] = -g->pad;
-    if (hi[d] > g->ncell[d] + g->pad) hi[d] = g->ncell[d] + g->pad;
-  }
+  int lo[3], hi[3];
+  mrn_grid_reach_box(g, x, reach, lo, hi);
+  lo[axis] = hi[axis] = face % 2 == 0 ? 0 : g->ncell[axis]; /* the face nodes only */
   for (int k = lo[2]; k <= hi[2]; k++)
     for (int j = lo[1]; j <= hi[1]; j++)
       for (int i = lo[0]; i <= hi[0]; i++) {

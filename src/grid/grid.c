@@ -106,6 +106,17 @@ void mrn_grid_node_ijk(const mrn_grid *g, size_t idx, int ijk[3]) {
   for (int d = 0; d < 3; d++) ijk[d] = d < g->dim ? ijk[d] - g->pad : 0;
 }
 
+void mrn_grid_reach_box(const mrn_grid *g, const double *x, double reach, int lo[3], int hi[3]) {
+  for (int d = 0; d < 3; d++) lo[d] = hi[d] = 0;
+  for (int d = 0; d < g->dim; d++) {
+    const double xi = (x[d] - g->origin[d]) * g->inv_cell;
+    lo[d] = (int)floor(xi - reach) + 1;
+    hi[d] = (int)ceil(xi + reach) - 1;
+    if (lo[d] < -g->pad) lo[d] = -g->pad;
+    if (hi[d] > g->ncell[d] + g->pad) hi[d] = g->ncell[d] + g->pad;
+  }
+}
+
 void mrn_grid_node_position(const mrn_grid *g, size_t idx, double x[3]) {
   int ijk[3];
   mrn_grid_node_ijk(g, idx, ijk);

@@ -61,6 +61,10 @@ static inline size_t mrn_grid_index(const mrn_grid *g, int i, int j, int k) {
 void mrn_grid_node_position(const mrn_grid *g, size_t idx, double x[3]);
 /* integer node indices (domain numbering) of a linear index */
 void mrn_grid_node_ijk(const mrn_grid *g, size_t idx, int ijk[3]);
+/* the index box [lo, hi] (domain numbering, ghost nodes included; zero
+ * extent along unused axes) of the nodes strictly within `reach` cells of x
+ * along every axis: those a kernel of that reach around x touches */
+void mrn_grid_reach_box(const mrn_grid *g, const double *x, double reach, int lo[3], int hi[3]);
 /* 1 when the point lies inside the domain [origin, origin + size] (inline:
  * the end-of-step state check asks it of every particle) */
 static inline int mrn_grid_contains(const mrn_grid *g, const double x[3]) {

@@ -338,14 +338,8 @@ static int touched_push(mrn_wall *w, size_t node, const double n[3], const doubl
  * cells of a particle at x, the nodes its momentum lands in; with
  * `held_only`, only those that ended the last step in contact */
 static int touch_mark(mrn_wall *w, const mrn_grid *g, const double *x, double reach, int held_only) {
-  int lo[3] = {0, 0, 0}, hi[3] = {0, 0, 0};
-  for (int d = 0; d < g->dim; d++) {
-    const double xi = (x[d] - g->origin[d]) * g->inv_cell;
-    lo[d] = (int)floor(xi - reach) + 1;
-    hi[d] = (int)ceil(xi + reach) - 1;
-    if (lo[d] < -g->pad) lo[d] = -g->pad;
-    if (hi[d] > g->ncell[d] + g->pad) hi[d] = g->ncell[d] + g->pad;
-  }
+  int lo[3], hi[3];
+  mrn_grid_reach_box(g, x, reach, lo, hi);
   for (int k = lo[2]; k <= hi[2]; k++)
     for (int j = lo[1]; j <= hi[1]; j++)
       for (int i = lo[0]; i <= hi[0]; i++) {
