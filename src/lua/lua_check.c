@@ -274,12 +274,14 @@ void mrn_lua_strict(lua_State *L, int idx, const char *what, const char *kind) {
   lua_setmetatable(L, idx);
 }
 
-void mrn_lua_push_weak_table(lua_State *L, const char *name) {
+void mrn_lua_push_weak_table(lua_State *L, const char *name) { mrn_lua_push_weak_table_mode(L, name, "k"); }
+
+void mrn_lua_push_weak_table_mode(lua_State *L, const char *name, const char *mode) {
   if (lua_getfield(L, LUA_REGISTRYINDEX, name) == LUA_TTABLE) return;
   lua_pop(L, 1);
   lua_newtable(L);
   lua_createtable(L, 0, 1);
-  lua_pushstring(L, "k");
+  lua_pushstring(L, mode);
   lua_setfield(L, -2, "__mode");
   lua_setmetatable(L, -2);
   lua_pushvalue(L, -1);

@@ -38,6 +38,8 @@ int mrn_lua_is_output_error(lua_State *L, int idx);
 /* push the registry table `name`, made with weak keys the first time (its
  * entries go with the objects they describe) */
 void mrn_lua_push_weak_table(lua_State *L, const char *name);
+/* the same with a weak `mode` of its own ("k", "v" or "kv") */
+void mrn_lua_push_weak_table_mode(lua_State *L, const char *name, const char *mode);
 void mrn_lua_mark_output_error(lua_State *L, int idx);
 /* An output that fails where no error can be raised (the last rewrite of a
  * series when the garbage collector closes a simulation, at the latest when

@@ -223,17 +223,7 @@ static int l_new_lua_material(lua_State *L) {
 /* registry: the deck's Lua materials by name, weak values */
 #define USER_MATERIALS_KEY "moraine.lua_materials"
 
-static void push_user_materials(lua_State *L) {
-  if (lua_getfield(L, LUA_REGISTRYINDEX, USER_MATERIALS_KEY) == LUA_TTABLE) return;
-  lua_pop(L, 1);
-  lua_newtable(L);
-  lua_createtable(L, 0, 1);
-  lua_pushstring(L, "v");
-  lua_setfield(L, -2, "__mode");
-  lua_setmetatable(L, -2);
-  lua_pushvalue(L, -1);
-  lua_setfield(L, LUA_REGISTRYINDEX, USER_MATERIALS_KEY);
-}
+static void push_user_materials(lua_State *L) { mrn_lua_push_weak_table_mode(L, USER_MATERIALS_KEY, "v"); }
 
 /* the material userdata at idx, under its name */
 static void remember(lua_State *L, int idx, const char *name) {
@@ -314,7 +304,15 @@ static int l_driver_new(lua_State *L) {
   return 1;
 }
 
-/* a driver call with the deck's thread recorded for a Lua material's update */
+/* record the deck's thread for a Lua material's update during a driver
+ * call; returns the one to restore in driver_done */
+static lua_State *driver_begin(lua_State *L) {
+  lua_State *previous = mrn_lua_active;
+  mrn_lua_active = L;
+  return previous;
+}
+
+/* the end of a driver call: the thread restored, an error raised */
 static int driver_done(lua_State *L, lua_State *previous, int rc) {
   mrn_lua_active = previous;
   if (rc == MRN_ERR_HOOK) {
@@ -332,8 +330,7 @@ static int l_driver_step(lua_State *L) {
   double grad[9];
   read_table(L, 2, 9, grad, "L");
   double dt = finite_arg(L, 3, "dt");
-  lua_State *previous = mrn_lua_active;
-  mrn_lua_active = L;
+  lua_State *previous = driver_begin(L);
   return driver_done(L, previous, mrn_driver_step(d, grad, dt));
 }
 
@@ -343,8 +340,7 @@ static int l_driver_strain(lua_State *L) {
   double de[6];
   read_table(L, 2, 6, de, "deps");
   double dt = finite_arg(L, 3, "dt");
-  lua_State *previous = mrn_lua_active;
-  mrn_lua_active = L;
+  lua_State *previous = driver_begin(L);
   return driver_done(L, previous, mrn_driver_strain(d, de, dt));
 }
 
@@ -352,8 +348,7 @@ static int l_driver_strain(lua_State *L) {
 static int l_driver_triaxial(lua_State *L) {
   mrn_driver *d = check_driver(L);
   double rate = finite_arg(L, 2, "rate"), lateral = finite_arg(L, 3, "lateral"), dt = finite_arg(L, 4, "dt");
-  lua_State *previous = mrn_lua_active;
-  mrn_lua_active = L;
+  lua_State *previous = driver_begin(L);
   return driver_done(L, previous, mrn_driver_triaxial(d, rate, lateral, dt));
 }
 
@@ -361,8 +356,7 @@ static int l_driver_simple_shear(lua_State *L) {
   mrn_driver *d = check_driver(L);
   double rate = finite_arg(L, 2, "rate"), dt = finite_arg(L, 4, "dt");
   double normal = lua_isnil(L, 3) ? NAN : finite_arg(L, 3, "normal");
-  lua_State *previous = mrn_lua_active;
-  mrn_lua_active = L;
+  lua_State *previous = driver_begin(L);
   return driver_done(L, previous, mrn_driver_simple_shear(d, rate, normal, dt));
 }
 

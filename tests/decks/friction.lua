@@ -28,11 +28,7 @@
 --   --set dim=2|3  --set strategies=PIC,FLIP,...  --set shapes=quadratic_bspline,...
 local T = dofile(mpm.deck_dir .. "/testlib.lua")
 local dim = math.tointeger(mpm.param("dim", 2))
-local function list(s)
-  local t = {}
-  for item in s:gmatch("[^,%s]+") do t[#t + 1] = item end
-  return t
-end
+local list = T.list
 local strategies = list(mpm.param("strategies", "PIC,FLIP,APIC,TPIC,AFLIP,TFLIP,XPIC(2),MLS"))
 local shapes = list(mpm.param("shapes", "quadratic_bspline,cubic_bspline"))
 local g, rho, E = 9.81, 1000, 1e6

@@ -43,6 +43,13 @@ function T.expect(t)
   return r.error
 end
 
+--- the items of a comma- or space-separated list, e.g. a --set option
+function T.list(s)
+  local t = {}
+  for item in s:gmatch("[^,%s]+") do t[#t + 1] = item end
+  return t
+end
+
 --- index of the particle nearest the point x (2 or 3 numbers)
 function T.nearest(sim, x)
   local best, index = math.huge, nil

@@ -23,11 +23,7 @@
 --          stays below 1 % of it (reported for the others).
 --   --set strategies=FLIP,APIC,...
 local T = dofile(mpm.deck_dir .. "/testlib.lua")
-local function list(s)
-  local t = {}
-  for item in s:gmatch("[^,%s]+") do t[#t + 1] = item end
-  return t
-end
+local list = T.list
 local strategies = list(mpm.param("strategies", "FLIP,APIC"))
 local g, rho, E, cell = 9.81, 1000, 1e6, 0.025
 local L, H = 0.4, 0.2
