@@ -279,8 +279,9 @@ static void bucket_test(const mrn_trimesh *m, size_t k, const double x[3], hit *
     const double *box = m->box + 6 * t;
     double gap = 0.0, q[3], r[3];
     for (int d = 0; d < 3; d++) {
-      const double out = fmax(box[d] - x[d], x[d] - box[3 + d]);
-      if (out > 0.0) gap += out * out;
+      const double below = box[d] - x[d], above = x[d] - box[3 + d];
+      if (below > 0.0) gap += below * below;
+      else if (above > 0.0) gap += above * above;
     }
     if (gap >= h->d2) continue;
     const int f = closest_point(corner(m, t, 0), corner(m, t, 1), corner(m, t, 2), x, q);
@@ -296,14 +297,27 @@ static double bucket_of(const mrn_trimesh *m, const double x[3], int c[3]) {
   for (int d = 0; d < 3; d++) {
     const double u = (x[d] - m->lo[d]) / m->b;
     c[d] = u < 0.0 ? 0 : u >= m->nb[d] ? m->nb[d] - 1 : (int)u;
-    const double beyond = fmax(m->lo[d] - x[d], x[d] - (m->lo[d] + m->nb[d] * m->b));
-    if (beyond > 0.0) out += beyond * beyond;
+    const double below = m->lo[d] - x[d], above = x[d] - (m->lo[d] + m->nb[d] * m->b);
+    if (below > 0.0) out += below * below;
+    else if (above > 0.0) out += above * above;
   }
   return sqrt(out);
 }
 
 static size_t bucket_index(const mrn_trimesh *m, int i, int j, int k) {
   return (size_t)i + (size_t)m->nb[0] * ((size_t)j + (size_t)m->nb[1] * (size_t)k);
+}
+
+/* the bucket (i, j, l) when it lies nearer x than the nearest so far */
+static void bucket_near(const mrn_trimesh *m, int i, int j, int l, const double x[3], hit *h) {
+  const int at[3] = {i, j, l};
+  double gap = 0.0;
+  for (int d = 0; d < 3; d++) {
+    const double below = m->lo[d] + at[d] * m->b - x[d], above = x[d] - (m->lo[d] + (at[d] + 1) * m->b);
+    if (below > 0.0) gap += below * below;
+    else if (above > 0.0) gap += above * above;
+  }
+  if (gap < h->d2) bucket_test(m, bucket_index(m, i, j, l), x, h);
 }
 
 /* the buckets at Chebyshev distance k from c */
@@ -313,11 +327,11 @@ static void ring_test(const mrn_trimesh *m, const int c[3], int k, const double 
   for (int j = lo[1]; j <= hi[1]; j++)
     for (int i = lo[0]; i <= hi[0]; i++) {
       if (abs(i - c[0]) == k || abs(j - c[1]) == k) { /* on the ring's side: the whole column */
-        for (int l = lo[2]; l <= hi[2]; l++) bucket_test(m, bucket_index(m, i, j, l), x, h);
+        for (int l = lo[2]; l <= hi[2]; l++) bucket_near(m, i, j, l, x, h);
         continue;
       }
-      if (c[2] - k >= 0) bucket_test(m, bucket_index(m, i, j, c[2] - k), x, h);
-      if (c[2] + k < m->nb[2]) bucket_test(m, bucket_index(m, i, j, c[2] + k), x, h);
+      if (c[2] - k >= 0) bucket_near(m, i, j, c[2] - k, x, h);
+      if (c[2] + k < m->nb[2]) bucket_near(m, i, j, c[2] + k, x, h);
     }
 }
 
@@ -361,25 +375,33 @@ static double resolve(const mrn_trimesh *m, const double x[3], const hit *h, dou
   return sign * dist;
 }
 
-/* the sign stored for x's bucket: outside the grid, outside */
-static double far_sign(const mrn_trimesh *m, const double x[3]) {
+/* The side of x when nothing lies within *searched of it: outside the
+ * grid, outside; in a bucket no triangle crosses, the bucket's side; else
+ * the search goes on to cap_min, and when it finds nothing (h->tri < 0)
+ * the bucket's centre lies on x's side (grid/trimesh.h) */
+static double side_of(const mrn_trimesh *m, const double x[3], double *searched, hit *h) {
   int c[3];
   if (bucket_of(m, x, c) > 0.0) return 1.0;
-  return m->sign[bucket_index(m, c[0], c[1], c[2])];
+  const size_t k = bucket_index(m, c[0], c[1], c[2]);
+  if (m->start[k] < m->start[k + 1] && *searched < m->cap_min) {
+    nearest(m, x, m->cap_min, h);
+    *searched = m->cap_min;
+  }
+  return m->sign[k];
 }
 
 double mrn_trimesh_distance(const mrn_trimesh *m, const double x[3], double cap_in, double cap_out, double n[3],
                             int *group) {
-  const double first = fmax(fmin(cap_in, cap_out), m->cap_min);
+  double searched = fmax(fmin(cap_in, cap_out), 0.0);
   hit h;
-  nearest(m, x, first, &h);
+  nearest(m, x, searched, &h);
   if (h.tri < 0) {
-    const double sign = far_sign(m, x), cap = sign > 0.0 ? cap_out : cap_in;
-    if (cap > first) nearest(m, x, cap, &h);
-    if (h.tri < 0) {
+    const double sign = side_of(m, x, &searched, &h), cap = sign > 0.0 ? cap_out : cap_in;
+    if (h.tri < 0 && cap > searched) nearest(m, x, cap, &h);
+    if (h.tri < 0) { /* nothing within the cap on x's side: a value strictly beyond it */
       n[0] = n[1] = n[2] = 0.0;
       *group = -1;
-      return sign * fmax(first, cap);
+      return sign * nextafter(fmax(searched, cap), HUGE_VAL);
     }
   }
   *group = m->group[h.tri];

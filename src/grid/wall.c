@@ -286,6 +286,7 @@ static void wall_release(mrn_wall *w) {
   free(w->spec.triangle);
   mrn_trimesh_free(w->mesh);
   free(w->state);
+  free(w->outside);
   free(w->node);
   free(w->n);
   free(w->w);
@@ -388,6 +389,19 @@ static int touched_push(mrn_wall *w, size_t node, const double n[3], const doubl
   return MRN_OK;
 }
 
+/* a node found outside the wall: not asked again this step (the nodes near
+ * the surface lie in the reach of many particles) */
+static int outside_push(mrn_wall *w, size_t node) {
+  if (w->nout == w->capout) {
+    const size_t cap = w->capout ? 2 * w->capout : 256;
+    if (grow((void **)&w->outside, cap * sizeof *w->outside)) return MRN_ERR;
+    w->capout = cap;
+  }
+  w->outside[w->nout++] = node;
+  w->state[node] |= MRN_WALL_OUTSIDE;
+  return MRN_OK;
+}
+
 /* mark the nodes inside the wall (signed distance <= 0) within `reach`
  * cells of a particle at x, the nodes its momentum lands in; with
  * `held_only`, only those that ended the last step in contact */
@@ -398,13 +412,16 @@ static int touch_mark(mrn_wall *w, const mrn_grid *g, const double *x, double re
     for (int j = lo[1]; j <= hi[1]; j++)
       for (int i = lo[0]; i <= hi[0]; i++) {
         const size_t node = mrn_grid_index(g, i, j, k);
-        if (w->state[node] & MRN_WALL_TOUCH) continue;
+        if (w->state[node] & (MRN_WALL_TOUCH | MRN_WALL_OUTSIDE)) continue;
         if (held_only && !(w->state[node] & MRN_WALL_CONTACT)) continue;
         double xn[3], n[3], v[3], uv[3];
         mrn_grid_node_position(g, node, xn);
         /* on the surface counts as inside: a node of a grid-aligned plane must not
          * drop out by the round-off of its position */
-        if (!(wall_distance_uv(w, g->dim, xn, n, uv, HUGE_VAL, 0.0) <= 1e-9 * g->cell)) continue;
+        if (!(wall_distance_uv(w, g->dim, xn, n, uv, HUGE_VAL, 1e-9 * g->cell) <= 1e-9 * g->cell)) {
+          if (outside_push(w, node)) return MRN_ERR;
+          continue;
+        }
         mrn_wall_velocity_at(w, g->dim, xn, v);
         /* the patch: the cell-sized piece of the surface nearest the node */
         const long long key[3] = {(long long)uv[2], llround(uv[0] * g->inv_cell), llround(uv[1] * g->inv_cell)};
@@ -473,6 +490,8 @@ static int build_columns(mrn_wall *w) {
 static int wall_touch(mrn_wall *w, const mrn_grid *g, double reach, const double *x, const double *vol0, size_t np) {
   const size_t old = w->count;
   for (size_t k = 0; k < old; k++) w->state[w->node[k]] &= (unsigned char)~MRN_WALL_TOUCH;
+  for (size_t k = 0; k < w->nout; k++) w->state[w->outside[k]] &= (unsigned char)~MRN_WALL_OUTSIDE;
+  w->nout = 0;
   w->count = 0;
   /* the old list is read again below: keep it aside while the new one grows */
   size_t *prev = old ? malloc(old * sizeof *prev) : NULL;

@@ -90,8 +90,11 @@ typedef struct mrn_wall {
   void *motion_ctx;
   void (*motion_release)(void *ctx);
   /* per node of the grid: bit 0 touched this step, bit 1 in contact at the
-   * end of the last step */
+   * end of the last step, bit 2 found outside the wall this step */
   unsigned char *state;
+  /* the nodes found outside this step (their bit 2 is cleared next step) */
+  size_t *outside;
+  size_t nout, capout;
   /* the nodes touched this step, with the wall's normal (out of the wall),
    * velocity and the surface patch of the nearest point there */
   size_t *node;
@@ -114,6 +117,7 @@ typedef struct mrn_walls {
 
 #define MRN_WALL_TOUCH 1u
 #define MRN_WALL_CONTACT 2u
+#define MRN_WALL_OUTSIDE 4u
 
 /* Check a spec against the grid (shape, normal, radius, vertices, mu, a wall
  * that reaches the grid) and append the wall; *ws is created on first use.
