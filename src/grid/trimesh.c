@@ -296,7 +296,7 @@ static double bucket_of(const mrn_trimesh *m, const double x[3], int c[3]) {
   double out = 0.0;
   for (int d = 0; d < 3; d++) {
     const double u = (x[d] - m->lo[d]) / m->b;
-    c[d] = u < 0.0 ? 0 : u >= m->nb[d] ? m->nb[d] - 1 : (int)u;
+    c[d] = !(u >= 0.0) ? 0 : u >= m->nb[d] ? m->nb[d] - 1 : (int)u; /* NaN: bucket 0, not UB */
     const double below = m->lo[d] - x[d], above = x[d] - (m->lo[d] + m->nb[d] * m->b);
     if (below > 0.0) out += below * below;
     else if (above > 0.0) out += above * above;
@@ -370,6 +370,7 @@ static double resolve(const mrn_trimesh *m, const double x[3], const hit *h, dou
   double r[3];
   sub3(x, h->q, r);
   const double dist = sqrt(h->d2), sign = dot3(r, pn) < 0.0 ? -1.0 : 1.0;
+  if (!(dist > 0.0)) pn = dot3(pn, pn) > 0.0 ? pn : fn; /* on the surface: the pseudo-normal (a knife edge: the face's) */
   const double len = dist > 0.0 ? dist : sqrt(dot3(pn, pn));
   for (int d = 0; d < 3; d++) n[d] = dist > 0.0 ? sign * r[d] / len : pn[d] / len;
   return sign * dist;
