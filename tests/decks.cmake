@@ -35,6 +35,8 @@ moraine_deck_test(friction_3d friction.lua ARGS --set dim=3 LABELS slow)
 moraine_deck_test(walls walls.lua)
 moraine_deck_test(walls_restart walls_restart.lua)
 moraine_deck_test(walls_3d walls_3d.lua LABELS slow)
+# mesh walls from STL files: a cube mesh as the box wall, an incline, binary = ASCII, a checkpoint
+moraine_deck_test(walls_mesh walls_mesh.lua)
 # what feeds a sliding body's vibration: a long wave that friction makes grow
 # under every strategy that keeps energy, and FLIP's short waves
 moraine_deck_test(friction_layer friction_layer.lua)

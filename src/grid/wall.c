@@ -7,8 +7,9 @@
 
 #include "core/error.h"
 #include "grid/boundary.h"
+#include "grid/trimesh.h"
 
-static const char *const shape_names[] = {"plane", "box", "cylinder", "polygon", NULL};
+static const char *const shape_names[] = {"plane", "box", "cylinder", "polygon", "mesh", NULL};
 static const char *const kind_names[] = {"slip", "friction", "fixed", NULL};
 const char *const *mrn_wall_shape_names(void) { return shape_names; }
 const char *const *mrn_wall_kind_names(void) { return kind_names; }
@@ -122,9 +123,32 @@ static double polygon_distance(const mrn_wall_spec *s, const double x[3], double
   return sign * best;
 }
 
+/* The mesh: the distance to the nearest triangle; the patch is its planar
+ * group, u and v lengths in that plane from the mesh's `point`. Searched
+ * only as far as the caller needs it: in the mesh's terms, `inside` swaps
+ * how deep and how far. */
+static double mesh_distance(const mrn_wall *w, const double x[3], double n[3], double uv[3], double deep, double far) {
+  const mrn_wall_spec *s = &w->spec;
+  int group;
+  const double d = s->inside ? mrn_trimesh_distance(w->mesh, x, far, deep, n, &group)
+                             : mrn_trimesh_distance(w->mesh, x, deep, far, n, &group);
+  uv[0] = uv[1] = 0.0, uv[2] = group;
+  if (group >= 0) {
+    double r[3], e1[3], e2[3];
+    for (int d3 = 0; d3 < 3; d3++) r[d3] = x[d3] - s->point[d3];
+    across(mrn_trimesh_group_normal(w->mesh, group), 3, e1, e2);
+    uv[0] = dot3(r, e1), uv[1] = dot3(r, e2);
+  }
+  return d;
+}
+
 /* signed distance, outward normal and surface coordinates in the reference
- * placement: the one place a new shape is added */
-static double wall_distance_body(const mrn_wall_spec *s, int dim, const double x[3], double n[3], double uv[3]) {
+ * placement: the one place a new shape is added. Exact when the distance
+ * lies in [-deep, far]; beyond, a mesh may stop its search and give a value
+ * beyond that bound (with the right sign, a zero normal) */
+static double wall_distance_body(const mrn_wall *w, int dim, const double x[3], double n[3], double uv[3], double deep,
+                                 double far) {
+  const mrn_wall_spec *s = &w->spec;
   double d;
   n[0] = n[1] = n[2] = 0.0;
   switch (s->shape) {
@@ -132,6 +156,7 @@ static double wall_distance_body(const mrn_wall_spec *s, int dim, const double x
   case MRN_WALL_BOX: d = box_distance(s, dim, x, n, uv); break;
   case MRN_WALL_CYLINDER: d = cylinder_distance(s, dim, x, n, uv); break;
   case MRN_WALL_POLYGON: d = polygon_distance(s, x, n, uv); break;
+  case MRN_WALL_MESH: d = mesh_distance(w, x, n, uv, deep, far); break;
   default: return HUGE_VAL;
   }
   if (s->inside) {
@@ -141,15 +166,17 @@ static double wall_distance_body(const mrn_wall_spec *s, int dim, const double x
   return d;
 }
 
-/* mrn_wall_distance, with the surface coordinates of the nearest point */
-static double wall_distance_uv(const mrn_wall *w, int dim, const double x[3], double n[3], double uv[3]) {
+/* mrn_wall_distance, with the surface coordinates of the nearest point,
+ * exact in [-deep, far] (wall_distance_body) */
+static double wall_distance_uv(const mrn_wall *w, int dim, const double x[3], double n[3], double uv[3], double deep,
+                               double far) {
   /* into the reference placement: x_ref = R^T (x - ref) + center */
   const double *R = w->rot;
   double r[3], xb[3], nb[3];
   for (int d = 0; d < 3; d++) r[d] = x[d] - w->ref[d];
   for (int d = 0; d < 3; d++) xb[d] = R[d] * r[0] + R[3 + d] * r[1] + R[6 + d] * r[2] + w->spec.center[d];
   if (dim == 2) xb[2] = 0.0;
-  const double dist = wall_distance_body(&w->spec, dim, xb, nb, uv);
+  const double dist = wall_distance_body(w, dim, xb, nb, uv, deep, far);
   for (int d = 0; d < 3; d++) n[d] = R[3 * d] * nb[0] + R[3 * d + 1] * nb[1] + R[3 * d + 2] * nb[2];
   if (dim == 2) n[2] = 0.0;
   return dist;
@@ -157,7 +184,13 @@ static double wall_distance_uv(const mrn_wall *w, int dim, const double x[3], do
 
 double mrn_wall_distance(const mrn_wall *w, int dim, const double x[3], double n[3]) {
   double uv[3];
-  return wall_distance_uv(w, dim, x, n, uv);
+  return wall_distance_uv(w, dim, x, n, uv, HUGE_VAL, HUGE_VAL);
+}
+
+/* the signed distance where only how it compares with +-cap matters */
+static double wall_distance_near(const mrn_wall *w, int dim, const double x[3], double cap) {
+  double n[3], uv[3];
+  return wall_distance_uv(w, dim, x, n, uv, cap, cap);
 }
 
 void mrn_wall_velocity_at(const mrn_wall *w, int dim, const double x[3], double v[3]) {
@@ -205,6 +238,11 @@ static int check_shape(mrn_wall_spec *s, int dim) {
     s->normal[2] = area > 0.0 ? 1.0 : -1.0;
     return MRN_OK;
   }
+  case MRN_WALL_MESH:
+    if (dim != 3) return mrn_error("shape: a mesh wall is 3D only");
+    if (s->ntriangle < 1 || s->ntriangle > MRN_WALL_MAX_TRIANGLES)
+      return mrn_error("triangles: expected 1 to %d, got %d", MRN_WALL_MAX_TRIANGLES, s->ntriangle);
+    return MRN_OK;
   default: return mrn_error("shape: unknown wall shape");
   }
 }
@@ -212,10 +250,10 @@ static int check_shape(mrn_wall_spec *s, int dim) {
 /* 1 when some node of the grid (ghosts included) lies inside the wall or
  * within a cell of it */
 static int reaches_grid(const mrn_wall *w, const mrn_grid *g) {
-  double x[3], n[3];
+  double x[3];
   for (size_t i = 0; i < g->n; i++) {
     mrn_grid_node_position(g, i, x);
-    if (mrn_wall_distance(w, g->dim, x, n) <= g->cell) return 1;
+    if (wall_distance_near(w, g->dim, x, g->cell) <= g->cell) return 1;
   }
   return 0;
 }
@@ -245,7 +283,10 @@ static int check_spec(mrn_walls *ws, const mrn_wall_spec *s, int dim) {
 static void wall_release(mrn_wall *w) {
   if (w->motion_release) w->motion_release(w->motion_ctx);
   free(w->spec.vertex);
+  free(w->spec.triangle);
+  mrn_trimesh_free(w->mesh);
   free(w->state);
+  free(w->outside);
   free(w->node);
   free(w->n);
   free(w->w);
@@ -256,18 +297,32 @@ static void wall_release(mrn_wall *w) {
   free(w->col_w);
 }
 
+/* the polygon's corners or the mesh's triangles, copied */
+static int copy_shape(mrn_wall *w, const mrn_wall_spec *spec) {
+  if (spec->shape == MRN_WALL_POLYGON && spec->nvertex > 0) {
+    w->spec.vertex = malloc(2 * (size_t)spec->nvertex * sizeof(double));
+    if (!w->spec.vertex) return mrn_error("out of memory for a wall");
+    memcpy(w->spec.vertex, spec->vertex, 2 * (size_t)spec->nvertex * sizeof(double));
+  }
+  if (spec->shape != MRN_WALL_MESH || spec->ntriangle <= 0 || spec->ntriangle > MRN_WALL_MAX_TRIANGLES) return MRN_OK;
+  w->spec.triangle = malloc(9 * (size_t)spec->ntriangle * sizeof(double));
+  if (!w->spec.triangle) return mrn_error("out of memory for a wall");
+  memcpy(w->spec.triangle, spec->triangle, 9 * (size_t)spec->ntriangle * sizeof(double));
+  return MRN_OK;
+}
+
 int mrn_walls_add(mrn_walls **wsp, const mrn_grid *g, const mrn_wall_spec *spec) {
   mrn_wall w;
   memset(&w, 0, sizeof w);
   w.spec = *spec;
-  w.spec.vertex = NULL;
+  w.spec.vertex = NULL, w.spec.triangle = NULL, w.spec.source = NULL;
   int rc = check_spec(*wsp, &w.spec, g->dim);
-  if (!rc && spec->shape == MRN_WALL_POLYGON && spec->nvertex > 0) {
-    w.spec.vertex = malloc(2 * (size_t)spec->nvertex * sizeof(double));
-    if (!w.spec.vertex) return mrn_error("out of memory for a wall");
-    memcpy(w.spec.vertex, spec->vertex, 2 * (size_t)spec->nvertex * sizeof(double));
-  }
+  if (!rc) rc = copy_shape(&w, spec);
   if (!rc) rc = check_shape(&w.spec, g->dim);
+  if (!rc && spec->shape == MRN_WALL_MESH) {
+    w.mesh = mrn_trimesh_new(w.spec.triangle, (size_t)w.spec.ntriangle, g->cell, spec->source);
+    if (!w.mesh) rc = MRN_ERR;
+  }
   memcpy(w.ref, w.spec.center, sizeof w.ref);
   w.rot[0] = w.rot[4] = w.rot[8] = 1.0;
   if (!rc && !reaches_grid(&w, g)) rc = outside_error(spec->name, g);
@@ -334,6 +389,19 @@ static int touched_push(mrn_wall *w, size_t node, const double n[3], const doubl
   return MRN_OK;
 }
 
+/* a node found outside the wall: not asked again this step (the nodes near
+ * the surface lie in the reach of many particles) */
+static int outside_push(mrn_wall *w, size_t node) {
+  if (w->nout == w->capout) {
+    const size_t cap = w->capout ? 2 * w->capout : 256;
+    if (grow((void **)&w->outside, cap * sizeof *w->outside)) return MRN_ERR;
+    w->capout = cap;
+  }
+  w->outside[w->nout++] = node;
+  w->state[node] |= MRN_WALL_OUTSIDE;
+  return MRN_OK;
+}
+
 /* mark the nodes inside the wall (signed distance <= 0) within `reach`
  * cells of a particle at x, the nodes its momentum lands in; with
  * `held_only`, only those that ended the last step in contact */
@@ -344,13 +412,16 @@ static int touch_mark(mrn_wall *w, const mrn_grid *g, const double *x, double re
     for (int j = lo[1]; j <= hi[1]; j++)
       for (int i = lo[0]; i <= hi[0]; i++) {
         const size_t node = mrn_grid_index(g, i, j, k);
-        if (w->state[node] & MRN_WALL_TOUCH) continue;
+        if (w->state[node] & (MRN_WALL_TOUCH | MRN_WALL_OUTSIDE)) continue;
         if (held_only && !(w->state[node] & MRN_WALL_CONTACT)) continue;
         double xn[3], n[3], v[3], uv[3];
         mrn_grid_node_position(g, node, xn);
         /* on the surface counts as inside: a node of a grid-aligned plane must not
          * drop out by the round-off of its position */
-        if (!(wall_distance_uv(w, g->dim, xn, n, uv) <= 1e-9 * g->cell)) continue;
+        if (!(wall_distance_uv(w, g->dim, xn, n, uv, HUGE_VAL, 1e-9 * g->cell) <= 1e-9 * g->cell)) {
+          if (outside_push(w, node)) return MRN_ERR;
+          continue;
+        }
         mrn_wall_velocity_at(w, g->dim, xn, v);
         /* the patch: the cell-sized piece of the surface nearest the node */
         const long long key[3] = {(long long)uv[2], llround(uv[0] * g->inv_cell), llround(uv[1] * g->inv_cell)};
@@ -419,6 +490,8 @@ static int build_columns(mrn_wall *w) {
 static int wall_touch(mrn_wall *w, const mrn_grid *g, double reach, const double *x, const double *vol0, size_t np) {
   const size_t old = w->count;
   for (size_t k = 0; k < old; k++) w->state[w->node[k]] &= (unsigned char)~MRN_WALL_TOUCH;
+  for (size_t k = 0; k < w->nout; k++) w->state[w->outside[k]] &= (unsigned char)~MRN_WALL_OUTSIDE;
+  w->nout = 0;
   w->count = 0;
   /* the old list is read again below: keep it aside while the new one grows */
   size_t *prev = old ? malloc(old * sizeof *prev) : NULL;
@@ -427,8 +500,7 @@ static int wall_touch(mrn_wall *w, const mrn_grid *g, double reach, const double
   int rc = MRN_OK;
   for (size_t p = 0; p < np && !rc; p++) {
     const double r = 0.5 * (g->dim == 2 ? sqrt(vol0[p]) : cbrt(vol0[p]));
-    double n[3];
-    const double gap = mrn_wall_distance(w, g->dim, x + 3 * p, n) - r;
+    const double gap = wall_distance_near(w, g->dim, x + 3 * p, 1.5 * r) - r;
     if (gap <= WALL_TOUCH_SLACK * r) rc = touch_mark(w, g, x + 3 * p, reach, gap > 0.0);
   }
   for (size_t k = 0; k < old; k++)

@@ -8,6 +8,7 @@
  *   box       an axis-aligned box (in the wall's reference placement)
  *   cylinder  a disk (2D) or an infinite cylinder along `axis` (3D)
  *   polygon   a closed polygon (2D), vertices in either orientation
+ *   mesh      a closed triangle mesh (3D, grid/trimesh.h), e.g. from an STL file
  * With `inside` set the material is inside the shape and the wall outside
  * it (a drum, a container). Kinds:
  *   slip      a unilateral contact without friction
@@ -27,7 +28,7 @@
 
 #include "grid/grid.h"
 
-typedef enum { MRN_WALL_PLANE = 0, MRN_WALL_BOX, MRN_WALL_CYLINDER, MRN_WALL_POLYGON, MRN_WALL_SHAPE_COUNT } mrn_wall_shape;
+typedef enum { MRN_WALL_PLANE = 0, MRN_WALL_BOX, MRN_WALL_CYLINDER, MRN_WALL_POLYGON, MRN_WALL_MESH, MRN_WALL_SHAPE_COUNT } mrn_wall_shape;
 typedef enum { MRN_WALL_SLIP = 0, MRN_WALL_FRICTION, MRN_WALL_FIXED, MRN_WALL_KIND_COUNT } mrn_wall_kind;
 
 /* NULL-terminated names, in enum order */
@@ -36,6 +37,7 @@ const char *const *mrn_wall_kind_names(void);
 
 #define MRN_WALL_NAME_MAX 64
 #define MRN_WALL_MAX_VERTICES 1024
+#define MRN_WALL_MAX_TRIANGLES 4000000
 
 /* what a wall is made of: shape and placement at creation (the reference
  * placement), kind, and its motion */
@@ -43,12 +45,16 @@ typedef struct mrn_wall_spec {
   char name[MRN_WALL_NAME_MAX];
   mrn_wall_shape shape;
   int inside;       /* 1: the material is inside the shape */
-  double point[3];  /* plane: a point of it; box: its centre; cylinder: a point of its axis */
+  double point[3];  /* plane: a point of it; box: its centre; cylinder: a point of its axis;
+                     * mesh: the origin of its facets' surface coordinates */
   double normal[3]; /* plane: the normal out of the wall (any length > 0); cylinder (3D): the axis */
   double half[3];   /* box: half its sides */
   double radius;    /* cylinder */
   double *vertex;   /* polygon: nvertex (x, y) pairs; copied */
   int nvertex;
+  double *triangle;   /* mesh: ntriangle triangles, 9 numbers each (corners a, b, c); copied */
+  int ntriangle;
+  const char *source; /* mesh: where the triangles came from, for messages; not kept */
   mrn_wall_kind kind;
   double mu;          /* friction */
   double velocity[3]; /* m/s */
@@ -62,6 +68,7 @@ typedef int (*mrn_wall_motion_fn)(void *ctx, double t, double velocity[3], doubl
 
 typedef struct mrn_wall {
   mrn_wall_spec spec; /* as made: placement, kind, mu, motion as set last */
+  struct mrn_trimesh *mesh; /* mesh: its triangles, searchable */
   double ref[3];      /* where the reference point is now */
   double rot[9];      /* rotation from the reference placement, row-major */
   /* the last step: impulse on the material and its moment about ref (in
@@ -83,8 +90,11 @@ typedef struct mrn_wall {
   void *motion_ctx;
   void (*motion_release)(void *ctx);
   /* per node of the grid: bit 0 touched this step, bit 1 in contact at the
-   * end of the last step */
+   * end of the last step, bit 2 found outside the wall this step */
   unsigned char *state;
+  /* the nodes found outside this step (their bit 2 is cleared next step) */
+  size_t *outside;
+  size_t nout, capout;
   /* the nodes touched this step, with the wall's normal (out of the wall),
    * velocity and the surface patch of the nearest point there */
   size_t *node;
@@ -107,6 +117,7 @@ typedef struct mrn_walls {
 
 #define MRN_WALL_TOUCH 1u
 #define MRN_WALL_CONTACT 2u
+#define MRN_WALL_OUTSIDE 4u
 
 /* Check a spec against the grid (shape, normal, radius, vertices, mu, a wall
  * that reaches the grid) and append the wall; *ws is created on first use.

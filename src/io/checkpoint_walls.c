@@ -40,6 +40,11 @@ static void save_wall(mrn_h5w *w, hid_t g, const mrn_wall *wall, const mrn_grid 
   mrn_h5w_int32(w, g, "vertex_count", s->nvertex);
   if (s->nvertex)
     mrn_h5w_dataset(w, g, "vertices", H5T_NATIVE_DOUBLE, s->vertex, (size_t)s->nvertex, 2, "m", "polygon corners");
+  if (s->ntriangle) {
+    mrn_h5w_int32(w, g, "triangle_count", s->ntriangle);
+    mrn_h5w_dataset(w, g, "triangles", H5T_NATIVE_DOUBLE, s->triangle, (size_t)s->ntriangle, 9, "m",
+                    "mesh triangles: corners a, b, c");
+  }
   size_t count = 0;
   for (size_t n = 0; n < grid->n; n++) count += (wall->state[n] & MRN_WALL_CONTACT) != 0;
   int64_t *rows = malloc((count ? count : 1) * sizeof *rows);
@@ -73,6 +78,17 @@ void ck_save_walls(mrn_h5w *w, const mrn_sim *sim) {
   H5Gclose(g);
 }
 
+/* a mesh wall's triangles */
+static int read_triangles(mrn_h5r *r, const char *g, mrn_wall_spec *s) {
+  int64_t nt = 0;
+  char path[96];
+  if (mrn_h5r_int(r, g, "triangle_count", &nt)) return MRN_ERR;
+  if (nt < 1 || nt > MRN_WALL_MAX_TRIANGLES) return mrn_h5r_fail(r, "%s: triangle_count out of range", g);
+  snprintf(path, sizeof path, "%s/triangles", g);
+  s->ntriangle = (int)nt;
+  return (s->triangle = mrn_h5r_dataset(r, path, MRN_H5_FLOAT64, nt, 9)) ? MRN_OK : MRN_ERR;
+}
+
 static void read_wall(mrn_h5r *r, const char *g, ck_wall *c, int64_t nodes) {
   mrn_wall_spec *s = &c->spec;
   int shape = 0, kind = 0;
@@ -99,6 +115,7 @@ static void read_wall(mrn_h5r *r, const char *g, ck_wall *c, int64_t nodes) {
   s->nvertex = (int)nv;
   snprintf(path, sizeof path, "%s/vertices", g);
   if (nv && !(s->vertex = mrn_h5r_dataset(r, path, MRN_H5_FLOAT64, nv, 2))) return;
+  if (s->shape == MRN_WALL_MESH && read_triangles(r, g, s)) return;
   snprintf(path, sizeof path, "%s/contact", g);
   c->contact = mrn_h5r_dataset(r, path, MRN_H5_INT64, c->ncontact, MRN_H5_RANK1);
   for (int64_t k = 0; c->contact && k < c->ncontact; k++)
@@ -153,6 +170,7 @@ int ck_take_walls(mrn_sim *sim, const ck_data *d) {
 void ck_free_walls(ck_data *d) {
   for (int i = 0; i < d->nwalls; i++) {
     free(d->walls[i].spec.vertex);
+    free(d->walls[i].spec.triangle);
     free(d->walls[i].contact);
   }
   free(d->walls);

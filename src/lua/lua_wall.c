@@ -3,16 +3,19 @@
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
 #include "core/error.h"
 #include "grid/wall.h"
+#include "io/atomic_file.h"
+#include "io/stl.h"
 #include "lua/lua_check.h"
 #include "lua/lua_internal.h"
 #include "lua/lua_sim.h"
 
 static const mrn_spec wall_specs[] = {
     {"name", MRN_SPEC_STRING, 1, 0, 0, 0, 0, 0, NULL, "the wall's name, unique in the simulation", NULL},
-    {"shape", MRN_SPEC_STRING, 1, 0, 0, 0, 0, 0, NULL, "plane, box, cylinder (a disk in 2D) or polygon (2D)", NULL},
+    {"shape", MRN_SPEC_STRING, 1, 0, 0, 0, 0, 0, NULL, "plane, box, cylinder (a disk in 2D), polygon (2D) or mesh (3D)", NULL},
     {"kind", MRN_SPEC_STRING, 0, 0, 0, 0, 0, 0, NULL, "slip, friction or fixed (default slip)", NULL},
     {"mu", MRN_SPEC_NUMBER, 0, 0.0, 0.0, HUGE_VAL, 0, 1, "", "Coulomb friction coefficient (friction walls)", NULL},
     {"point", MRN_SPEC_VECTOR, 0, 0, -HUGE_VAL, HUGE_VAL, 0, 0, "m", "plane: a point of the plane", NULL},
@@ -24,6 +27,10 @@ static const mrn_spec wall_specs[] = {
     {"radius", MRN_SPEC_NUMBER, 0, 0, 0.0, HUGE_VAL, 1, 1, "m", "cylinder: its radius", NULL},
     {"axis", MRN_SPEC_VECTOR, 0, 0, -HUGE_VAL, HUGE_VAL, 0, 0, "", "cylinder, 3D: its axis direction", NULL},
     {"vertices", MRN_SPEC_TABLE, 0, 0, 0, 0, 0, 0, NULL, "polygon: its corners, {{x, y}, ...}", NULL},
+    {"file", MRN_SPEC_STRING, 0, 0, 0, 0, 0, 0, NULL, "mesh: an STL file (binary or ASCII) of a closed surface", NULL},
+    {"scale", MRN_SPEC_NUMBER, 0, 1.0, 0.0, HUGE_VAL, 1, 1, "m", "mesh: metres per unit of the file (default 1)",
+     NULL},
+    {"translate", MRN_SPEC_VECTOR, 0, 0, -HUGE_VAL, HUGE_VAL, 0, 0, "m", "mesh: added to its scaled corners", NULL},
     {"inside", MRN_SPEC_BOOLEAN, 0, 0, 0, 0, 0, 0, NULL, "the material is inside the shape (default false)", NULL},
     {"velocity", MRN_SPEC_ANY, 0, 0, -HUGE_VAL, HUGE_VAL, 0, 0, "m/s",
      "velocity of the wall: a vector, or a function of time returning one", NULL},
@@ -124,6 +131,48 @@ static double *read_vertices(lua_State *L, int idx, const char *where, int *coun
   return v;
 }
 
+/* a relative path as given, else beside the deck; the result stays on the stack */
+static const char *find_mesh_file(lua_State *L, const char *path) {
+  lua_pushstring(L, path);
+  if (path[0] == '/' || access(path, F_OK) == 0) return lua_tostring(L, -1);
+  lua_getfield(L, LUA_REGISTRYINDEX, MRN_LUA_DECK_KEY);
+  const char *deck = lua_tostring(L, -1), *slash = deck ? strrchr(deck, '/') : NULL;
+  if (slash) {
+    lua_pushlstring(L, deck, (size_t)(slash - deck));
+    char *joined = mrn_path_join(lua_tostring(L, -1), path);
+    if (joined && access(joined, F_OK) == 0) lua_pushstring(L, joined), lua_replace(L, -4);
+    free(joined);
+    lua_pop(L, 1);
+  }
+  lua_pop(L, 1);
+  return lua_tostring(L, -1);
+}
+
+/* the mesh's triangles from its file, scaled and moved, into an array that
+ * lives in a userdata left on the stack (above the path); its point: the
+ * centre of its bounding box */
+static void read_mesh(lua_State *L, int idx, const char *where, mrn_wall_spec *s) {
+  const char *path = find_mesh_file(L, mrn_lua_get_string(L, idx, where, wall_specs, NSPECS, "file"));
+  const double scale = mrn_lua_get_number(L, idx, where, wall_specs, NSPECS, "scale");
+  double shift[3] = {0, 0, 0}, lo[3] = {HUGE_VAL, HUGE_VAL, HUGE_VAL}, hi[3] = {-HUGE_VAL, -HUGE_VAL, -HUGE_VAL};
+  mrn_lua_get_vector(L, idx, where, wall_specs, NSPECS, "translate", 3, shift, 0);
+  double *raw = NULL;
+  size_t n = 0;
+  if (mrn_stl_read(path, &raw, &n)) mrn_lua_engine_error(L, where);
+  if (n > MRN_WALL_MAX_TRIANGLES) {
+    free(raw);
+    mrn_lua_error(L, where, "'%s': %zu triangles, more than %d", path, n, MRN_WALL_MAX_TRIANGLES);
+  }
+  double *t = lua_newuserdatauv(L, 9 * n * sizeof *t, 0);
+  for (size_t i = 0; i < 9 * n; i++) {
+    t[i] = scale * raw[i] + shift[i % 3];
+    lo[i % 3] = fmin(lo[i % 3], t[i]), hi[i % 3] = fmax(hi[i % 3], t[i]);
+  }
+  free(raw);
+  s->triangle = t, s->ntriangle = (int)n, s->source = path;
+  for (int d = 0; d < 3; d++) s->point[d] = 0.5 * (lo[d] + hi[d]);
+}
+
 static void require_key(lua_State *L, int idx, const char *where, const char *shape, const char *key) {
   if (!mrn_lua_has(L, idx, key)) mrn_lua_error(L, where, "missing required key '%s' for a %s wall", key, shape);
 }
@@ -160,6 +209,11 @@ static void read_shape(lua_State *L, int idx, const char *where, int dim, mrn_wa
     s->vertex = read_vertices(L, idx, where, &s->nvertex);
     for (int i = 0; i < s->nvertex; i++)
       s->point[0] += s->vertex[2 * i] / s->nvertex, s->point[1] += s->vertex[2 * i + 1] / s->nvertex;
+    break;
+  case MRN_WALL_MESH:
+    if (dim != 3) mrn_lua_error(L, where, "shape: a mesh wall is 3D only");
+    require_key(L, idx, where, shape, "file");
+    read_mesh(L, idx, where, s);
     break;
   default: break;
   }
