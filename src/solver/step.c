@@ -443,7 +443,7 @@ int mrn_sim_step_dt(mrn_sim *sim, double dt) {
   }
   mrn_sim_transfer_end(sim, &tr);
   if (rc) return rc;
-  if (sim->boundary.walls) sim->work_walls += mrn_walls_step_end(sim->boundary.walls, dt, hold_share(&sim->scheme));
+  if (sim->boundary.walls) sim->work_walls += mrn_walls_step_end(sim->boundary.walls, dt, hold_share(&sim->scheme), sim->gravity);
   sim->time += dt;
   sim->step++;
   rc = !end.pass ? end_of_step(sim) : end.bad >= 0 ? mrn_sim_particle_error(sim, (size_t)end.bad) : MRN_OK;
