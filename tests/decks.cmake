@@ -35,6 +35,10 @@ moraine_deck_test(friction_3d friction.lua ARGS --set dim=3 LABELS slow)
 moraine_deck_test(walls walls.lua)
 moraine_deck_test(walls_restart walls_restart.lua)
 moraine_deck_test(walls_3d walls_3d.lua LABELS slow)
+# rigid bodies: free fall at g, fixed dofs, mass and inertia, momentum with the material, a restart bit for bit
+moraine_deck_test(rigid_body rigid_body.lua)
+# a rigid footing settling on a confined elastic layer: delta = (W/A) H / (lambda + 2 G), reaction = weight
+moraine_deck_test(rigid_footing rigid_footing.lua)
 # what feeds a sliding body's vibration: a long wave that friction makes grow
 # under every strategy that keeps energy, and FLIP's short waves
 moraine_deck_test(friction_layer friction_layer.lua)
