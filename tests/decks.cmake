@@ -118,6 +118,12 @@ foreach(deck ${MORAINE_EXAMPLES})
            COMMAND moraine ${deck} -q -o ${MORAINE_TEST_OUT}/example_${name} --overwrite --set quick=true)
   set_tests_properties(example.${name} PROPERTIES LABELS example)
 endforeach()
+# the footing example's diagnostics read back: the E_bodies, W_bodies columns and W_MPM
+set_tests_properties(example.rigid_footing PROPERTIES FIXTURES_SETUP rigid_footing)
+add_test(NAME python.body_series
+         COMMAND ${Python3_EXECUTABLE} ${CMAKE_CURRENT_SOURCE_DIR}/python/check_body_series.py
+                 ${MORAINE_TEST_OUT}/example_rigid_footing)
+set_tests_properties(python.body_series PROPERTIES LABELS python FIXTURES_REQUIRED rigid_footing)
 # the inflow example's diagnostics read back: the E_inflow, W_inflow, E_outflow columns and W_MPM
 set_tests_properties(example.channel_inflow PROPERTIES FIXTURES_SETUP channel_inflow)
 add_test(NAME python.inflow_series
