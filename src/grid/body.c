@@ -108,8 +108,7 @@ int mrn_body_setup(mrn_wall *w, int dim) {
 
 /* ---- motion ------------------------------------------------------------------------ */
 
-/* the inertia in the current placement, R I R^T */
-static void world_inertia(const mrn_wall *w, double I[9]) {
+void mrn_body_inertia(const mrn_wall *w, double I[9]) {
   const double *R = w->rot, *J = w->inertia;
   double RJ[9];
   for (int i = 0; i < 3; i++)
@@ -127,13 +126,13 @@ double mrn_body_kinetic(const mrn_wall *w, int dim) {
   double e = 0.5 * w->mass * (v[0] * v[0] + v[1] * v[1] + (dim == 3 ? v[2] * v[2] : 0.0));
   if (dim == 2) return e + 0.5 * w->inertia[8] * o[2] * o[2];
   double I[9], Io[3];
-  world_inertia(w, I);
+  mrn_body_inertia(w, I);
   mat_vec(I, o, Io);
   return e + 0.5 * (o[0] * Io[0] + o[1] * Io[1] + o[2] * Io[2]);
 }
 
-/* solve A x = b (3 x 3) by Cramer's rule; A is the inertia with the rows of
- * fixed axes made unit rows, so never singular */
+/* solve A x = b (3 x 3) by Cramer's rule (A an inertia, some rows unit
+ * rows: never singular) */
 static void solve3(const double A[9], const double b[3], double x[3]) {
   const double det = A[0] * (A[4] * A[8] - A[5] * A[7]) - A[1] * (A[3] * A[8] - A[5] * A[6]) +
                      A[2] * (A[3] * A[7] - A[4] * A[6]);
@@ -146,27 +145,40 @@ static void solve3(const double A[9], const double b[3], double x[3]) {
   }
 }
 
-/* the change of the angular velocity in a step of dt under the moment M:
- * I d(omega) = dt (M - omega x I omega) on the free axes, none on the fixed */
-static void spin_change(const mrn_wall *w, int dim, double dt, const double M[3], double dw[3]) {
-  dw[0] = dw[1] = dw[2] = 0.0;
-  if (dim == 2) {
-    if (!is_fixed(w, DOF_RZ)) dw[2] = dt * M[2] / w->inertia[8];
-    return;
-  }
-  const double *o = w->spec.omega;
-  double I[9], Io[3], b[3];
-  world_inertia(w, I);
-  mat_vec(I, o, Io);
-  b[0] = dt * (M[0] - (o[1] * Io[2] - o[2] * Io[1]));
-  b[1] = dt * (M[1] - (o[2] * Io[0] - o[0] * Io[2]));
-  b[2] = dt * (M[2] - (o[0] * Io[1] - o[1] * Io[0]));
+/* The angular velocity whose angular momentum in the current placement is
+ * L: I omega = L on the free axes, the fixed ones kept (their rows of I
+ * made unit rows, so the free axes still see a non-diagonal I) */
+static void spin_from(const mrn_wall *w, const double L[3], double omega[3]) {
+  double I[9], b[3];
+  mrn_body_inertia(w, I);
+  memcpy(b, L, sizeof b);
   for (int a = 0; a < 3; a++)
     if (is_fixed(w, 3 + a)) {
       for (int j = 0; j < 3; j++) I[3 * a + j] = a == j;
-      b[a] = 0.0;
+      b[a] = w->spec.omega[a];
     }
-  solve3(I, b, dw);
+  solve3(I, b, omega);
+}
+
+/* The angular velocity after a step of dt under the moment M. 3D: the
+ * angular momentum I omega gains M dt, and the new omega follows from it
+ * (mrn_body_respin again once the body has turned), which keeps the
+ * gyroscopic coupling and conserves L without a moment */
+static void spin_step(mrn_wall *w, int dim, double dt, const double M[3], double on[3]) {
+  memcpy(on, w->spec.omega, 3 * sizeof *on);
+  if (dim == 2) {
+    if (!is_fixed(w, DOF_RZ)) on[2] += dt * M[2] / w->inertia[8];
+    return;
+  }
+  double I[9];
+  mrn_body_inertia(w, I);
+  mat_vec(I, w->spec.omega, w->spin);
+  for (int a = 0; a < 3; a++) w->spin[a] += dt * M[a];
+  spin_from(w, w->spin, on);
+}
+
+void mrn_body_respin(mrn_wall *w, int dim) {
+  if (dim == 3) spin_from(w, w->spin, w->spec.omega);
 }
 
 /* The work of gravity and the load over the step, at the mean of the old
@@ -185,15 +197,14 @@ static double body_work(const mrn_wall *w, int dim, double dt, const double F[3]
 }
 
 void mrn_body_advance(mrn_wall *w, int dim, double dt, const double gravity[3]) {
-  double F[3], vn[3], on[3], M[3], dw[3];
+  double F[3], vn[3], on[3], M[3];
   for (int d = 0; d < 3; d++) {
     F[d] = w->mass * gravity[d] + w->spec.load[d]; /* all but the reaction */
     M[d] = w->moment[d] + w->spec.load_moment[d];
   }
   for (int d = 0; d < 3; d++)
     vn[d] = d < dim && !is_fixed(w, d) ? w->spec.velocity[d] + dt * (F[d] + w->force[d]) / w->mass : w->spec.velocity[d];
-  spin_change(w, dim, dt, M, dw);
-  for (int a = 0; a < 3; a++) on[a] = w->spec.omega[a] + dw[a];
+  spin_step(w, dim, dt, M, on);
   w->body_work += body_work(w, dim, dt, F, vn, on);
   memcpy(w->spec.velocity, vn, sizeof vn);
   memcpy(w->spec.omega, on, sizeof on);

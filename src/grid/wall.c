@@ -585,6 +585,7 @@ double mrn_walls_step_end(mrn_walls *ws, double dt, double hold_share, const dou
     else work += w->step_work;
     for (int d = 0; d < 3; d++) w->ref[d] += w->spec.velocity[d] * dt;
     rotate(w->rot, w->spec.omega, dt);
+    if (w->spec.body) mrn_body_respin(w, ws->dim);
   }
   return work;
 }

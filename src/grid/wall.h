@@ -87,6 +87,7 @@ typedef struct mrn_wall {
    * and the accumulated work of gravity, its load and its fixings (J) */
   double mass, inertia[9];
   double body_work;
+  double spin[3]; /* within the step's end: the angular momentum the body turns to */
   double step_work;     /* that of the current step */
   long contacts;        /* nodes held with friction in the last step */
   /* the motion as a function of time (NULL: spec.velocity and spec.omega
@@ -145,12 +146,17 @@ const char *const *mrn_body_dof_names(void);
 /* A body's mass and inertia from its shape and density (or mass), its
  * centre of mass made its reference point; 0 or an error naming the key */
 int mrn_body_setup(mrn_wall *w, int dim);
+/* a body's inertia in its current placement, R I R^T (kg m^2, row-major) */
+void mrn_body_inertia(const mrn_wall *w, double I[9]);
 /* a body's kinetic energy (J; J/m in 2D) */
 double mrn_body_kinetic(const mrn_wall *w, int dim);
 /* End of a step of dt for a body whose reaction is set: its velocity and
  * angular velocity from the reaction, gravity and its load (Newton-Euler,
  * semi-implicit Euler: the wall then moves with the new ones) */
 void mrn_body_advance(mrn_wall *w, int dim, double dt, const double gravity[3]);
+/* after the body has turned: its angular velocity from its angular
+ * momentum in the new placement (3D; nothing to do in 2D) */
+void mrn_body_respin(mrn_wall *w, int dim);
 /* the bodies' kinetic energy and the work done on them, summed */
 void mrn_walls_body_energy(const mrn_walls *ws, double *kinetic, double *work);
 

@@ -307,8 +307,10 @@ static mrn_wall *check_wall(lua_State *L, sim_box *b, int idx, const char *where
 /* a body's fields of sim:wall(name): mass, inertia (now), kinetic energy, work on it */
 static void push_body(lua_State *L, const mrn_wall *w, int dim) {
   lua_pushnumber(L, w->mass), lua_setfield(L, -2, "mass");
-  if (dim == 2) lua_pushnumber(L, w->inertia[8]);
-  else mrn_lua_push_vector(L, w->inertia, 9);
+  double I[9];
+  mrn_body_inertia(w, I);
+  if (dim == 2) lua_pushnumber(L, I[8]);
+  else mrn_lua_push_vector(L, I, 9);
   lua_setfield(L, -2, "inertia");
   lua_pushnumber(L, mrn_body_kinetic(w, dim)), lua_setfield(L, -2, "kinetic");
   lua_pushnumber(L, w->body_work), lua_setfield(L, -2, "body_work");

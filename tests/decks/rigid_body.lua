@@ -13,7 +13,10 @@
 --           force along x and a moment; the bodies' kinetic energy equals
 --           the work of gravity and loads on them plus their initial one.
 --           A 3D box spinning about a principal axis falls at g and keeps
---           its spin; fixed in y it does not move along y.
+--           its spin; fixed in y it keeps its velocity along y. A box
+--           tumbling about no principal axis keeps its angular momentum
+--           I omega (I turned with it) to 1e-12 and its kinetic energy to
+--           1e-3.
 -- momentum  an elastic block (0.4 m, E = 1 MPa, rho = 1000) in the air hit
 --           by a disk body (r = 0.1 m, 1500 kg/m^3, v = (2, 0.3) m/s,
 --           omega = 5 rad/s), 0.2 s, both under gravity and clear of the
@@ -78,8 +81,17 @@ local function free_3d()
   local sim = simulation{ dim = 3, size = { 1, 1, 1 }, cell = 0.1, dt = 1e-3 }
   sim:add_wall{ name = "box", shape = "box", min = { 0.3, 0.3, 0.6 }, max = { 0.5, 0.4, 0.9 }, density = 1000,
                 omega = { 0, 0, 4 }, velocity = { 0, 0.2, 0 }, fix = { "y" } }
+  sim:add_wall{ name = "tumbler", shape = "box", min = { 0.6, 0.3, 0.6 }, max = { 0.9, 0.45, 0.65 }, density = 1000,
+                omega = { 1, 2, 3 } }
   sim:add_particles(mpm.box{ min = { 0, 0, 0 }, max = { 1, 1, 0.1 } },
                     { material = mpm.material.linear_elastic{ density = 1000, E = 1e6, nu = 0.3 }, per_cell = 8 })
+  -- the tumbler's angular momentum I omega, I in its current placement
+  local function spin(w)
+    local I, o = w.inertia, w.omega
+    return { I[1] * o[1] + I[2] * o[2] + I[3] * o[3], I[4] * o[1] + I[5] * o[2] + I[6] * o[3],
+             I[7] * o[1] + I[8] * o[2] + I[9] * o[3] }
+  end
+  local L0, e0 = spin(sim:wall("tumbler")), sim:wall("tumbler").kinetic
   local w0 = sim:wall("box")
   T.close(w0.mass, 1000 * 0.2 * 0.1 * 0.3, 1e-12, "3D box mass")
   T.close(w0.inertia[9], w0.mass * (0.04 + 0.01) / 12, 1e-12, "3D box I_zz")
@@ -89,6 +101,15 @@ local function free_3d()
   T.check(w.velocity[2] == 0.2 and w.velocity[1] == 0, "3D box: v_x, v_y changed")
   T.close(w.pivot[2], w0.pivot[2] + 0.2 * sim:time(), 1e-12, "3D box: y moves with its fixed velocity")
   T.close(w.omega[3], 4, 1e-12, "3D box: spin about a principal axis")
+  -- torque-free tumbling about no principal axis: the angular momentum is
+  -- what the update conserves; the energy drifts at first order in dt
+  local tb, L = sim:wall("tumbler"), spin(sim:wall("tumbler"))
+  local norm = math.sqrt(L0[1] ^ 2 + L0[2] ^ 2 + L0[3] ^ 2)
+  local dL = math.sqrt((L[1] - L0[1]) ^ 2 + (L[2] - L0[2]) ^ 2 + (L[3] - L0[3]) ^ 2) / norm
+  T.expect{ id = "rigid_body.tumbler_L", what = "3D tumbler: |L - L0| / |L0| after 0.2 s at dt = 1 ms", value = dL,
+            max = 1e-12 }
+  T.expect{ id = "rigid_body.tumbler_E", what = "3D tumbler: |E - E0 - W_bodies| / E0 after 0.2 s at dt = 1 ms",
+            value = math.abs(tb.kinetic - e0 - tb.body_work) / e0, max = 1e-3 }
 end
 
 -- ---- momentum and restart --------------------------------------------------------------
