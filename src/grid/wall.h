@@ -55,7 +55,9 @@ typedef struct mrn_wall_spec {
   double omega[3];    /* rad/s, about `center` (2D: only z) */
   double center[3];   /* the reference point: rotation, moment */
   /* a rigid body (doc/numerics.md, "Rigid bodies"): the wall moves under
-   * gravity, the material's reaction and an external load instead of as set */
+   * gravity, the material's reaction and an external load instead of as set;
+   * velocity and omega are its initial ones, and mrn_walls_add makes its
+   * centre of mass its `center` */
   int body;
   double density;                 /* kg/m^3, or 0 when the mass is given */
   double mass;                    /* kg (kg/m in 2D), or 0 when the density is given */
