@@ -85,21 +85,29 @@ static int motion_call(void *ctx, double t, double v[3], double o[3]) {
   return rc;
 }
 
+/* The value on top of the stack as a vector, or, for a turning quantity
+ * (`turning`) in 2D, as a number about z: into out. `or` ends the message
+ * of a value of another type. */
+static void read_vector_or_turn(lua_State *L, const char *where, const mrn_spec *s, int dim, int turning,
+                                const char *or, double out[3]) {
+  if (turning && dim == 2 && lua_type(L, -1) == LUA_TNUMBER) {
+    out[2] = lua_tonumber(L, -1);
+    mrn_lua_check_number(L, where, s, NULL, out[2]);
+    return;
+  }
+  if (!lua_istable(L, -1))
+    mrn_lua_error(L, where, "%s: expected %s%s", s->key, turning && dim == 2 ? "a number" : "a vector", or);
+  mrn_lua_to_vector(L, -1, where, s, dim, out);
+}
+
 /* velocity or omega at idx, when a constant: into out (kept when absent or
  * a function); raises on a bad value before anything is allocated */
 static void read_constant(lua_State *L, int idx, const char *where, const char *key, const mrn_spec *specs,
                           int nspecs, int dim, double out[3]) {
   lua_getfield(L, idx, key);
-  const mrn_spec *s = mrn_spec_find(specs, nspecs, key);
-  const int omega = strcmp(key, "omega") == 0;
-  if (omega && dim == 2 && lua_type(L, -1) == LUA_TNUMBER) {
-    out[2] = lua_tonumber(L, -1);
-    mrn_lua_check_number(L, where, s, "omega", out[2]);
-  } else if (!lua_isnil(L, -1) && !lua_isfunction(L, -1)) {
-    if (!lua_istable(L, -1))
-      mrn_lua_error(L, where, "%s: expected %s or a function of time", key, omega && dim == 2 ? "a number" : "a vector");
-    mrn_lua_to_vector(L, -1, where, s, dim, out);
-  }
+  if (!lua_isnil(L, -1) && !lua_isfunction(L, -1))
+    read_vector_or_turn(L, where, mrn_spec_find(specs, nspecs, key), dim, strcmp(key, "omega") == 0,
+                        " or a function of time", out);
   lua_pop(L, 1);
 }
 
@@ -215,14 +223,8 @@ static void read_body(lua_State *L, int idx, const char *where, int dim, mrn_wal
   read_fix(L, idx, where, dim, s);
   mrn_lua_get_vector(L, idx, where, wall_specs, NSPECS, "external_force", dim, s->load, 0);
   lua_getfield(L, idx, "external_moment");
-  const mrn_spec *m = mrn_spec_find(wall_specs, NSPECS, "external_moment");
-  if (dim == 2 && lua_type(L, -1) == LUA_TNUMBER) {
-    s->load_moment[2] = lua_tonumber(L, -1);
-    mrn_lua_check_number(L, where, m, NULL, s->load_moment[2]);
-  } else if (!lua_isnil(L, -1)) {
-    if (dim == 2) mrn_lua_error(L, where, "external_moment: expected a number (a 2D body turns about z)");
-    mrn_lua_to_vector(L, -1, where, m, 3, s->load_moment);
-  }
+  if (!lua_isnil(L, -1))
+    read_vector_or_turn(L, where, mrn_spec_find(wall_specs, NSPECS, "external_moment"), dim, 1, "", s->load_moment);
   lua_pop(L, 1);
 }
 
