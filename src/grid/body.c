@@ -196,18 +196,34 @@ static double body_work(const mrn_wall *w, int dim, double dt, const double F[3]
   return work;
 }
 
-void mrn_body_advance(mrn_wall *w, int dim, double dt, const double gravity[3]) {
-  double F[3], vn[3], on[3], M[3];
+/* Cundall's local damping of a body's net force f moving at v, as a node's
+ * (000, Eqs. 61-62) */
+static double cundall(double D, double f, double v) {
+  return D > 0.0 && v != 0.0 ? -D * fabs(f) * (v > 0.0 ? 1.0 : -1.0) : 0.0;
+}
+
+double mrn_body_advance(mrn_wall *w, int dim, double dt, const double gravity[3], double D) {
+  const double *v = w->spec.velocity, *o = w->spec.omega;
+  double F[3], fd[3], vn[3], on[3], M[3], md[3];
   for (int d = 0; d < 3; d++) {
     F[d] = w->mass * gravity[d] + w->spec.load[d]; /* all but the reaction */
+    fd[d] = cundall(D, F[d] + w->force[d], v[d]);
     M[d] = w->moment[d] + w->spec.load_moment[d];
+    md[d] = cundall(D, M[d], o[d]);
+    M[d] += md[d];
   }
   for (int d = 0; d < 3; d++)
-    vn[d] = d < dim && !is_fixed(w, d) ? w->spec.velocity[d] + dt * (F[d] + w->force[d]) / w->mass : w->spec.velocity[d];
+    vn[d] = d < dim && !is_fixed(w, d) ? v[d] + dt * (F[d] + fd[d] + w->force[d]) / w->mass : v[d];
   spin_step(w, dim, dt, M, on);
   w->body_work += body_work(w, dim, dt, F, vn, on);
+  double damping = 0.0; /* as the nodes': f_damp . (v + v_new) / 2 dt */
+  for (int d = 0; d < 3; d++) {
+    if (d < dim && !is_fixed(w, d)) damping += fd[d] * 0.5 * (v[d] + vn[d]) * dt;
+    if ((dim == 3 || d == 2) && !is_fixed(w, 3 + d)) damping += md[d] * 0.5 * (o[d] + on[d]) * dt;
+  }
   memcpy(w->spec.velocity, vn, sizeof vn);
   memcpy(w->spec.omega, on, sizeof on);
+  return damping;
 }
 
 void mrn_walls_body_energy(const mrn_walls *ws, double *kinetic, double *work) {
@@ -217,4 +233,16 @@ void mrn_walls_body_energy(const mrn_walls *ws, double *kinetic, double *work) {
     *kinetic += mrn_body_kinetic(&ws->wall[i], ws->dim);
     *work += ws->wall[i].body_work;
   }
+}
+
+int mrn_walls_have_bodies(const mrn_walls *ws) {
+  for (int i = 0; ws && i < ws->count; i++)
+    if (ws->wall[i].spec.body) return 1;
+  return 0;
+}
+
+int mrn_walls_body_holds(const mrn_walls *ws, size_t node) {
+  for (int i = 0; i < ws->count; i++)
+    if (ws->wall[i].spec.body && (ws->wall[i].state[node] & MRN_WALL_TOUCH)) return 1;
+  return 0;
 }

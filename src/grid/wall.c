@@ -568,6 +568,7 @@ static void rotate(double R[9], const double omega[3], double dt) {
 
 double mrn_walls_step_end(mrn_walls *ws, double dt, double hold_share, const double gravity[3]) {
   double work = 0.0;
+  if (ws) ws->damping_work = 0.0;
   for (int i = 0; ws && i < ws->count; i++) {
     mrn_wall *w = &ws->wall[i];
     for (int d = 0; d < 3; d++) {
@@ -581,7 +582,7 @@ double mrn_walls_step_end(mrn_walls *ws, double dt, double hold_share, const dou
       w->total_impulse[d] -= w->impulse[d];
     }
     w->work += w->step_work;
-    if (w->spec.body) mrn_body_advance(w, ws->dim, dt, gravity);
+    if (w->spec.body) ws->damping_work += mrn_body_advance(w, ws->dim, dt, gravity, ws->cundall);
     else work += w->step_work;
     for (int d = 0; d < 3; d++) w->ref[d] += w->spec.velocity[d] * dt;
     rotate(w->rot, w->spec.omega, dt);

@@ -118,6 +118,8 @@ typedef struct mrn_walls {
   mrn_wall *wall;
   int count;
   int dim;
+  double cundall;      /* D of Cundall's damping, for the bodies (set by the solver) */
+  double damping_work; /* the work of that damping on the bodies in the last step */
 } mrn_walls;
 
 #define MRN_WALL_TOUCH 1u
@@ -153,12 +155,17 @@ void mrn_body_inertia(const mrn_wall *w, double I[9]);
 /* a body's kinetic energy (J; J/m in 2D) */
 double mrn_body_kinetic(const mrn_wall *w, int dim);
 /* End of a step of dt for a body whose reaction is set: its velocity and
- * angular velocity from the reaction, gravity and its load (Newton-Euler,
- * semi-implicit Euler: the wall then moves with the new ones) */
-void mrn_body_advance(mrn_wall *w, int dim, double dt, const double gravity[3]);
+ * angular velocity from the reaction, gravity, its load and Cundall's
+ * damping D of its net force (Newton-Euler, semi-implicit Euler: the wall
+ * then moves with the new ones). Returns the damping's work. */
+double mrn_body_advance(mrn_wall *w, int dim, double dt, const double gravity[3], double D);
 /* after the body has turned: its angular velocity from its angular
  * momentum in the new placement (3D; nothing to do in 2D) */
 void mrn_body_respin(mrn_wall *w, int dim);
+/* 1 when a wall is a rigid body; 1 when a body's contact touches the node
+ * this step (its velocity is the body's: no Cundall damping there) */
+int mrn_walls_have_bodies(const mrn_walls *ws);
+int mrn_walls_body_holds(const mrn_walls *ws, size_t node);
 /* the bodies' kinetic energy and the work done on them, summed */
 void mrn_walls_body_energy(const mrn_walls *ws, double *kinetic, double *work);
 
