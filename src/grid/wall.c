@@ -323,6 +323,7 @@ int mrn_walls_add(mrn_walls **wsp, const mrn_grid *g, const mrn_wall_spec *spec)
     w.mesh = mrn_trimesh_new(w.spec.triangle, (size_t)w.spec.ntriangle, g->cell, spec->source);
     if (!w.mesh) rc = MRN_ERR;
   }
+  if (!rc && w.spec.body) rc = mrn_body_setup(&w, g->dim);
   memcpy(w.ref, w.spec.center, sizeof w.ref);
   w.rot[0] = w.rot[4] = w.rot[8] = 1.0;
   if (!rc && !reaches_grid(&w, g)) rc = outside_error(spec->name, g);
@@ -637,8 +638,9 @@ static void rotate(double R[9], const double omega[3], double dt) {
   memcpy(R, out, sizeof out);
 }
 
-double mrn_walls_step_end(mrn_walls *ws, double dt, double hold_share) {
+double mrn_walls_step_end(mrn_walls *ws, double dt, double hold_share, const double gravity[3]) {
   double work = 0.0;
+  if (ws) ws->damping_work = 0.0;
   for (int i = 0; ws && i < ws->count; i++) {
     mrn_wall *w = &ws->wall[i];
     for (int d = 0; d < 3; d++) {
@@ -652,9 +654,11 @@ double mrn_walls_step_end(mrn_walls *ws, double dt, double hold_share) {
       w->total_impulse[d] -= w->impulse[d];
     }
     w->work += w->step_work;
-    work += w->step_work;
+    if (w->spec.body) ws->damping_work += mrn_body_advance(w, ws->dim, dt, gravity, ws->cundall);
+    else work += w->step_work;
     for (int d = 0; d < 3; d++) w->ref[d] += w->spec.velocity[d] * dt;
     rotate(w->rot, w->spec.omega, dt);
+    if (w->spec.body) mrn_body_respin(w, ws->dim);
   }
   return work;
 }

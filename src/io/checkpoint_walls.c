@@ -1,5 +1,8 @@
 /* moraine: the rigid walls in a checkpoint (/walls, doc/checkpoint-format.md).
  *
+ * A rigid body is a wall with its body keys besides; its velocity and
+ * angular velocity are the wall's, its centre of mass the wall's pivot.
+ *
  * A wall is kept whole: its spec (shape, placement at creation, kind, mu,
  * motion as last set), where it is now, its accumulators and the nodes in
  * contact at the end of the last step. A motion function cannot be stored:
@@ -14,6 +17,19 @@
 #include "core/error.h"
 #include "grid/wall.h"
 #include "io/checkpoint_internal.h"
+
+/* a rigid body's keys and the work done on it; its velocities are the wall's */
+static void save_body(mrn_h5w *w, hid_t g, const mrn_wall *wall) {
+  const mrn_wall_spec *s = &wall->spec;
+  if (!s->body) return;
+  mrn_h5w_int32(w, g, "body", 1);
+  mrn_h5w_double(w, g, "density", s->density);
+  mrn_h5w_double(w, g, "mass", s->mass);
+  mrn_h5w_int32(w, g, "fix", (int)s->fix);
+  mrn_h5w_doubles(w, g, "external_force", s->load, 3);
+  mrn_h5w_doubles(w, g, "external_moment", s->load_moment, 3);
+  mrn_h5w_double(w, g, "body_work", wall->body_work);
+}
 
 static void save_wall(mrn_h5w *w, hid_t g, const mrn_wall *wall, const mrn_grid *grid) {
   const mrn_wall_spec *s = &wall->spec;
@@ -37,6 +53,7 @@ static void save_wall(mrn_h5w *w, hid_t g, const mrn_wall *wall, const mrn_grid 
   mrn_h5w_double(w, g, "work", wall->work);
   mrn_h5w_double(w, g, "work_friction", wall->work_friction);
   mrn_h5w_int32(w, g, "motion_function", wall->motion != NULL);
+  save_body(w, g, wall);
   mrn_h5w_int32(w, g, "vertex_count", s->nvertex);
   if (s->nvertex)
     mrn_h5w_dataset(w, g, "vertices", H5T_NATIVE_DOUBLE, s->vertex, (size_t)s->nvertex, 2, "m", "polygon corners");
@@ -89,6 +106,21 @@ static int read_triangles(mrn_h5r *r, const char *g, mrn_wall_spec *s) {
   return (s->triangle = mrn_h5r_dataset(r, path, MRN_H5_FLOAT64, nt, 9)) ? MRN_OK : MRN_ERR;
 }
 
+/* a body's attributes, when the wall is one (a file without them: a wall) */
+static int read_body(mrn_h5r *r, const char *g, ck_wall *c) {
+  mrn_wall_spec *s = &c->spec;
+  if (mrn_h5r_has_attr(r, g, "body") != 1) return MRN_OK;
+  int64_t fix = 0;
+  if (mrn_h5r_double(r, g, "density", &s->density) || mrn_h5r_double(r, g, "mass", &s->mass) ||
+      mrn_h5r_int(r, g, "fix", &fix) || mrn_h5r_doubles(r, g, "external_force", s->load, 3) ||
+      mrn_h5r_doubles(r, g, "external_moment", s->load_moment, 3) ||
+      mrn_h5r_double(r, g, "body_work", &c->body_work))
+    return MRN_ERR;
+  if (fix < 0 || fix >= 64) return mrn_h5r_fail(r, "%s: fix %lld out of range", g, (long long)fix);
+  s->body = 1, s->fix = (unsigned)fix;
+  return MRN_OK;
+}
+
 static void read_wall(mrn_h5r *r, const char *g, ck_wall *c, int64_t nodes) {
   mrn_wall_spec *s = &c->spec;
   int shape = 0, kind = 0;
@@ -104,7 +136,7 @@ static void read_wall(mrn_h5r *r, const char *g, ck_wall *c, int64_t nodes) {
       mrn_h5r_doubles(r, g, "force", c->force, 3) || mrn_h5r_doubles(r, g, "moment", c->moment, 3) ||
       mrn_h5r_doubles(r, g, "impulse", c->total_impulse, 3) || mrn_h5r_double(r, g, "work", &c->work) ||
       mrn_h5r_double(r, g, "work_friction", &c->work_friction) || mrn_h5r_int(r, g, "vertex_count", &nv) ||
-      mrn_h5r_int(r, g, "contact_count", &c->ncontact))
+      mrn_h5r_int(r, g, "contact_count", &c->ncontact) || read_body(r, g, c))
     return;
   s->shape = (mrn_wall_shape)shape, s->kind = (mrn_wall_kind)kind, s->inside = inside != 0;
   if (nv < 0 || nv > MRN_WALL_MAX_VERTICES || c->ncontact < 0 || c->ncontact > nodes) {
@@ -156,7 +188,7 @@ int ck_take_walls(mrn_sim *sim, const ck_data *d) {
     memcpy(w->force, c->force, sizeof w->force);
     memcpy(w->moment, c->moment, sizeof w->moment);
     memcpy(w->total_impulse, c->total_impulse, sizeof w->total_impulse);
-    w->work = c->work, w->work_friction = c->work_friction;
+    w->work = c->work, w->work_friction = c->work_friction, w->body_work = c->body_work;
     size_t *nodes = malloc((size_t)(c->ncontact ? c->ncontact : 1) * sizeof *nodes);
     if (!nodes) return mrn_error("out of memory for a wall");
     for (int64_t k = 0; k < c->ncontact; k++) nodes[k] = (size_t)c->contact[k];

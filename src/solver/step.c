@@ -96,6 +96,7 @@ static void grid_update(mrn_sim *sim, double dt) {
   const double floor_mass = sim->mass_floor;
   const double D = sim->damping_cundall, alpha = sim->damping_viscous;
   const int damped = D > 0.0 || alpha > 0.0;
+  const int bodies = D > 0.0 && mrn_walls_have_bodies(sim->boundary.walls);
   /* gravity acts on the true mass, the nodal mass over mass_scaling */
   double gravity[3];
   for (int d = 0; d < 3; d++) gravity[d] = sim->gravity[d] / sim->mass_scaling;
@@ -113,7 +114,10 @@ static void grid_update(mrn_sim *sim, double dt) {
         }
         double v = g->vel[3 * i + d];
         double f = g->force[3 * i + d] + m * gravity[d];
-        double fd = damped ? damping_force(D, alpha, f, v, m) : 0.0;
+        /* a body's nodes move with it: Cundall's force there would act on the
+         * body as a dry friction of D times their force */
+        const double Dn = bodies && mrn_walls_body_holds(sim->boundary.walls, (size_t)i) ? 0.0 : D;
+        double fd = damped ? damping_force(Dn, alpha, f, v, m) : 0.0;
         double v_new = v + dt * (f + fd) / m;
         g->vel_new[3 * i + d] = v_new;
         work += fd * 0.5 * (v + v_new) * dt;
@@ -445,7 +449,11 @@ int mrn_sim_step_dt(mrn_sim *sim, double dt) {
   }
   mrn_sim_transfer_end(sim, &tr);
   if (rc) return rc;
-  if (sim->boundary.walls) sim->work_walls += mrn_walls_step_end(sim->boundary.walls, dt, hold_share(&sim->scheme));
+  if (sim->boundary.walls) {
+    sim->boundary.walls->cundall = sim->damping_cundall;
+    sim->work_walls += mrn_walls_step_end(sim->boundary.walls, dt, hold_share(&sim->scheme), sim->gravity);
+    sim->work_damping += sim->boundary.walls->damping_work;
+  }
   sim->time += dt;
   sim->step++;
   rc = !end.pass ? end_of_step(sim) : end.bad >= 0 ? mrn_sim_particle_error(sim, (size_t)end.bad) : MRN_OK;
