@@ -15,8 +15,9 @@ typedef struct mrn_diagnostics {
   double inflow_work;  /* W_in, work of the sources' inlet nodes, accumulated */
   double outflow;      /* E_out, E_k + E_g + E_el - W_pl of the particles deleted on leaving, accumulated */
   double walls;        /* W_walls, work of the rigid walls on the material, accumulated */
-  double mpm_error;    /* W_MPM = E - E_ref - W_pl - W_frict - W_damp - W_ext - W_walls - E_in - W_in
-                        * + E_out (000, Eqs. 67-68) */
+  double contact;      /* W_contact, work of friction between bodies, accumulated, <= 0 */
+  double mpm_error;    /* W_MPM = E - E_ref - W_pl - W_frict - W_damp - W_ext - W_walls - W_contact - E_in
+                        * - W_in + E_out (000, Eqs. 67-68) */
   double total;        /* E_k + E_g + E_el */
   double mass;
   double momentum[3];  /* sum m v */
