@@ -166,4 +166,6 @@ moraine_deck_test(contact_disks_musl contact_disks.lua ARGS --set stress_update=
 moraine_deck_test(contact_slide contact_slide.lua ARGS --set transfer=APIC LABELS physics)
 moraine_deck_test(contact_slide_flip contact_slide.lua ARGS --set mu=0.2 LABELS physics)
 moraine_deck_test(contact_slide_frictionless contact_slide.lua ARGS --set mu=0 LABELS physics)
+moraine_deck_test(contact_slide_pic contact_slide.lua ARGS --set transfer=PIC LABELS physics)
+moraine_deck_test(contact_slide_stick contact_slide.lua ARGS --set transfer=APIC --set mu=0.7 LABELS physics)
 moraine_deck_test(contact_disks_single contact_disks.lua ARGS --set contact=false LABELS physics)

@@ -203,7 +203,7 @@ static void body_change(const mrn_contact *c, size_t i, const double *vel, const
 }
 
 /* The contact law on every node two or more bodies share, on their
- * velocities V (`with_friction` 0: normal only, as the faces do) or V~.
+ * velocities V or V~ (`with_friction` 0: normal only).
  * Returns the frictional work sum_b m_b dV_b . (V_b - V_cm) after the
  * change (000, Eq. 66, in the frame of the node's centre of mass). */
 static double contact_apply(mrn_sim *sim, double *vel, int with_friction) {
@@ -239,11 +239,15 @@ static double contact_apply(mrn_sim *sim, double *vel, int with_friction) {
 
 /* ---- the stages of the step on the per-body fields ----------------------------------- */
 
-/* V_b of every body with its face conditions, then the contact law */
+/* V_b of every body with its face conditions, then the contact law with
+ * friction: the normal impulse a body gets here is part of what holds it,
+ * so Coulomb bounds its tangential part too. Its work reaches the
+ * particles' momentum in the share the velocity update takes of V (none
+ * for FLIP, which takes V~ - V). */
 static void bodies_velocity(mrn_sim *sim) {
   mrn_contact *c = sim->contact;
   for (int b = 0; b < c->nbodies; b++) mrn_grid_velocity_on(sim, &c->view[b]);
-  contact_apply(sim, c->vel, 0);
+  sim->work_contact += mrn_hold_share(&sim->scheme) * contact_apply(sim, c->vel, 1);
 }
 
 /* V~_b of every body, then the contact law with friction */

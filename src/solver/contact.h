@@ -76,5 +76,9 @@ int mrn_contact_step(struct mrn_sim *sim, mrn_transfer *tr, double dt);
  * of g, the simulation's grid or a body's view of it */
 void mrn_grid_velocity_on(struct mrn_sim *sim, mrn_grid *g);
 void mrn_grid_update_on(struct mrn_sim *sim, mrn_grid *g, double dt);
+/* the share of a change of V (before the forces) that reaches the
+ * particles' momentum under scheme s: 1 for PIC-like updates, 0 for FLIP,
+ * 1 - X for a blend (solver/step.c) */
+double mrn_hold_share(const mrn_scheme *s);
 
 #endif

@@ -413,7 +413,7 @@ static int step_usavg(mrn_sim *sim, mrn_transfer *tr, double dt, step_end *end) 
  * PIC-like updates take V~ whole, FLIP only V~ - V (which the holds in V do
  * not change), a blend X of FLIP; XPIC takes V* + V~ - V, V* being V
  * smoothed, so with the holds. */
-static double hold_share(const mrn_scheme *s) {
+double mrn_hold_share(const mrn_scheme *s) {
   switch (s->velocity_update) {
   case MRN_VUPDATE_FLIP: return 0.0;
   case MRN_VUPDATE_BLEND: return 1.0 - s->flip_fraction;
@@ -448,7 +448,7 @@ int mrn_sim_step_dt(mrn_sim *sim, double dt) {
   }
   mrn_sim_transfer_end(sim, &tr);
   if (rc) return rc;
-  if (sim->boundary.walls) sim->work_walls += mrn_walls_step_end(sim->boundary.walls, dt, hold_share(&sim->scheme));
+  if (sim->boundary.walls) sim->work_walls += mrn_walls_step_end(sim->boundary.walls, dt, mrn_hold_share(&sim->scheme));
   sim->time += dt;
   sim->step++;
   rc = !end.pass ? end_of_step(sim) : end.bad >= 0 ? mrn_sim_particle_error(sim, (size_t)end.bad) : MRN_OK;
