@@ -68,6 +68,15 @@ if contact then
   T.check(overlap < h, "the disks overlapped by %g m, more than a cell", overlap)
   T.check(E / E0 > mpm.param("energy_min", 0.9), "energy kept E/E0 = %g", E / E0)
 end
+if contact and mpm.param("compare", false) then
+  -- the energy kept, as well as or better than with one field
+  local single = disks(nil, nil)
+  local E1 = single:energy().total
+  single:run{ time = t_end }
+  local e_single, e_contact = math.abs(single:energy().total / E1 - 1), math.abs(E / E0 - 1)
+  print(string.format("energy error |E/E0 - 1|: contact %.4f, single field %.4f", e_contact, e_single))
+  T.check(e_contact <= e_single, "contact loses more energy (%g) than one field (%g)", e_contact, e_single)
+end
 if not contact then
   -- bodies without a contact pair are labels: the same particles, bit for bit, as no bodies at all
   local plain = disks(nil, nil)
