@@ -1,8 +1,8 @@
 /* moraine: contact between deformable bodies (see contact.h).
  *
  * The per-body fields are scattered and gathered with the reference
- * kernels (transfer/reference.h), particle by particle, each particle on
- * its own body's view of the grid; the grid stages of the explicit step
+ * kernels (transfer/reference.h), particle by particle (the gathers on
+ * threads), each particle on its own body's view of the grid; the grid stages of the explicit step
  * (face conditions, walls, constraints, damping, mass scaling) run on each
  * view as they run on the single field. */
 #include "solver/contact.h"
@@ -12,6 +12,7 @@
 #include <string.h>
 
 #include "core/error.h"
+#include "core/parallel.h"
 #include "grid/active.h"
 #include "solver/point_force.h"
 #include "solver/simulation.h"
@@ -274,11 +275,13 @@ static int bodies_material(mrn_sim *sim, const mrn_transfer *tr, double dt) {
   const mrn_user_field *uf = mrn_particles_user_field(ps, MRN_BODY_FIELD);
   double *L = gradients(c, ps->n);
   if (!L && ps->n) return mrn_error("contact: out of memory");
-  mrn_transfer t = *tr;
-  mrn_ref_stencil s;
-  for (size_t p = 0; p < ps->n; p++) {
-    t.grid = &c->view[body_of(ps, uf, p)];
-    mrn_ref_stencil_build(&t, p, &s);
+  const long np = (long)ps->n;
+#pragma omp parallel for schedule(static) if (np > MRN_OMP_MIN_ITEMS)
+  for (long p = 0; p < np; p++) { /* each particle writes its own L only */
+    mrn_transfer t = *tr;
+    mrn_ref_stencil s;
+    t.grid = &c->view[body_of(ps, uf, (size_t)p)];
+    mrn_ref_stencil_build(&t, (size_t)p, &s);
     mrn_ref_gradient(&t, &s, t.grid->vel, L + 9 * p);
   }
   return mrn_update_from_gradients(sim, L, dt);
@@ -290,10 +293,12 @@ static void bodies_g2p(mrn_sim *sim, const mrn_transfer *tr, double dt, double *
   mrn_contact *c = sim->contact;
   const mrn_particles *ps = &sim->particles;
   const mrn_user_field *uf = mrn_particles_user_field(ps, MRN_BODY_FIELD);
-  mrn_transfer t = *tr;
-  for (size_t p = 0; p < ps->n; p++) {
-    t.grid = &c->view[body_of(ps, uf, p)];
-    mrn_ref_g2p_one(&t, p, dt, dx, L);
+  const long np = (long)ps->n;
+#pragma omp parallel for schedule(static) if (np > MRN_OMP_MIN_ITEMS)
+  for (long p = 0; p < np; p++) { /* each particle writes its own state only */
+    mrn_transfer t = *tr;
+    t.grid = &c->view[body_of(ps, uf, (size_t)p)];
+    mrn_ref_g2p_one(&t, (size_t)p, dt, dx, L);
   }
 }
 
