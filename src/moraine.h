@@ -6,7 +6,8 @@
  * A simulation (solver/simulation.h) is built from a grid, materials
  * (material/material.h) and particles seeded in regions
  * (particles/region.h), and run (solver/run.h) with its outputs
- * (io/output.h) as observers; checkpoints are io/checkpoint.h. Every call
+ * (io/output.h) as observers; checkpoints are io/checkpoint.h; bodies and
+ * their contact, solver/contact.h. Every call
  * that can fail returns an error code of core/error.h with a message from
  * mrn_error_message(). doc/c-api.md walks through examples/c_api/drop.c. */
 #ifndef MRN_MORAINE_H
@@ -20,6 +21,7 @@
 #include "io/output.h"
 #include "material/material.h"
 #include "particles/region.h"
+#include "solver/contact.h"
 #include "solver/run.h"
 #include "solver/simulation.h"
 

@@ -72,6 +72,7 @@ void mrn_lua_add_field_methods(lua_State *L, int methods);
 void mrn_lua_add_load_methods(lua_State *L, int methods);
 /* sim:add_wall, sim:wall, sim:set_wall (lua_wall.c) */
 void mrn_lua_add_wall_methods(lua_State *L, int methods);
+void mrn_lua_add_contact_methods(lua_State *L, int methods);
 /* print(), io.write() and the write method of the terminal's files through
  * the run log, in a state whose standard libraries are open (lua_print.c) */
 void mrn_lua_log_prints(lua_State *L);

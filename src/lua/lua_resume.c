@@ -78,7 +78,7 @@ int mrn_lua_sim_save(sim_box *b, const char *path) {
 
 /* What a deck sets on its simulation that a checkpoint does not hold — the
  * regions' velocity constraints, the sources, the watchdog's bounds, a dt
- * function, the walls' motion functions —
+ * function, the walls' motion functions, the bodies and contact pairs —
  * carried from the deck's simulation to the loaded one. */
 static void carry_deck_settings(mrn_sim *to, mrn_sim *from, int dt_function_dropped) {
   if (!from) return;
@@ -86,6 +86,9 @@ static void carry_deck_settings(mrn_sim *to, mrn_sim *from, int dt_function_drop
   from->constraints = NULL, from->nconstraints = 0;
   mrn_sim_move_sources(to, from); /* each takes up its progress from the checkpoint */
   to->watchdog = from->watchdog;
+  /* the bodies' names and contact pairs: the checkpoint holds only each
+   * particle's body index, which the deck's names follow in its order */
+  if (from->contact && !to->contact) to->contact = from->contact, from->contact = NULL;
   /* a wall's motion function, to the loaded wall of the same name */
   for (int i = 0; from->boundary.walls && i < from->boundary.walls->count; i++) {
     mrn_wall *f = &from->boundary.walls->wall[i], *t = mrn_walls_find(to->boundary.walls, f->spec.name);

@@ -140,7 +140,7 @@ static int l_sim_tostring(lua_State *L) {
 /* The method table: sim:NAME is the C function l_sim_NAME, and the
  * metamethod __NAME is l_sim_NAME too, except __close, which is sim:free.
  * The methods of lua_fields.c, lua_loads.c, lua_watchdog.c,
- * lua_sim_source.c, lua_wall.c and lua_implicit.c join the table after these. */
+ * lua_sim_source.c, lua_wall.c, lua_contact.c and lua_implicit.c join the table after these. */
 static const luaL_Reg methods[] = {
     {"add_particles", l_sim_add_particles},
     {"run", l_sim_run},
@@ -188,6 +188,7 @@ static const mrn_spec_group *const groups[] = {
     &mrn_lua_run_group,        &mrn_lua_thermo_group, &mrn_lua_checkpoint_group, &mrn_lua_hook_group,
     &mrn_lua_particle_group,   &mrn_lua_load_group,
     &mrn_lua_constrain_group,  &mrn_lua_reduce_group, &mrn_lua_import_group, &mrn_lua_wall_group,
+    &mrn_lua_contact_group,
 };
 
 void mrn_lua_open_simulation(lua_State *L, int module) {
@@ -198,6 +199,7 @@ void mrn_lua_open_simulation(lua_State *L, int module) {
   mrn_lua_add_field_methods(L, lua_gettop(L));
   mrn_lua_add_load_methods(L, lua_gettop(L));
   mrn_lua_add_wall_methods(L, lua_gettop(L));
+  mrn_lua_add_contact_methods(L, lua_gettop(L));
   mrn_lua_add_watchdog_methods(L, lua_gettop(L));
   mrn_lua_add_source_methods(L, lua_gettop(L));
   mrn_lua_strict(L, -1, "simulation", "method");

@@ -191,6 +191,7 @@ extern const mrn_spec_group mrn_lua_particle_group;                             
 extern const mrn_spec_group mrn_lua_load_group, mrn_lua_import_group;                         /* checkpoint */
 extern const mrn_spec_group mrn_lua_constrain_group;                                          /* set */
 extern const mrn_spec_group mrn_lua_wall_group;                                               /* wall */
+extern const mrn_spec_group mrn_lua_contact_group;                                            /* contact */
 extern const mrn_spec_group mrn_lua_reduce_group;                                             /* reduce */
 
 #endif

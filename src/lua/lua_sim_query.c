@@ -61,6 +61,7 @@ int l_sim_energy(lua_State *L) {
   lua_pushnumber(L, d.walls); lua_setfield(L, -2, "walls");
   lua_pushnumber(L, d.bodies); lua_setfield(L, -2, "bodies");
   lua_pushnumber(L, d.bodies_work); lua_setfield(L, -2, "bodies_work");
+  lua_pushnumber(L, d.contact); lua_setfield(L, -2, "contact");
   lua_pushnumber(L, d.mpm_error); lua_setfield(L, -2, "mpm_error");
   return 1;
 }

@@ -6,6 +6,7 @@
 #include "core/error.h"
 #include "lua/lua_check.h"
 #include "lua/lua_sim.h"
+#include "solver/contact.h"
 #include "solver/suspicious.h"
 
 static const char *const placement_choices[] = {"gauss", "regular", NULL};
@@ -16,6 +17,7 @@ static const mrn_spec particle_specs[] = {
     {"placement", MRN_SPEC_STRING, 0, 0, 0, 0, 0, 0, NULL, "gauss (default) or regular", placement_choices},
     {"velocity", MRN_SPEC_ANY, 0, 0, 0, 0, 0, 0, "m/s", "initial velocity: vector or function(x, y, z)", NULL},
     {"stress", MRN_SPEC_ANY, 0, 0, 0, 0, 0, 0, "Pa", "initial stress: 6 values (xx,yy,zz,xy,yz,xz) or function(x, y, z)", NULL},
+    {"body", MRN_SPEC_STRING, 0, 0, 0, 0, 0, 0, NULL, "the body the particles belong to, for add_contact (default: \"default\")", NULL},
 };
 
 static void init_vector_field(lua_State *L, int idx, const char *where, const char *key, sim_box *b, size_t first,
@@ -109,6 +111,9 @@ int l_sim_add_particles(lua_State *L) {
 
   int mat_index = mrn_sim_add_material(b->sim, mat);
   if (mat_index < 0) mrn_lua_engine_error(L, where);
+  const char *body_name = mrn_lua_get_string(L, 3, where, particle_specs, MRN_COUNT(particle_specs), "body");
+  const int body = body_name ? mrn_sim_body(b->sim, body_name) : 0;
+  if (body < 0) mrn_lua_engine_error(L, where);
   size_t first = 0;
   long count = 0;
   mrn_lua_active = L;
@@ -118,6 +123,7 @@ int l_sim_add_particles(lua_State *L) {
   if (seeded != MRN_OK) mrn_lua_engine_error(L, where);
   if (count == 0) mrn_lua_error(L, where, "the region seeds no particle on this grid (is it inside the domain?)");
   mrn_suspicious_seed(b->sim, per_axis, count);
+  mrn_sim_set_body(b->sim, first, (size_t)count, body);
 
   /* the initial fields call deck functions that may fail: on any error the
    * particles just seeded are removed again, so a caught error leaves the

@@ -11,7 +11,7 @@ typedef struct column {
 static const column columns[] = {
     {"E_kinetic", "J"}, {"E_gravity", "J"},  {"E_elastic", "J"}, {"E_total", "J"},  {"W_plastic", "J"},
     {"W_friction", "J"}, {"W_damping", "J"}, {"W_external", "J"}, {"W_walls", "J"}, {"E_bodies", "J"},
-    {"W_bodies", "J"}, {"E_inflow", "J"},
+    {"W_bodies", "J"}, {"W_contact", "J"}, {"E_inflow", "J"},
     {"W_inflow", "J"}, {"E_outflow", "J"}, {"W_MPM", "J"}, {"momentum_x", "kg m/s"}, {"momentum_y", "kg m/s"},
     {"momentum_z", "kg m/s"},
     {"angular_x", "kg m^2/s"}, {"angular_y", "kg m^2/s"}, {"angular_z", "kg m^2/s"}, {"L_centroid", "kg m^2/s"},
@@ -46,6 +46,7 @@ void mrn_diagnostics_values(const mrn_diagnostics *d, double *v) {
   v[k++] = d->walls;
   v[k++] = d->bodies;
   v[k++] = d->bodies_work;
+  v[k++] = d->contact;
   v[k++] = d->inflow;
   v[k++] = d->inflow_work;
   v[k++] = d->outflow;

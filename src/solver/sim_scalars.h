@@ -51,6 +51,7 @@
   X(double, work_damping, F64, MRN_ANY, 1, 0.0, "J", "work of the damping forces, <= 0")                   \
   X(double, work_external, F64, MRN_ANY, 2, 0.0, "J", "work of the point forces (solver/point_force.h)")    \
   X(double, work_walls, F64, MRN_ANY, 3, 0.0, "J", "work the rigid walls did on the material (grid/wall.h)")  \
+  X(double, work_contact, F64, MRN_ANY, 3, 0.0, "J", "work of friction between bodies (solver/contact.h), <= 0")  \
   X(double, load_factor, F64, MRN_ANY, 2, 1.0, "", "factor on every point force")                          \
   X(double, energy_ref, F64, MRN_ANY, 1, 0.0, "J",                                                          \
     "E_k + E_g + E_el when the energy balance started (000, Eq. 68)")                                             \

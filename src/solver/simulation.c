@@ -8,6 +8,7 @@
 
 #include "core/error.h"
 #include "grid/wall.h"
+#include "solver/contact.h"
 #include "core/log.h"
 #include "core/memory.h"
 #include "core/parallel.h"
@@ -97,6 +98,7 @@ void mrn_sim_free(mrn_sim *sim) {
   for (int i = 0; i < sim->nmaterials; i++) mrn_material_unref(sim->materials[i]);
   mrn_dt_policy_release(&sim->dt_policy);
   mrn_walls_free(sim->boundary.walls);
+  mrn_contact_free(sim->contact);
   for (int i = 0; i < sim->nconstraints; i++) mrn_constraint_free(&sim->constraints[i]);
   mrn_sim_free_sources(sim);
   free(sim->constraints);
@@ -172,6 +174,7 @@ void mrn_sim_energies(const mrn_sim *sim, mrn_diagnostics *out) {
   out->external = sim->work_external;
   out->walls = sim->work_walls;
   mrn_walls_body_energy(sim->boundary.walls, &out->bodies, &out->bodies_work);
+  out->contact = sim->work_contact;
   out->total = ek + eg + eel;
   out->inflow = sim->energy_inflow;
   out->inflow_work = sim->work_inflow;
@@ -180,8 +183,8 @@ void mrn_sim_energies(const mrn_sim *sim, mrn_diagnostics *out) {
    * came in and went out through sources and free faces */
   out->mpm_error = sim->energy_ref_set
                        ? out->total + out->bodies - sim->energy_ref - wpl - sim->work_friction - sim->work_damping -
-                             sim->work_external - sim->work_walls - out->bodies_work + sim->energy_outflow -
-                             sim->energy_inflow - sim->work_inflow
+                             sim->work_external - sim->work_walls - out->bodies_work - sim->work_contact +
+                             sim->energy_outflow - sim->energy_inflow - sim->work_inflow
                        : 0.0;
   out->mass = mass;
   for (int d = 0; d < 3; d++) {

@@ -75,6 +75,9 @@ typedef struct mrn_sim {
   mrn_source_state *source_states;
   int nsource_states;
 
+  /* the bodies and their contact pairs (solver/contact.h); NULL: one body */
+  struct mrn_contact *contact;
+
   mrn_watchdog watchdog;        /* the bounds of the physical-sanity checks of mrn_run */
   mrn_watchdog_state watch;     /* what those checks saw */
 

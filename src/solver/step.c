@@ -18,6 +18,7 @@
 #include "core/error.h"
 #include "core/parallel.h"
 #include "core/tensor.h"
+#include "solver/contact.h"
 #include "solver/point_force.h"
 #include "solver/simulation.h"
 #include "solver/update.h"
@@ -31,8 +32,7 @@
  * of the inertial mass, mass_scaling m. The velocities do not change; the
  * forces accelerate the heavier nodes less, and the boundary conditions,
  * constraints and damping see the inertial mass. */
-static void scale_grid_mass(mrn_sim *sim, const mrn_node_ranges *r) {
-  mrn_grid *g = &sim->grid;
+static void scale_grid_mass(mrn_sim *sim, mrn_grid *g, const mrn_node_ranges *r) {
   const double f = sim->mass_scaling;
 #pragma omp parallel for schedule(static) if (r->nodes > MRN_OMP_MIN_NODES)
   for (long k = 0; k < r->count; k++)
@@ -46,7 +46,7 @@ static void scale_grid_mass(mrn_sim *sim, const mrn_node_ranges *r) {
  * PIC-like updates take V~ whole, FLIP only V~ - V (which the holds in V do
  * not change), a blend X of FLIP; XPIC takes V* + V~ - V, V* being V
  * smoothed, so with the holds. */
-static double hold_share(const mrn_scheme *s) {
+double mrn_hold_share(const mrn_scheme *s) {
   switch (s->velocity_update) {
   case MRN_VUPDATE_FLIP: return 0.0;
   case MRN_VUPDATE_BLEND: return 1.0 - s->flip_fraction;
@@ -54,15 +54,14 @@ static double hold_share(const mrn_scheme *s) {
   }
 }
 
-/* nodal velocity from momentum, for nodes above the mass floor; `first`:
- * the step's first V, whose inlet holds reach the particles' momentum as far
- * as the velocity update passes V on (hold_share) */
-static void grid_velocity(mrn_sim *sim, double dt, int first) {
+/* nodal velocity from momentum, for nodes above the mass floor, then the
+ * holds; `inlet_share` of the inlets' hold is booked as their work (in the
+ * step's first V, the part the velocity update passes on) */
+static void grid_velocity_held(mrn_sim *sim, mrn_grid *g, double dt, double inlet_share) {
   const double t0 = mrn_phase_begin();
-  mrn_grid *g = &sim->grid;
   const double floor_mass = sim->mass_floor;
   const mrn_node_ranges r = mrn_grid_active_ranges(g); /* every nodal array is zero elsewhere */
-  if (sim->mass_scaling != 1.0) scale_grid_mass(sim, &r);
+  if (sim->mass_scaling != 1.0) scale_grid_mass(sim, g, &r);
 #pragma omp parallel for schedule(static) if (r.nodes > MRN_OMP_MIN_NODES)
   for (long k = 0; k < r.count; k++)
     for (long i = r.lo[k]; i < r.hi[k]; i++) {
@@ -71,8 +70,15 @@ static void grid_velocity(mrn_sim *sim, double dt, int first) {
     }
   mrn_boundary_apply(&sim->boundary, g, floor_mass, g->vel, 0);
   for (int c = 0; c < sim->nconstraints; c++) mrn_constraint_apply(&sim->constraints[c], g, g->vel, floor_mass, 0.0);
-  if (sim->nsources) mrn_sources_apply(sim, g->vel, dt, first ? hold_share(&sim->scheme) : 0.0);
+  if (sim->nsources) mrn_sources_apply(sim, g->vel, dt, inlet_share);
   mrn_phase_end(MRN_PHASE_GRID, t0);
+}
+
+void mrn_grid_velocity_on(mrn_sim *sim, mrn_grid *g) { grid_velocity_held(sim, g, 0.0, 0.0); }
+
+/* `first`: the step's first V (a re-map's holds are not booked again) */
+static void grid_velocity(mrn_sim *sim, double dt, int first) {
+  grid_velocity_held(sim, &sim->grid, dt, first ? mrn_hold_share(&sim->scheme) : 0.0);
 }
 
 /* Damping force on a node with total force f and velocity v:
@@ -90,9 +96,8 @@ static inline double damping_force(double D, double alpha, double f, double v, d
  * and boundary conditions with friction. The acceleration the particles see,
  * (V~ - V) / dt, is not stored: G2P gathers V~ - V from both velocities.
  * The damping work is f_damp . (V + V~) / 2 dt. */
-static void grid_update(mrn_sim *sim, double dt) {
+void mrn_grid_update_on(mrn_sim *sim, mrn_grid *g, double dt) {
   const double t0 = mrn_phase_begin();
-  mrn_grid *g = &sim->grid;
   const double floor_mass = sim->mass_floor;
   const double D = sim->damping_cundall, alpha = sim->damping_viscous;
   const int damped = D > 0.0 || alpha > 0.0;
@@ -137,6 +142,8 @@ static void grid_update(mrn_sim *sim, double dt) {
   sim->work_external += mrn_point_forces_work(sim, dt);
   mrn_phase_end(MRN_PHASE_GRID, t0);
 }
+
+static void grid_update(mrn_sim *sim, double dt) { mrn_grid_update_on(sim, &sim->grid, dt); }
 
 static double *scratch(mrn_sim *sim, size_t count) {
   if (count > sim->scratch_cap) {
@@ -441,7 +448,10 @@ int mrn_sim_step_dt(mrn_sim *sim, double dt) {
                                                    sim->particles.vol0, sim->particles.n)))
     return rc;
   mrn_transfer tr = mrn_sim_transfer(sim);
-  switch (sim->scheme.stress_update) {
+  if (sim->contact && sim->contact->npairs) {
+    rc = mrn_contact_step(sim, &tr, dt);
+    end.pass = NULL; /* the contact step's G2P has no end-of-step stage */
+  } else switch (sim->scheme.stress_update) {
   case MRN_STRESS_USF: rc = step_usf(sim, &tr, dt, &end); break;
   case MRN_STRESS_USL: rc = step_usl(sim, &tr, dt, &end); break;
   case MRN_STRESS_USAVG: rc = step_usavg(sim, &tr, dt, &end); break;
@@ -451,7 +461,7 @@ int mrn_sim_step_dt(mrn_sim *sim, double dt) {
   if (rc) return rc;
   if (sim->boundary.walls) {
     sim->boundary.walls->cundall = sim->damping_cundall;
-    sim->work_walls += mrn_walls_step_end(sim->boundary.walls, dt, hold_share(&sim->scheme), sim->gravity);
+    sim->work_walls += mrn_walls_step_end(sim->boundary.walls, dt, mrn_hold_share(&sim->scheme), sim->gravity);
     sim->work_damping += sim->boundary.walls->damping_work;
   }
   sim->time += dt;

@@ -59,6 +59,17 @@ int mrn_update_from_grid(mrn_sim *sim, mrn_transfer *tr, const double *gvel, dou
   return pass_result(sim, mrn_gradient(tr, gvel, &sink), dt);
 }
 
+int mrn_update_from_gradients(mrn_sim *sim, const double *L, double dt) {
+  chunk_ctx c = {sim, dt};
+  long bad = -1;
+  for (size_t lo = 0; lo < sim->particles.n; lo += MRN_GRADIENT_CHUNK) {
+    const size_t hi = lo + MRN_GRADIENT_CHUNK < sim->particles.n ? lo + MRN_GRADIENT_CHUNK : sim->particles.n;
+    const long b = update_chunk(&c, lo, hi, L + 9 * lo);
+    if (bad < 0) bad = b;
+  }
+  return pass_result(sim, bad, dt);
+}
+
 int mrn_update_then_force(mrn_sim *sim, mrn_transfer *tr, const double *gvel, double dt) {
   if (!mrn_update_force_fused(tr)) {
     int rc = mrn_update_from_grid(sim, tr, gvel, dt);

@@ -19,6 +19,9 @@
  * the first particle whose F would invert (the others are updated). */
 int mrn_update_from_grid(mrn_sim *sim, mrn_transfer *tr, const double *gvel, double dt);
 
+/* the same from given gradients L, 9 per particle (the contact step's) */
+int mrn_update_from_gradients(mrn_sim *sim, const double *L, double dt);
+
 /* mrn_update_from_grid, then the internal force of the updated stresses
  * scattered to the grid (P2G with force only), the particles unmoved since
  * the last P2G (USF, USAVG's first half). For plain B-splines both happen

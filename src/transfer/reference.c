@@ -114,38 +114,43 @@ void mrn_ref_stencil_build(const mrn_transfer *t, size_t p, mrn_ref_stencil *s) 
  * p_i = sum_p N_ip m_p (v_p + A_p (x_i - x_p))           (000, Eqs. 16, 19-20, 23-24)
  *       A_p the affine matrix C_p (APIC) or grad v_p (TPIC), 0 for plain
  * f_i = -sum_p V_p sigma_p grad N_ip                     (002, Fig. 1 step 3) */
-void mrn_ref_p2g(const mrn_transfer *t, int momentum, int force) {
+void mrn_ref_p2g_add(const mrn_transfer *t, size_t p, const mrn_ref_stencil *s, int momentum, int force) {
   mrn_grid *g = t->grid;
   const mrn_particles *ps = t->particles;
   const int dim = t->dim, affine = t->scheme->grid_velocity != MRN_VGRID_PLAIN;
+  const double m = ps->mass[p], vol = mrn_particle_volume_dim(ps, p, dim);
+  const double *v = ps->v + 3 * p, *A = ps->affine + (size_t)(dim * dim) * p, *sig = ps->stress + 6 * p;
+  for (int c = 0; c < s->count; c++) {
+    const size_t i = s->node[c];
+    const double *off = s->off + dim * c, *dN = s->dN + dim * c;
+    if (momentum) {
+      const double Nm = s->N[c] * m;
+      g->mass[i] += Nm;
+      for (int a = 0; a < dim; a++) {
+        double va = v[a];
+        if (affine)
+          for (int b = 0; b < dim; b++) va += A[dim * a + b] * off[b];
+        g->mom[3 * i + a] += Nm * va;
+      }
+    }
+    if (force)
+      for (int a = 0; a < dim; a++) {
+        double sg = 0.0; /* (sigma grad N)_a */
+        for (int b = 0; b < dim; b++) sg += sig[sym_index(a, b)] * dN[b];
+        g->force[3 * i + a] -= vol * sg;
+      }
+  }
+}
+
+void mrn_ref_p2g(const mrn_transfer *t, int momentum, int force) {
+  mrn_grid *g = t->grid;
   if (momentum) memset(g->mass, 0, g->n * sizeof(double));
   if (momentum) memset(g->mom, 0, 3 * g->n * sizeof(double));
   if (force) memset(g->force, 0, 3 * g->n * sizeof(double));
   mrn_ref_stencil s;
-  for (size_t p = 0; p < ps->n; p++) {
+  for (size_t p = 0; p < t->particles->n; p++) {
     mrn_ref_stencil_build(t, p, &s);
-    const double m = ps->mass[p], vol = mrn_particle_volume_dim(ps, p, dim);
-    const double *v = ps->v + 3 * p, *A = ps->affine + (size_t)(dim * dim) * p, *sig = ps->stress + 6 * p;
-    for (int c = 0; c < s.count; c++) {
-      const size_t i = s.node[c];
-      const double *off = s.off + dim * c, *dN = s.dN + dim * c;
-      if (momentum) {
-        const double Nm = s.N[c] * m;
-        g->mass[i] += Nm;
-        for (int a = 0; a < dim; a++) {
-          double va = v[a];
-          if (affine)
-            for (int b = 0; b < dim; b++) va += A[dim * a + b] * off[b];
-          g->mom[3 * i + a] += Nm * va;
-        }
-      }
-      if (force)
-        for (int a = 0; a < dim; a++) {
-          double sg = 0.0; /* (sigma grad N)_a */
-          for (int b = 0; b < dim; b++) sg += sig[sym_index(a, b)] * dN[b];
-          g->force[3 * i + a] -= vol * sg;
-        }
-    }
+    mrn_ref_p2g_add(t, p, &s, momentum, force);
   }
 }
 
@@ -251,24 +256,34 @@ static void update_rule(const mrn_scheme *sc, double dt, double v_pic, double v_
   *v = v_new;
 }
 
-void mrn_ref_g2p(const mrn_transfer *t, double dt, double *dx, double *L) {
+void mrn_ref_g2p_one(const mrn_transfer *t, size_t p, double dt, double *dx, double *L) {
   mrn_particles *ps = t->particles;
   const int dim = t->dim;
   mrn_ref_stencil s;
   gathered q;
-  for (size_t p = 0; p < ps->n; p++) {
-    mrn_ref_stencil_build(t, p, &s);
-    gather(t, &s, &q);
-    if (t->scheme->grid_velocity != MRN_VGRID_PLAIN) affine_matrix(t, &q, ps->x + 3 * p, ps->affine + (size_t)(dim * dim) * p);
-    if (L)
-      for (int a = 0; a < 3; a++)
-        for (int b = 0; b < 3; b++) L[9 * p + 3 * a + b] = q.L[a][b];
-    double step[3] = {0, 0, 0};
-    for (int d = 0; d < dim; d++)
-      update_rule(t->scheme, dt, q.v_pic[d], q.v_old[d], q.v_star[d], ps->v + 3 * p + d, &step[d]);
-    for (int d = 0; d < 3; d++) {
-      if (dx) dx[3 * p + d] = step[d];
-      else if (d < dim) ps->x[3 * p + d] += step[d];
-    }
+  mrn_ref_stencil_build(t, p, &s);
+  gather(t, &s, &q);
+  if (t->scheme->grid_velocity != MRN_VGRID_PLAIN) affine_matrix(t, &q, ps->x + 3 * p, ps->affine + (size_t)(dim * dim) * p);
+  if (L)
+    for (int a = 0; a < 3; a++)
+      for (int b = 0; b < 3; b++) L[9 * p + 3 * a + b] = q.L[a][b];
+  double step[3] = {0, 0, 0};
+  for (int d = 0; d < dim; d++)
+    update_rule(t->scheme, dt, q.v_pic[d], q.v_old[d], q.v_star[d], ps->v + 3 * p + d, &step[d]);
+  for (int d = 0; d < 3; d++) {
+    if (dx) dx[3 * p + d] = step[d];
+    else if (d < dim) ps->x[3 * p + d] += step[d];
   }
+}
+
+void mrn_ref_g2p(const mrn_transfer *t, double dt, double *dx, double *L) {
+  for (size_t p = 0; p < t->particles->n; p++) mrn_ref_g2p_one(t, p, dt, dx, L);
+}
+
+void mrn_ref_gradient(const mrn_transfer *t, const mrn_ref_stencil *s, const double *gvel, double L[9]) {
+  const int dim = t->dim;
+  for (int e = 0; e < 9; e++) L[e] = 0.0;
+  for (int c = 0; c < s->count; c++)
+    for (int a = 0; a < dim; a++)
+      for (int b = 0; b < dim; b++) L[3 * a + b] += gvel[3 * s->node[c] + a] * s->dN[dim * c + b];
 }

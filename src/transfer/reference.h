@@ -41,6 +41,8 @@ void mrn_ref_stencil_build(const mrn_transfer *t, size_t p, mrn_ref_stencil *s);
  * when `momentum`; internal force when `force`. Clears what it writes, on
  * the whole grid. */
 void mrn_ref_p2g(const mrn_transfer *t, int momentum, int force);
+/* particle p's share of it, s its stencil; adds to what t->grid holds */
+void mrn_ref_p2g_add(const mrn_transfer *t, size_t p, const mrn_ref_stencil *s, int momentum, int force);
 
 /* The grid update: V = p / m and V~ = V + dt (f / m + g), with the face
  * conditions of t->boundary on each (no damping, constraints or point
@@ -53,5 +55,11 @@ void mrn_ref_grid_update(const mrn_transfer *t, double dt, const double gravity[
  * particle). When `L` is not NULL each particle's velocity gradient from V~
  * goes there (row-major 3 x 3, zero beyond dim). */
 void mrn_ref_g2p(const mrn_transfer *t, double dt, double *dx, double *L);
+/* the same for particle p alone (L, dx: the whole arrays, indexed by p) */
+void mrn_ref_g2p_one(const mrn_transfer *t, size_t p, double dt, double *dx, double *L);
+
+/* the velocity gradient L = sum_i gvel_i (x) grad N_i of the stencil s
+ * (row-major 3 x 3, zero beyond dim; 000, Eqs. 44-45) */
+void mrn_ref_gradient(const mrn_transfer *t, const mrn_ref_stencil *s, const double *gvel, double L[9]);
 
 #endif
