@@ -24,7 +24,8 @@ set(MORAINE_PUBLIC_HEADERS
   particles/particles.h particles/region.h particles/seed.h
   transfer/blocks.h transfer/context.h transfer/scheme.h
   material/material.h
-  solver/diagnostics.h solver/run.h solver/sim_scalars.h solver/simulation.h solver/source.h solver/timestep.h
+  solver/diagnostics.h solver/run.h solver/sim_scalars.h solver/simulation.h solver/source.h solver/split.h
+  solver/timestep.h
   solver/watchdog.h
   implicit/implicit.h
   io/checkpoint.h io/output.h io/series_h5.h io/stash.h io/vtk.h)

@@ -6,9 +6,9 @@
  * A simulation (solver/simulation.h) is built from a grid, materials
  * (material/material.h) and particles seeded in regions
  * (particles/region.h), and run (solver/run.h) with its outputs
- * (io/output.h) as observers; checkpoints are io/checkpoint.h. Every call
- * that can fail returns an error code of core/error.h with a message from
- * mrn_error_message(). doc/c-api.md walks through examples/c_api/drop.c. */
+ * (io/output.h) as observers; checkpoints are io/checkpoint.h, particle
+ * splitting solver/split.h. Every call that can fail returns an error code
+ * of core/error.h with a message from mrn_error_message(). doc/c-api.md walks through examples/c_api/drop.c. */
 #ifndef MRN_MORAINE_H
 #define MRN_MORAINE_H
 
@@ -22,5 +22,6 @@
 #include "particles/region.h"
 #include "solver/run.h"
 #include "solver/simulation.h"
+#include "solver/split.h"
 
 #endif
