@@ -8,7 +8,8 @@
  * (particles/region.h), and run (solver/run.h) with its outputs
  * (io/output.h) as observers; checkpoints are io/checkpoint.h, particle
  * splitting solver/split.h. Every call that can fail returns an error code
- * of core/error.h with a message from mrn_error_message(). doc/c-api.md walks through examples/c_api/drop.c. */
+ * of core/error.h with a message from mrn_error_message(). doc/c-api.md
+ * walks through examples/c_api/drop.c. */
 #ifndef MRN_MORAINE_H
 #define MRN_MORAINE_H
 
