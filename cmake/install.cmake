@@ -25,6 +25,7 @@ set(MORAINE_PUBLIC_HEADERS
   transfer/blocks.h transfer/context.h transfer/scheme.h
   material/material.h
   solver/contact.h solver/diagnostics.h solver/run.h solver/sim_scalars.h solver/simulation.h solver/source.h
+  solver/split.h
   solver/timestep.h
   solver/watchdog.h
   implicit/implicit.h

@@ -7,9 +7,9 @@
  * (material/material.h) and particles seeded in regions
  * (particles/region.h), and run (solver/run.h) with its outputs
  * (io/output.h) as observers; checkpoints are io/checkpoint.h; bodies and
- * their contact, solver/contact.h. Every call
- * that can fail returns an error code of core/error.h with a message from
- * mrn_error_message(). doc/c-api.md walks through examples/c_api/drop.c. */
+ * their contact, solver/contact.h; particle splitting, solver/split.h. Every
+ * call that can fail returns an error code of core/error.h with a message
+ * from mrn_error_message(). doc/c-api.md walks through examples/c_api/drop.c. */
 #ifndef MRN_MORAINE_H
 #define MRN_MORAINE_H
 
@@ -24,5 +24,6 @@
 #include "solver/contact.h"
 #include "solver/run.h"
 #include "solver/simulation.h"
+#include "solver/split.h"
 
 #endif

@@ -15,3 +15,10 @@ if(COMMAND moraine_deck_test)
   moraine_deck_test(granular_collapse granular_collapse.lua LABELS collapse)
   moraine_deck_test(granular_collapse_full granular_collapse.lua ARGS --set full=true LABELS "collapse;slow;long")
 endif()
+
+# 000's series S3 (N_mppc 1 to 49, AR 1) without and with particle splitting;
+# the quick variant N_mppc 1 and 4 only (about 10 s of CPU)
+if(COMMAND moraine_deck_test)
+  moraine_deck_test(collapse_s3 collapse_s3.lua ARGS --set quick=true LABELS collapse)
+  moraine_deck_test(collapse_s3_full collapse_s3.lua LABELS "collapse;slow;long")
+endif()

@@ -20,6 +20,8 @@ moraine_deck_test(outflow outflow.lua)
 moraine_deck_test(inflow inflow.lua)
 # mass scaling: the stable dt grows by sqrt(factor), a slow compression ends in the same stress in fewer steps
 moraine_deck_test(mass_scaling mass_scaling.lua)
+# particle splitting: a bar pulled to 3x stays continuous (standard MPM leaves empty cells), a checkpoint bit for bit
+moraine_deck_test(split_tension_bar split_tension_bar.lua)
 # point forces (sim:point_force, load_factor, clear_forces): momentum, energy, traction, checkpoint
 moraine_deck_test(point_force point_force.lua)
 # every setter (found in the method table) refuses NaN, inf and out-of-range values as its constructor key does

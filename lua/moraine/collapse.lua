@@ -78,6 +78,7 @@ local DEFAULTS = {
   thermo = 0,
   keep = false,                -- keep (return) the simulation objects instead of freeing them
   material = false,            -- a material object for the collapse instead of the Mohr-Coulomb sand
+  split = false,               -- particle splitting of the collapse, {stretch, max_level} (simulation{split})
 }
 
 local function check_options(opts)
@@ -244,6 +245,7 @@ local function phase_sim(o, phase, width, transfer, damping)
     thermo = o.thermo, diagnostics = o.diagnostics and (o.name .. "_" .. phase .. ".csv") or false,
     diagnostics_every = o.diagnostics_every, name = o.name .. "_" .. phase,
     output = vtk_output(o, o.name .. "_" .. phase),
+    split = phase == "collapse" and o.split or nil,
   }
 end
 
@@ -327,11 +329,15 @@ end
 
 -- The particles' positions as initial position + displacement, so that a
 -- sample costs one field call instead of one sim:particle() per particle.
--- Returns a table: n, xs() (every x) and extent() (the largest x and y).
+-- Particle splitting (option `split`) adds particles and moves the initial
+-- position of those it splits: the initial positions are read again
+-- whenever the count changed.
+-- Returns a table: extent() (the largest x and y) and xs() (every x).
 local function positions(sim)
-  local n = sim:particle_count()
-  local base = {}
-  do
+  local n, base = -1, {}
+  local function refresh()
+    if sim:particle_count() == n then return end
+    n = sim:particle_count()
     local u = sim:field("displacement")
     for i = 1, n do
       local x = sim:particle(i).x
@@ -339,8 +345,9 @@ local function positions(sim)
       base[2 * i] = x[2] - u[3 * i - 1]
     end
   end
-  local p = { n = n }
+  local p = {}
   function p.extent()
+    refresh()
     local u = sim:field("displacement")
     local mx, my = -math.huge, -math.huge
     for i = 1, n do
@@ -352,6 +359,7 @@ local function positions(sim)
     return mx, my
   end
   function p.xs()
+    refresh()
     local u, xs = sim:field("displacement"), {}
     for i = 1, n do xs[i] = base[2 * i - 1] + u[3 * i - 2] end
     return xs
@@ -428,6 +436,7 @@ local function final_measures(result, o, sim, st, pos, e0, tscale)
   result.at_wall = result.max_x > o.width_factor * o.width - l
   result.time = sim:time()
   result.steps = sim:step()
+  result.particles = sim:particle_count() -- more than at the start with `split`
   result.ek_peak, result.t_peak, result.ek_final = st.peak, st.t_peak, e1.kinetic
   rest_times(result, o, st, tscale)
   local x_mass, x_conn = M.bulk_fronts(pos.xs(), sim:field("mass"), l, o.bulk_fraction)

@@ -155,6 +155,8 @@ static const luaL_Reg methods[] = {
     {"save", l_sim_save},
     {"import", l_sim_import},
     {"set_damping", l_sim_set_damping},
+    {"set_split", l_sim_set_split},
+    {"split", l_sim_split},
     {"dt_estimate", l_sim_dt_estimate},
     {"output", l_sim_output},
     {"write_vtk", l_sim_write_vtk},
@@ -185,6 +187,7 @@ static const luaL_Reg meta[] = {
 static const mrn_spec_group *const groups[] = {
     &mrn_lua_simulation_group, &mrn_lua_grid_group, &mrn_lua_scheme_group, &mrn_lua_output_group,
     &mrn_lua_boundary_group,   &mrn_lua_face_group, &mrn_lua_dt_group,     &mrn_lua_damping_group,
+    &mrn_lua_split_group,
     &mrn_lua_run_group,        &mrn_lua_thermo_group, &mrn_lua_checkpoint_group, &mrn_lua_hook_group,
     &mrn_lua_particle_group,   &mrn_lua_load_group,
     &mrn_lua_constrain_group,  &mrn_lua_reduce_group, &mrn_lua_import_group, &mrn_lua_wall_group,

@@ -108,6 +108,7 @@ void mrn_lua_read_boundary(lua_State *L, int idx, const char *where, mrn_sim *si
 void mrn_lua_read_scheme(lua_State *L, int idx, const char *where, mrn_sim *sim);
 void mrn_lua_read_dt(lua_State *L, int idx, const char *where, mrn_sim *sim);
 void mrn_lua_read_damping(lua_State *L, int idx, const char *where, mrn_sim *sim);
+void mrn_lua_read_split(lua_State *L, int idx, const char *where, mrn_sim *sim);
 
 /* thermo = N or {every, columns} at idx: the keys given change t */
 void mrn_lua_read_thermo(lua_State *L, int idx, const char *where, mrn_lua_thermo *t);
@@ -155,6 +156,8 @@ int l_sim_set_boundary(lua_State *L);
 int l_sim_set_scheme(lua_State *L);
 int l_sim_set_dt(lua_State *L);
 int l_sim_set_damping(lua_State *L);
+int l_sim_set_split(lua_State *L);
+int l_sim_split(lua_State *L);
 int l_sim_output(lua_State *L);
 int l_sim_constrain(lua_State *L);
 int l_sim_reaction(lua_State *L);
@@ -182,7 +185,7 @@ void mrn_lua_add_source_methods(lua_State *L, int methods);
 
 extern const mrn_spec_group mrn_lua_simulation_group, mrn_lua_grid_group, mrn_lua_output_group; /* config */
 extern const mrn_spec_group mrn_lua_scheme_group, mrn_lua_boundary_group, mrn_lua_face_group; /* options */
-extern const mrn_spec_group mrn_lua_dt_group, mrn_lua_damping_group;                          /* options */
+extern const mrn_spec_group mrn_lua_dt_group, mrn_lua_damping_group, mrn_lua_split_group;                          /* options */
 extern const mrn_spec_group mrn_lua_run_group, mrn_lua_hook_group, mrn_lua_thermo_group;                            /* run */
 
 extern const mrn_spec_group mrn_lua_run_group, mrn_lua_hook_group;                            /* run */

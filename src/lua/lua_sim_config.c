@@ -24,6 +24,7 @@ static const mrn_spec sim_specs[] = {
     {"boundary", MRN_SPEC_TABLE, 0, 0, 0, 0, 0, 0, NULL, "face conditions (default slip on every face)", NULL},
     {"dt", MRN_SPEC_ANY, 0, 0, 0, 0, 0, 0, "s", "time-step policy (default {a_tau = 0.05})", NULL},
     {"damping", MRN_SPEC_TABLE, 0, 0, 0, 0, 0, 0, NULL, "grid-force damping {cundall, viscous} (default none)", NULL},
+    {"split", MRN_SPEC_ANY, 0, 0, 0, 0, 0, 0, NULL, "particle splitting {stretch, max_level}, or false (default none)", NULL},
     {"watchdog", MRN_SPEC_ANY, 0, 0, 0, 0, 0, 0, NULL,
      "physical-sanity bounds {energy, dt, speed, every}, or false (default on)", NULL},
     {"thermo", MRN_SPEC_ANY, 0, 0, 0, 0, 0, 0, "steps",
@@ -267,6 +268,7 @@ int l_simulation(lua_State *L) {
   read_option(L, "boundary", where, b->sim, mrn_lua_read_boundary);
   read_option(L, "dt", where, b->sim, mrn_lua_read_dt);
   read_option(L, "damping", where, b->sim, mrn_lua_read_damping);
+  read_option(L, "split", where, b->sim, mrn_lua_read_split);
   read_option(L, "watchdog", where, b->sim, mrn_lua_read_watchdog);
   if (mrn_lua_has(L, 1, "thermo")) {
     lua_getfield(L, 1, "thermo");

@@ -7,6 +7,7 @@
 #include "core/error.h"
 #include "lua/lua_check.h"
 #include "lua/lua_sim.h"
+#include "solver/split.h"
 
 static const char *const gradient_choices[] = {"standard", "mls", NULL};
 static const mrn_spec scheme_specs[] = {
@@ -270,3 +271,32 @@ const mrn_spec_group mrn_lua_boundary_group = {"simulation{} boundary", boundary
 const mrn_spec_group mrn_lua_face_group = {"boundary face", face_specs, MRN_COUNT(face_specs)};
 const mrn_spec_group mrn_lua_dt_group = {"simulation{} dt", dt_specs, MRN_COUNT(dt_specs)};
 const mrn_spec_group mrn_lua_damping_group = {"simulation{} damping", damping_specs, MRN_COUNT(damping_specs)};
+
+/* ------------------------------------------------------- splitting */
+
+static const mrn_spec split_specs[] = {
+    {"stretch", MRN_SPEC_NUMBER, 0, 2, 1, HUGE_VAL, 1, 0, "",
+     "split a particle whose domain's largest half-axis exceeds this times its initial half-width", NULL},
+    {"max_level", MRN_SPEC_INTEGER, 0, 3, 0, MRN_SPLIT_MAX_LEVEL, 0, 0, "",
+     "the most splits in a particle's ancestry (a particle becomes at most 2^max_level)", NULL},
+};
+
+/* split = {stretch, max_level} or false (solver/split.h) */
+void mrn_lua_read_split(lua_State *L, int idx, const char *where, mrn_sim *sim) {
+  idx = lua_absindex(L, idx);
+  char sub[96];
+  snprintf(sub, sizeof sub, "%s split", where);
+  double stretch = 0.0;
+  int levels = 0;
+  if (lua_type(L, idx) == LUA_TBOOLEAN && !lua_toboolean(L, idx)) {
+    /* false: no splitting */
+  } else {
+    mrn_lua_check_table(L, idx, sub, split_specs, MRN_COUNT(split_specs));
+    stretch = mrn_lua_get_number(L, idx, sub, split_specs, MRN_COUNT(split_specs), "stretch");
+    levels = (int)mrn_lua_get_integer(L, idx, sub, split_specs, MRN_COUNT(split_specs), "max_level");
+  }
+  mrn_lua_active = L;
+  if (mrn_sim_set_split(sim, stretch, levels) != MRN_OK) mrn_lua_engine_error(L, sub);
+}
+
+const mrn_spec_group mrn_lua_split_group = {"simulation{} split", split_specs, MRN_COUNT(split_specs)};

@@ -7,6 +7,7 @@
 #include "lua/lua_check.h"
 #include "lua/lua_sim.h"
 #include "lua/lua_safe.h"
+#include "solver/split.h"
 
 /* the checks of simulation{gravity}, on the value given alone */
 int l_sim_set_gravity(lua_State *L) {
@@ -40,6 +41,22 @@ int l_sim_set_damping(lua_State *L) {
   sim_box *b = mrn_lua_sim_check(L, 1);
   mrn_lua_read_damping(L, 2, "set_damping()", b->sim);
   return 0;
+}
+
+int l_sim_set_split(lua_State *L) {
+  sim_box *b = mrn_lua_sim_check_idle(L, 1, "set_split()");
+  mrn_lua_read_split(L, 2, "set_split()", b->sim);
+  return 0;
+}
+
+/* sim:split() -> the number of particles split now (those due by the splitting's settings) */
+int l_sim_split(lua_State *L) {
+  sim_box *b = mrn_lua_sim_check_idle(L, 1, "split()");
+  mrn_lua_active = L;
+  const long made = mrn_sim_split(b->sim);
+  if (made < 0) mrn_lua_engine_error(L, "split()");
+  lua_pushinteger(L, made);
+  return 1;
 }
 
 int l_sim_output(lua_State *L) {

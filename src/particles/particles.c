@@ -135,6 +135,23 @@ long mrn_particles_add(mrn_particles *p, const double x[3], double mass, double 
   return (long)i;
 }
 
+long mrn_particles_clone(mrn_particles *p, size_t i) {
+  if (p->n == p->cap && mrn_particles_reserve(p, p->cap ? 2 * p->cap : 256) != MRN_OK) return -1;
+  const size_t j = p->n++;
+  for (int f = 0; f < FIELD_COUNT; f++) {
+    const size_t nc = stride_of(p, f);
+    double *data = *field_ptr(p, f);
+    memcpy(data + j * nc, data + i * nc, sizeof(double) * nc);
+  }
+  p->material[j] = p->material[i];
+  p->id[j] = p->next_id++;
+  if (p->state_stride)
+    memcpy(p->state + j * p->state_stride, p->state + i * p->state_stride, sizeof(double) * p->state_stride);
+  if (p->user_stride)
+    memcpy(p->user + j * p->user_stride, p->user + i * p->user_stride, sizeof(double) * p->user_stride);
+  return (long)j;
+}
+
 void mrn_particles_compact(mrn_particles *p, const unsigned char *keep) {
   size_t out = 0;
   for (size_t i = 0; i < p->n; i++) {

@@ -83,6 +83,10 @@ const mrn_user_field *mrn_particles_user_field(const mrn_particles *p, const cha
  * MRN_PARTICLE_FIELDS in p's dimension, material and id, history variables
  * and registered fields */
 size_t mrn_particles_record_bytes(const mrn_particles *p);
+/* Append a copy of particle i (every field, history variable and registered
+ * field) with a new id. Returns its index, or -1 on allocation failure
+ * (message set). */
+long mrn_particles_clone(mrn_particles *p, size_t i);
 /* remove particles whose keep[i] == 0, preserving order */
 void mrn_particles_compact(mrn_particles *p, const unsigned char *keep);
 

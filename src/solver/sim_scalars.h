@@ -73,8 +73,15 @@
   X(long, sort_every, I64, MRN_COUNTER, 2, 0, "steps",                                                   \
     "reorder the particles by grid block every this many steps, 0: never")                                        \
   X(int, affine_pending, I32, MRN_IN(0, 1), 1, 0, "",                                                      \
-    "1: initial velocities were assigned, grad v and B are initialised at the next run")
+    "1: initial velocities were assigned, grad v and B are initialised at the next run")                       \
+  X(double, split_stretch, F64, MRN_AT_LEAST(0.0), 3, 0.0, "",                                              \
+    "split a particle whose domain stretched beyond this (solver/split.h); 0: never")                             \
+  X(int, split_max_level, I32, MRN_IN(0, MRN_SPLIT_MAX_LEVEL), 3, 0, "",                                    \
+    "the most splits in a particle's ancestry")                                                                   \
+  X(long, split_count, I64, MRN_COUNTER, 3, 0, "", "particles split so far")
 /* clang-format on */
+/* the deepest split_max_level (a particle's volume halves at each split) */
+#define MRN_SPLIT_MAX_LEVEL 20
 
 /* what a file's value must be (the `check` column); the macros expand to
  * the initialisers of an mrn_scalar_check */

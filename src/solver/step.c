@@ -21,6 +21,7 @@
 #include "solver/contact.h"
 #include "solver/point_force.h"
 #include "solver/simulation.h"
+#include "solver/split.h"
 #include "solver/update.h"
 #include "grid/active.h"
 #include "grid/wall.h"
@@ -468,7 +469,10 @@ int mrn_sim_step_dt(mrn_sim *sim, double dt) {
   sim->step++;
   rc = !end.pass ? end_of_step(sim) : end.bad >= 0 ? mrn_sim_particle_error(sim, (size_t)end.bad) : MRN_OK;
   /* the sources' new particles join the state the step ended on */
-  return rc == MRN_OK && sim->nsources ? mrn_sources_emit(sim, dt) : rc;
+  if (rc == MRN_OK && sim->nsources) rc = mrn_sources_emit(sim, dt);
+  /* and so do the children of the particles split (solver/split.h) */
+  if (rc == MRN_OK && sim->split_stretch > 0.0 && mrn_sim_split(sim) < 0) rc = MRN_ERR;
+  return rc;
 }
 
 int mrn_sim_step(mrn_sim *sim) {

@@ -66,6 +66,11 @@ local cases = {
       call = function(s, v) s:set_damping{ viscous = v } end,
       ctor = function(v) new_sim{ damping = { viscous = v } } end, ctor_where = "simulation{} damping" },
   },
+  set_split = {
+    { where = "set_split() split", key = "stretch", finite = "a finite value > 1", bad = 0.5, range = "a value > 1",
+      call = function(s, v) s:set_split{ stretch = v } end,
+      ctor = function(v) new_sim{ split = { stretch = v } } end, ctor_where = "simulation{} split" },
+  },
   set_watchdog = {
     { where = "set_watchdog() watchdog", key = "energy", finite = "a finite value >= 0", bad = -1, range = "a value >= 0",
       call = function(s, v) s:set_watchdog{ energy = v } end,

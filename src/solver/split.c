@@ -1,0 +1,166 @@
+#include "solver/split.h"
+
+#include <math.h>
+#include <string.h>
+
+#include "core/error.h"
+#include "core/tensor.h"
+#include "material/principal.h"
+#include "solver/simulation.h"
+
+/* where the two fields sit in a particle's record of ps->user, or -1 */
+typedef struct split_fields {
+  int domain, level;
+} split_fields;
+
+static split_fields find_fields(const mrn_particles *ps) {
+  const mrn_user_field *u = mrn_particles_user_field(ps, MRN_SPLIT_DOMAIN_FIELD);
+  const mrn_user_field *l = mrn_particles_user_field(ps, MRN_SPLIT_LEVEL_FIELD);
+  split_fields f = {-1, -1};
+  if (u && u->ncomp == 9) f.domain = u->offset;
+  if (l && l->ncomp == 1) f.level = l->offset;
+  return f;
+}
+
+static int add_field(mrn_particles *ps, const char *name, int ncomp, const char *unit) {
+  const mrn_user_field *u = mrn_particles_user_field(ps, name);
+  if (!u) return mrn_particles_add_user_field(ps, name, ncomp, 0.0, unit);
+  if (u->ncomp != ncomp)
+    return mrn_error("split: the particle field '%s' has %d components, not %d: the name is the splitting's", name,
+                     u->ncomp, ncomp);
+  return MRN_OK;
+}
+
+int mrn_sim_set_split(mrn_sim *sim, double stretch, int max_level) {
+  if (stretch != 0.0 && !(stretch > 1.0 && isfinite(stretch)))
+    return mrn_error("split: stretch %g is not above 1 (or 0: no splitting)", stretch);
+  if (max_level < 0 || max_level > MRN_SPLIT_MAX_LEVEL)
+    return mrn_error("split: max_level %d is not in [0, %d]", max_level, MRN_SPLIT_MAX_LEVEL);
+  if (stretch > 0.0 && (add_field(&sim->particles, MRN_SPLIT_DOMAIN_FIELD, 9, "m") != MRN_OK ||
+                        add_field(&sim->particles, MRN_SPLIT_LEVEL_FIELD, 1, "") != MRN_OK))
+    return MRN_ERR;
+  sim->split_stretch = stretch;
+  sim->split_max_level = max_level;
+  return MRN_OK;
+}
+
+/* one particle's domain: U0 (3 x 3, the in-plane block in 2D), its image
+ * A = F U0, the split count and r_ref */
+typedef struct domain {
+  double U0[9], A[9];
+  int level;
+  double r_ref;
+} domain;
+
+static void read_domain(const mrn_sim *sim, split_fields f, size_t i, domain *dm) {
+  const mrn_particles *ps = &sim->particles;
+  const int dim = sim->dim;
+  const double *u = ps->user + i * (size_t)ps->user_stride;
+  dm->level = (int)u[f.level];
+  /* each split halves vol0: the ancestor's vol0 is vol0 2^level */
+  dm->r_ref = 0.5 * pow(ldexp(ps->vol0[i], dm->level), 1.0 / dim);
+  memcpy(dm->U0, u + f.domain, sizeof dm->U0);
+  int set = 0;
+  for (int k = 0; k < 9; k++) set |= dm->U0[k] != 0.0;
+  if (!set) /* never split: the sphere of radius r_ref */
+    for (int a = 0; a < dim; a++) dm->U0[4 * a] = dm->r_ref;
+  double F[9];
+  mrn_tensor_expand(dim, ps->F + (size_t)mrn_tensor_stride(dim) * i, 1.0, F);
+  if (dim == 2) F[8] = 0.0; /* the in-plane block only */
+  mat_mul(F, dm->U0, dm->A);
+}
+
+/* the largest half-axis sigma of A's ellipsoid, its direction n now and the
+ * unit m it comes from (A m = sigma n): the largest singular value and
+ * vectors of A, from the eigenvectors of A A^T */
+static double largest_axis(int dim, const double A[9], double n[3], double m[3]) {
+  double B[9], lam[3], V[9];
+  for (int a = 0; a < dim; a++)
+    for (int b = 0; b < dim; b++) {
+      double s = 0.0;
+      for (int k = 0; k < dim; k++) s += A[3 * a + k] * A[3 * b + k];
+      B[dim * a + b] = s;
+    }
+  mrn_jacobi_eigen(dim, B, lam, V);
+  const double sigma = sqrt(lam[0] > 0.0 ? lam[0] : 0.0);
+  for (int a = 0; a < 3; a++) n[a] = a < dim ? V[dim * a] : 0.0;
+  for (int b = 0; b < 3; b++) {
+    double s = 0.0;
+    for (int a = 0; a < dim; a++) s += A[3 * a + b] * n[a];
+    m[b] = sigma > 0.0 ? s / sigma : 0.0;
+  }
+  return sigma;
+}
+
+double mrn_split_stretch(const mrn_sim *sim, size_t i) {
+  const split_fields f = find_fields(&sim->particles);
+  if (f.domain < 0 || f.level < 0) return 0.0;
+  domain dm;
+  read_domain(sim, f, i, &dm);
+  double n[3], m[3];
+  return largest_axis(sim->dim, dm.A, n, m) / dm.r_ref;
+}
+
+/* particle i and its clone j: the two halves of i's domain across n */
+static void make_children(mrn_sim *sim, split_fields f, size_t i, size_t j, const domain *dm, double sigma,
+                          const double n[3], const double m[3]) {
+  mrn_particles *ps = &sim->particles;
+  double U[9]; /* U0 (I - m m^T / 2): the reference half-axis along m halved */
+  for (int a = 0; a < 3; a++)
+    for (int b = 0; b < 3; b++) {
+      double um = 0.0;
+      for (int k = 0; k < 3; k++) um += dm->U0[3 * a + k] * m[k];
+      U[3 * a + b] = dm->U0[3 * a + b] - 0.5 * um * m[b];
+    }
+  for (int a = 0; a < 3; a++) {
+    /* the children's centres now, +-sigma n / 2, and where they were: F^-1
+     * of that, U0 m / 2 */
+    double d = 0.5 * sigma * n[a], dX = 0.0;
+    for (int k = 0; k < 3; k++) dX += 0.5 * dm->U0[3 * a + k] * m[k];
+    ps->x[3 * i + a] += d, ps->x[3 * j + a] -= d;
+    ps->x0[3 * i + a] += dX, ps->x0[3 * j + a] -= dX;
+  }
+  const size_t c[2] = {i, j};
+  for (int k = 0; k < 2; k++) {
+    const size_t p = c[k];
+    ps->mass[p] *= 0.5, ps->vol0[p] *= 0.5; /* the volume J vol0 halves with vol0 */
+    ps->e_elastic[p] *= 0.5, ps->w_plastic[p] *= 0.5;
+    double *u = ps->user + p * (size_t)ps->user_stride;
+    memcpy(u + f.domain, U, sizeof U);
+    u[f.level] = dm->level + 1;
+  }
+}
+
+long mrn_sim_split(mrn_sim *sim) {
+  if (!(sim->split_stretch > 0.0)) return 0;
+  mrn_particles *ps = &sim->particles;
+  const split_fields f = find_fields(ps);
+  if (f.domain < 0 || f.level < 0) {
+    mrn_error("split: the particle fields '%s' and '%s' are missing (switch splitting on with mrn_sim_set_split)",
+              MRN_SPLIT_DOMAIN_FIELD, MRN_SPLIT_LEVEL_FIELD);
+    return -1;
+  }
+  const size_t n0 = ps->n;
+  long made = 0;
+  for (size_t i = 0; i < n0; i++) {
+    domain dm;
+    read_domain(sim, f, i, &dm);
+    if (dm.level >= sim->split_max_level) continue;
+    const double limit = sim->split_stretch * dm.r_ref;
+    double frob = 0.0; /* sigma^2 <= |A|^2: most particles stop here */
+    for (int k = 0; k < 9; k++) frob += dm.A[k] * dm.A[k];
+    if (frob <= limit * limit) continue;
+    double n[3], m[3];
+    const double sigma = largest_axis(sim->dim, dm.A, n, m);
+    if (sigma <= limit) continue;
+    const long j = mrn_particles_clone(ps, i);
+    if (j < 0) return -1;
+    make_children(sim, f, i, (size_t)j, &dm, sigma, n, m);
+    made++;
+  }
+  if (made) {
+    sim->split_count += made;
+    mrn_sim_particles_changed(sim);
+  }
+  return made;
+}
