@@ -64,6 +64,7 @@ typedef struct mrn_wall {
   mrn_wall_spec spec; /* as made: placement, kind, mu, motion as set last */
   double ref[3];      /* where the reference point is now */
   double rot[9];      /* rotation from the reference placement, row-major */
+  double period;      /* the length of a closed surface coordinate u (cylinder, polygon), else 0 */
   /* the last step: impulse on the material and its moment about ref (in
    * V~), and the reaction on the wall, -impulse / dt (N, N m; per metre in 2D) */
   double impulse[3], angular[3];
@@ -83,7 +84,7 @@ typedef struct mrn_wall {
   void *motion_ctx;
   void (*motion_release)(void *ctx);
   /* per node of the grid: bit 0 touched this step, bit 1 in contact at the
-   * end of the last step */
+   * end of the last step, bits 2 and 3 MRN_WALL_OVER and MRN_WALL_CLEAR */
   unsigned char *state;
   /* the nodes touched this step, with the wall's normal (out of the wall),
    * velocity and the surface patch of the nearest point there */
@@ -107,6 +108,10 @@ typedef struct mrn_walls {
 
 #define MRN_WALL_TOUCH 1u
 #define MRN_WALL_CONTACT 2u
+/* in the touch of a step: material on the wall lies over the node's patch
+ * (OVER), material above the wall does (CLEAR) */
+#define MRN_WALL_OVER 4u
+#define MRN_WALL_CLEAR 8u
 
 /* Check a spec against the grid (shape, normal, radius, vertices, mu, a wall
  * that reaches the grid) and append the wall; *ws is created on first use.
