@@ -35,6 +35,8 @@ moraine_deck_test(friction_3d friction.lua ARGS --set dim=3 LABELS slow)
 moraine_deck_test(walls walls.lua)
 moraine_deck_test(walls_restart walls_restart.lua)
 moraine_deck_test(walls_3d walls_3d.lua LABELS slow)
+# a disk rolling (gap_check) and sliding down an inclined plane: a against the closed forms
+moraine_deck_test(rolling_disk rolling_disk.lua)
 # what feeds a sliding body's vibration: a long wave that friction makes grow
 # under every strategy that keeps energy, and FLIP's short waves
 moraine_deck_test(friction_layer friction_layer.lua)

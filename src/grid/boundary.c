@@ -201,7 +201,7 @@ static void touch_visit(mrn_grid *g, unsigned char *over, const double *x, doubl
         const int above = face_over(g, x, r, axis, i, j, k);
         if (on && (!held_only || (g->contact[n] & bit))) {
           g->touch[n] |= bit;
-          if (above) over[n] |= bit;
+          if (above && over) over[n] |= bit;
         } else if (!on && above && !(over[n] & bit)) {
           g->touch[n] &= (unsigned char)~bit;
         }
@@ -242,9 +242,11 @@ void mrn_boundary_touch(const mrn_boundary *bc, mrn_grid *g, double reach, const
     if (bc->face[f].kind == MRN_BC_FRICTION) faces[nf++] = f;
   if (!nf) return;
   for (int k = 0; k < nf; k++) touch_clear(g, faces[k]);
-  /* bit 1 << face: material on the face lies over the column; without the
-   * memory the material above the face releases nothing */
-  unsigned char *over = calloc(g->n, 1);
+  /* bit 1 << face: material on the face lies over the column; needed by the
+   * faces with gap_check only (without the memory they release nothing) */
+  int check = 0;
+  for (int k = 0; k < nf; k++) check |= bc->face[faces[k]].gap_check;
+  unsigned char *over = check ? calloc(g->n, 1) : NULL;
   for (int pass = 0; pass < (over ? 2 : 1); pass++)
     for (size_t p = 0; p < n; p++) {
       /* half the particle's initial side, as uGIMP's (transfer/stencil.h) */
@@ -253,7 +255,7 @@ void mrn_boundary_touch(const mrn_boundary *bc, mrn_grid *g, double reach, const
         const double gap = face_gap(g, x + 3 * p, faces[k], r);
         if (pass == 0 && gap <= MRN_TOUCH_SLACK * r)
           touch_visit(g, over, x + 3 * p, r, faces[k], reach, 1, gap > 0.0);
-        else if (pass == 1 && gap > 0.0 && gap + r < reach * g->cell)
+        else if (pass == 1 && bc->face[faces[k]].gap_check && gap > 0.0 && gap + r < reach * g->cell)
           touch_visit(g, over, x + 3 * p, r, faces[k], reach, 0, 0);
       }
     }

@@ -38,6 +38,7 @@ enum { MRN_FACE_XMIN = 0, MRN_FACE_XMAX, MRN_FACE_YMIN, MRN_FACE_YMAX, MRN_FACE_
 typedef struct mrn_face_bc {
   mrn_bc_kind kind;
   double mu;          /* friction coefficient for MRN_BC_FRICTION */
+  int gap_check;      /* MRN_BC_FRICTION: release a column where the material over it stands clear */
   double velocity[3]; /* prescribed velocity for MRN_BC_VELOCITY (m/s) */
 } mrn_face_bc;
 

@@ -376,6 +376,7 @@ static int touch_visit(mrn_wall *w, const mrn_grid *g, const double *x, const do
         const size_t node = mrn_grid_index(g, i, j, k);
         const unsigned char st = w->state[node];
         if (on ? held_only && !(st & MRN_WALL_CONTACT) : !(st & MRN_WALL_TOUCH)) continue;
+        if (on && (st & MRN_WALL_TOUCH) && !w->spec.gap_check) continue; /* nothing to learn */
         double xn[3], n[3], v[3], uv[3];
         mrn_grid_node_position(g, node, xn);
         /* on the surface counts as inside: a node of a grid-aligned plane must not
@@ -466,7 +467,7 @@ static int wall_touch(mrn_wall *w, const mrn_grid *g, double reach, const double
   if (old) memcpy(prev, w->node, old * sizeof *prev);
   int rc = MRN_OK;
   /* first the material on the wall, then the material above it */
-  for (int pass = 0; pass < 2; pass++)
+  for (int pass = 0; pass < (w->spec.gap_check ? 2 : 1); pass++)
     for (size_t p = 0; p < np && !rc; p++) {
       const double r = 0.5 * (g->dim == 2 ? sqrt(vol0[p]) : cbrt(vol0[p]));
       double n[3], uv[3];

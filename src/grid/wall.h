@@ -51,6 +51,7 @@ typedef struct mrn_wall_spec {
   int nvertex;
   mrn_wall_kind kind;
   double mu;          /* friction */
+  int gap_check;      /* release a column where the material over it stands clear (doc/numerics.md, "Rolling") */
   double velocity[3]; /* m/s */
   double omega[3];    /* rad/s, about `center` (2D: only z) */
   double center[3];   /* the reference point: rotation, moment */

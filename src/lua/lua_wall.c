@@ -25,6 +25,8 @@ static const mrn_spec wall_specs[] = {
     {"axis", MRN_SPEC_VECTOR, 0, 0, -HUGE_VAL, HUGE_VAL, 0, 0, "", "cylinder, 3D: its axis direction", NULL},
     {"vertices", MRN_SPEC_TABLE, 0, 0, 0, 0, 0, 0, NULL, "polygon: its corners, {{x, y}, ...}", NULL},
     {"inside", MRN_SPEC_BOOLEAN, 0, 0, 0, 0, 0, 0, NULL, "the material is inside the shape (default false)", NULL},
+    {"gap_check", MRN_SPEC_BOOLEAN, 0, 0, 0, 0, 0, 0, NULL,
+     "no contact where the material over the wall stands clear of it (default false)", NULL},
     {"velocity", MRN_SPEC_ANY, 0, 0, -HUGE_VAL, HUGE_VAL, 0, 0, "m/s",
      "velocity of the wall: a vector, or a function of time returning one", NULL},
     {"omega", MRN_SPEC_ANY, 0, 0, -HUGE_VAL, HUGE_VAL, 0, 0, "rad/s",
@@ -213,6 +215,7 @@ static int l_sim_add_wall(lua_State *L) {
   if (s.kind == MRN_WALL_FRICTION && !mrn_lua_has(L, 2, "mu")) mrn_lua_error(L, where, "mu: a friction wall needs mu");
   s.mu = mrn_lua_get_number(L, 2, where, wall_specs, NSPECS, "mu");
   s.inside = mrn_lua_get_boolean(L, 2, where, wall_specs, NSPECS, "inside", 0);
+  s.gap_check = mrn_lua_get_boolean(L, 2, where, wall_specs, NSPECS, "gap_check", 0);
   read_shape(L, 2, where, dim, &s);
   mrn_lua_get_vector(L, 2, where, wall_specs, NSPECS, "pivot", dim, s.center, 0);
   read_constants(L, 2, where, wall_specs, NSPECS, dim, &s);
