@@ -253,6 +253,7 @@ static int l_sim_wall(lua_State *L) {
   lua_pushnumber(L, w->work_friction), lua_setfield(L, -2, "work_friction");
   lua_pushinteger(L, w->contacts), lua_setfield(L, -2, "contacts");
   lua_pushstring(L, w->spec.name), lua_setfield(L, -2, "name");
+  lua_pushboolean(L, w->spec.gap_check), lua_setfield(L, -2, "gap_check");
   return 1;
 }
 

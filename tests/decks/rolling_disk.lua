@@ -79,11 +79,11 @@ end
 if only == "" or only == "wall" then
   local a = roll{ wall = true, mu = 0.5, cells = 8, time = 0.6, gap_check = true }
   local a0 = roll{ wall = true, mu = 0.5, cells = 8, time = 0.6, gap_check = false }
+  print(string.format("roll, wall, 8 cells: a = %.4f m/s^2 (%+.1f %%), without gap_check %.4f (%+.1f %%)", a,
+                      off(a, rolling), a0, off(a0, rolling)))
   T.expect{ id = "rolling.wall", what = "disk rolling on an inclined wall, 8 cells per radius: |a / (2/3) g sin - 1|",
             value = math.abs(off(a, rolling)), max = 5, unit = "%" }
   T.expect{ id = "rolling.wall_default", asserted = false, value = math.abs(off(a0, rolling)), unit = "%",
             what = "the same without gap_check (the default): |a / (2/3) g sin - 1|" }
-  print(string.format("roll, wall, 8 cells: a = %.4f m/s^2 (%+.1f %%), without gap_check %.4f (%+.1f %%)", a,
-                      off(a, rolling), a0, off(a0, rolling)))
 end
 T.done("rolling_disk")
