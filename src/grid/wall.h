@@ -85,7 +85,7 @@ typedef struct mrn_wall {
   void *motion_ctx;
   void (*motion_release)(void *ctx);
   /* per node of the grid: bit 0 touched this step, bit 1 in contact at the
-   * end of the last step, bits 2 and 3 MRN_WALL_OVER and MRN_WALL_CLEAR */
+   * end of the last step, bits 3 and 4 MRN_WALL_OVER and MRN_WALL_CLEAR */
   unsigned char *state;
   /* the nodes touched this step, with the wall's normal (out of the wall),
    * velocity and the surface patch of the nearest point there */
@@ -111,8 +111,8 @@ typedef struct mrn_walls {
 #define MRN_WALL_CONTACT 2u
 /* in the touch of a step: material on the wall lies over the node's patch
  * (OVER), material above the wall does (CLEAR) */
-#define MRN_WALL_OVER 4u
-#define MRN_WALL_CLEAR 8u
+#define MRN_WALL_OVER 8u
+#define MRN_WALL_CLEAR 16u
 
 /* Check a spec against the grid (shape, normal, radius, vertices, mu, a wall
  * that reaches the grid) and append the wall; *ws is created on first use.
