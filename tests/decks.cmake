@@ -37,6 +37,12 @@ moraine_deck_test(walls_restart walls_restart.lua)
 moraine_deck_test(walls_3d walls_3d.lua LABELS slow)
 # a disk rolling (gap_check) and sliding down an inclined plane: a against the closed forms
 moraine_deck_test(rolling_disk rolling_disk.lua)
+# mesh walls from STL files: a cube mesh as the box wall, an incline, binary = ASCII, a checkpoint
+moraine_deck_test(walls_mesh walls_mesh.lua)
+# rigid bodies: free fall at g, fixed dofs, mass and inertia, momentum with the material, a restart bit for bit
+moraine_deck_test(rigid_body rigid_body.lua)
+# a rigid footing settling on a confined elastic layer: delta = (W/A) H / (lambda + 2 G), reaction = weight
+moraine_deck_test(rigid_footing rigid_footing.lua)
 # what feeds a sliding body's vibration: a long wave that friction makes grow
 # under every strategy that keeps energy, and FLIP's short waves
 moraine_deck_test(friction_layer friction_layer.lua)
@@ -116,6 +122,12 @@ foreach(deck ${MORAINE_EXAMPLES})
            COMMAND moraine ${deck} -q -o ${MORAINE_TEST_OUT}/example_${name} --overwrite --set quick=true)
   set_tests_properties(example.${name} PROPERTIES LABELS example)
 endforeach()
+# the footing example's diagnostics read back: the E_bodies, W_bodies columns and W_MPM
+set_tests_properties(example.rigid_footing PROPERTIES FIXTURES_SETUP rigid_footing)
+add_test(NAME python.body_series
+         COMMAND ${Python3_EXECUTABLE} ${CMAKE_CURRENT_SOURCE_DIR}/python/check_body_series.py
+                 ${MORAINE_TEST_OUT}/example_rigid_footing)
+set_tests_properties(python.body_series PROPERTIES LABELS python FIXTURES_REQUIRED rigid_footing)
 # the inflow example's diagnostics read back: the E_inflow, W_inflow, E_outflow columns and W_MPM
 set_tests_properties(example.channel_inflow PROPERTIES FIXTURES_SETUP channel_inflow)
 add_test(NAME python.inflow_series

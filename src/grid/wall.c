@@ -7,8 +7,9 @@
 
 #include "core/error.h"
 #include "grid/boundary.h"
+#include "grid/trimesh.h"
 
-static const char *const shape_names[] = {"plane", "box", "cylinder", "polygon", NULL};
+static const char *const shape_names[] = {"plane", "box", "cylinder", "polygon", "mesh", NULL};
 static const char *const kind_names[] = {"slip", "friction", "fixed", NULL};
 const char *const *mrn_wall_shape_names(void) { return shape_names; }
 const char *const *mrn_wall_kind_names(void) { return kind_names; }
@@ -122,9 +123,32 @@ static double polygon_distance(const mrn_wall_spec *s, const double x[3], double
   return sign * best;
 }
 
+/* The mesh: the distance to the nearest triangle; the patch is its planar
+ * group, u and v lengths in that plane from the mesh's `point`. Searched
+ * only as far as the caller needs it: in the mesh's terms, `inside` swaps
+ * how deep and how far. */
+static double mesh_distance(const mrn_wall *w, const double x[3], double n[3], double uv[3], double deep, double far) {
+  const mrn_wall_spec *s = &w->spec;
+  int group;
+  const double d = s->inside ? mrn_trimesh_distance(w->mesh, x, far, deep, n, &group)
+                             : mrn_trimesh_distance(w->mesh, x, deep, far, n, &group);
+  uv[0] = uv[1] = 0.0, uv[2] = group;
+  if (group >= 0) {
+    double r[3], e1[3], e2[3];
+    for (int d3 = 0; d3 < 3; d3++) r[d3] = x[d3] - s->point[d3];
+    across(mrn_trimesh_group_normal(w->mesh, group), 3, e1, e2);
+    uv[0] = dot3(r, e1), uv[1] = dot3(r, e2);
+  }
+  return d;
+}
+
 /* signed distance, outward normal and surface coordinates in the reference
- * placement: the one place a new shape is added */
-static double wall_distance_body(const mrn_wall_spec *s, int dim, const double x[3], double n[3], double uv[3]) {
+ * placement: the one place a new shape is added. Exact when the distance
+ * lies in [-deep, far]; beyond, a mesh may stop its search and give a value
+ * beyond that bound (with the right sign, a zero normal) */
+static double wall_distance_body(const mrn_wall *w, int dim, const double x[3], double n[3], double uv[3], double deep,
+                                 double far) {
+  const mrn_wall_spec *s = &w->spec;
   double d;
   n[0] = n[1] = n[2] = 0.0;
   switch (s->shape) {
@@ -132,6 +156,7 @@ static double wall_distance_body(const mrn_wall_spec *s, int dim, const double x
   case MRN_WALL_BOX: d = box_distance(s, dim, x, n, uv); break;
   case MRN_WALL_CYLINDER: d = cylinder_distance(s, dim, x, n, uv); break;
   case MRN_WALL_POLYGON: d = polygon_distance(s, x, n, uv); break;
+  case MRN_WALL_MESH: d = mesh_distance(w, x, n, uv, deep, far); break;
   default: return HUGE_VAL;
   }
   if (s->inside) {
@@ -141,15 +166,17 @@ static double wall_distance_body(const mrn_wall_spec *s, int dim, const double x
   return d;
 }
 
-/* mrn_wall_distance, with the surface coordinates of the nearest point */
-static double wall_distance_uv(const mrn_wall *w, int dim, const double x[3], double n[3], double uv[3]) {
+/* mrn_wall_distance, with the surface coordinates of the nearest point,
+ * exact in [-deep, far] (wall_distance_body) */
+static double wall_distance_uv(const mrn_wall *w, int dim, const double x[3], double n[3], double uv[3], double deep,
+                               double far) {
   /* into the reference placement: x_ref = R^T (x - ref) + center */
   const double *R = w->rot;
   double r[3], xb[3], nb[3];
   for (int d = 0; d < 3; d++) r[d] = x[d] - w->ref[d];
   for (int d = 0; d < 3; d++) xb[d] = R[d] * r[0] + R[3 + d] * r[1] + R[6 + d] * r[2] + w->spec.center[d];
   if (dim == 2) xb[2] = 0.0;
-  const double dist = wall_distance_body(&w->spec, dim, xb, nb, uv);
+  const double dist = wall_distance_body(w, dim, xb, nb, uv, deep, far);
   for (int d = 0; d < 3; d++) n[d] = R[3 * d] * nb[0] + R[3 * d + 1] * nb[1] + R[3 * d + 2] * nb[2];
   if (dim == 2) n[2] = 0.0;
   return dist;
@@ -157,7 +184,13 @@ static double wall_distance_uv(const mrn_wall *w, int dim, const double x[3], do
 
 double mrn_wall_distance(const mrn_wall *w, int dim, const double x[3], double n[3]) {
   double uv[3];
-  return wall_distance_uv(w, dim, x, n, uv);
+  return wall_distance_uv(w, dim, x, n, uv, HUGE_VAL, HUGE_VAL);
+}
+
+/* the signed distance where only how it compares with +-cap matters */
+static double wall_distance_near(const mrn_wall *w, int dim, const double x[3], double cap) {
+  double n[3], uv[3];
+  return wall_distance_uv(w, dim, x, n, uv, cap, cap);
 }
 
 void mrn_wall_velocity_at(const mrn_wall *w, int dim, const double x[3], double v[3]) {
@@ -205,13 +238,20 @@ static int check_shape(mrn_wall_spec *s, int dim) {
     s->normal[2] = area > 0.0 ? 1.0 : -1.0;
     return MRN_OK;
   }
+  case MRN_WALL_MESH:
+    if (dim != 3) return mrn_error("shape: a mesh wall is 3D only");
+    if (s->ntriangle < 1 || s->ntriangle > MRN_WALL_MAX_TRIANGLES)
+      return mrn_error("triangles: expected 1 to %d, got %d", MRN_WALL_MAX_TRIANGLES, s->ntriangle);
+    return MRN_OK;
   default: return mrn_error("shape: unknown wall shape");
   }
 }
 
 /* the length of the closed surface coordinate u: a cylinder's
- * circumference, a polygon's perimeter; 0 where u is open */
+ * circumference, a polygon's perimeter; 0 where u is open (a plane, a
+ * box's faces, a mesh's planar groups) */
 static double surface_period(const mrn_wall_spec *s, int dim) {
+  if (s->shape == MRN_WALL_MESH) return 0.0;
   if (s->shape == MRN_WALL_CYLINDER) return 2.0 * 3.14159265358979323846 * s->radius;
   if (s->shape != MRN_WALL_POLYGON || dim != 2) return 0.0;
   double len = 0.0;
@@ -223,10 +263,10 @@ static double surface_period(const mrn_wall_spec *s, int dim) {
 /* 1 when some node of the grid (ghosts included) lies inside the wall or
  * within a cell of it */
 static int reaches_grid(const mrn_wall *w, const mrn_grid *g) {
-  double x[3], n[3];
+  double x[3];
   for (size_t i = 0; i < g->n; i++) {
     mrn_grid_node_position(g, i, x);
-    if (mrn_wall_distance(w, g->dim, x, n) <= g->cell) return 1;
+    if (wall_distance_near(w, g->dim, x, g->cell) <= g->cell) return 1;
   }
   return 0;
 }
@@ -256,7 +296,10 @@ static int check_spec(mrn_walls *ws, const mrn_wall_spec *s, int dim) {
 static void wall_release(mrn_wall *w) {
   if (w->motion_release) w->motion_release(w->motion_ctx);
   free(w->spec.vertex);
+  free(w->spec.triangle);
+  mrn_trimesh_free(w->mesh);
   free(w->state);
+  free(w->outside);
   free(w->node);
   free(w->n);
   free(w->w);
@@ -267,19 +310,34 @@ static void wall_release(mrn_wall *w) {
   free(w->col_w);
 }
 
+/* the polygon's corners or the mesh's triangles, copied */
+static int copy_shape(mrn_wall *w, const mrn_wall_spec *spec) {
+  if (spec->shape == MRN_WALL_POLYGON && spec->nvertex > 0) {
+    w->spec.vertex = malloc(2 * (size_t)spec->nvertex * sizeof(double));
+    if (!w->spec.vertex) return mrn_error("out of memory for a wall");
+    memcpy(w->spec.vertex, spec->vertex, 2 * (size_t)spec->nvertex * sizeof(double));
+  }
+  if (spec->shape != MRN_WALL_MESH || spec->ntriangle <= 0 || spec->ntriangle > MRN_WALL_MAX_TRIANGLES) return MRN_OK;
+  w->spec.triangle = malloc(9 * (size_t)spec->ntriangle * sizeof(double));
+  if (!w->spec.triangle) return mrn_error("out of memory for a wall");
+  memcpy(w->spec.triangle, spec->triangle, 9 * (size_t)spec->ntriangle * sizeof(double));
+  return MRN_OK;
+}
+
 int mrn_walls_add(mrn_walls **wsp, const mrn_grid *g, const mrn_wall_spec *spec) {
   mrn_wall w;
   memset(&w, 0, sizeof w);
   w.spec = *spec;
-  w.spec.vertex = NULL;
+  w.spec.vertex = NULL, w.spec.triangle = NULL, w.spec.source = NULL;
   int rc = check_spec(*wsp, &w.spec, g->dim);
-  if (!rc && spec->shape == MRN_WALL_POLYGON && spec->nvertex > 0) {
-    w.spec.vertex = malloc(2 * (size_t)spec->nvertex * sizeof(double));
-    if (!w.spec.vertex) return mrn_error("out of memory for a wall");
-    memcpy(w.spec.vertex, spec->vertex, 2 * (size_t)spec->nvertex * sizeof(double));
-  }
+  if (!rc) rc = copy_shape(&w, spec);
   if (!rc) rc = check_shape(&w.spec, g->dim);
   if (!rc) w.period = surface_period(&w.spec, g->dim);
+  if (!rc && spec->shape == MRN_WALL_MESH) {
+    w.mesh = mrn_trimesh_new(w.spec.triangle, (size_t)w.spec.ntriangle, g->cell, spec->source);
+    if (!w.mesh) rc = MRN_ERR;
+  }
+  if (!rc && w.spec.body) rc = mrn_body_setup(&w, g->dim);
   memcpy(w.ref, w.spec.center, sizeof w.ref);
   w.rot[0] = w.rot[4] = w.rot[8] = 1.0;
   if (!rc && !reaches_grid(&w, g)) rc = outside_error(spec->name, g);
@@ -346,6 +404,19 @@ static int touched_push(mrn_wall *w, size_t node, const double n[3], const doubl
   return MRN_OK;
 }
 
+/* a node found outside the wall: not asked again this step (the nodes near
+ * the surface lie in the reach of many particles) */
+static int outside_push(mrn_wall *w, size_t node) {
+  if (w->nout == w->capout) {
+    const size_t cap = w->capout ? 2 * w->capout : 256;
+    if (grow((void **)&w->outside, cap * sizeof *w->outside)) return MRN_ERR;
+    w->capout = cap;
+  }
+  w->outside[w->nout++] = node;
+  w->state[node] |= MRN_WALL_OUTSIDE;
+  return MRN_OK;
+}
+
 /* 1 when a particle of half side r, whose nearest point of the surface has
  * the coordinates uv, lies over the patch `key` (as the faces'
  * mrn_contact_over_patch; a box's other faces are other patches, a closed
@@ -365,7 +436,8 @@ static int over_patch(const mrn_wall *w, const mrn_grid *g, const long long key[
  * nearest point of the surface, r its half side. A particle on the wall
  * (`on`) marks them touched (with `held_only`, only those that ended the
  * last step in contact) and OVER those whose patch it lies over; a particle
- * above the wall marks CLEAR the touched ones whose patch it lies over. */
+ * above the wall marks CLEAR the touched ones whose patch it lies over. A
+ * node found outside is marked so and not asked again this step. */
 static int touch_visit(mrn_wall *w, const mrn_grid *g, const double *x, const double uvp[3], double r, double reach,
                        int on, int held_only) {
   int lo[3], hi[3];
@@ -375,16 +447,21 @@ static int touch_visit(mrn_wall *w, const mrn_grid *g, const double *x, const do
       for (int i = lo[0]; i <= hi[0]; i++) {
         const size_t node = mrn_grid_index(g, i, j, k);
         const unsigned char st = w->state[node];
+        /* found outside already this step: never touched, in either pass */
+        if (st & MRN_WALL_OUTSIDE) continue;
         if (on ? held_only && !(st & MRN_WALL_CONTACT) : !(st & MRN_WALL_TOUCH)) continue;
         if (on && (st & MRN_WALL_TOUCH) && !w->spec.gap_check) continue; /* nothing to learn */
         double xn[3], n[3], v[3], uv[3];
         mrn_grid_node_position(g, node, xn);
         /* on the surface counts as inside: a node of a grid-aligned plane must not
          * drop out by the round-off of its position */
-        if (!(wall_distance_uv(w, g->dim, xn, n, uv) <= 1e-9 * g->cell)) continue;
+        if (!(wall_distance_uv(w, g->dim, xn, n, uv, HUGE_VAL, 1e-9 * g->cell) <= 1e-9 * g->cell)) {
+          if (outside_push(w, node)) return MRN_ERR;
+          continue;
+        }
         /* the patch: the cell-sized piece of the surface nearest the node */
         const long long key[3] = {(long long)uv[2], llround(uv[0] * g->inv_cell), llround(uv[1] * g->inv_cell)};
-        if (over_patch(w, g, key, uvp, r)) w->state[node] |= on ? MRN_WALL_OVER : MRN_WALL_CLEAR;
+        if (w->spec.gap_check && over_patch(w, g, key, uvp, r)) w->state[node] |= on ? MRN_WALL_OVER : MRN_WALL_CLEAR;
         if (!on || (st & MRN_WALL_TOUCH)) continue;
         mrn_wall_velocity_at(w, g->dim, xn, v);
         w->state[node] |= MRN_WALL_TOUCH;
@@ -460,18 +537,23 @@ static int wall_touch(mrn_wall *w, const mrn_grid *g, double reach, const double
   const size_t old = w->count;
   for (size_t k = 0; k < old; k++)
     w->state[w->node[k]] &= (unsigned char)~(MRN_WALL_TOUCH | MRN_WALL_OVER | MRN_WALL_CLEAR);
+  for (size_t k = 0; k < w->nout; k++) w->state[w->outside[k]] &= (unsigned char)~MRN_WALL_OUTSIDE;
+  w->nout = 0;
   w->count = 0;
   /* the old list is read again below: keep it aside while the new one grows */
   size_t *prev = old ? malloc(old * sizeof *prev) : NULL;
   if (old && !prev) return mrn_error("out of memory for a wall's contacts");
   if (old) memcpy(prev, w->node, old * sizeof *prev);
   int rc = MRN_OK;
-  /* first the material on the wall, then the material above it */
-  for (int pass = 0; pass < (w->spec.gap_check ? 2 : 1); pass++)
+  /* first the material on the wall, then the material above it; the
+   * distance exact where the passes compare it (a mesh stops beyond) */
+  const int passes = w->spec.gap_check ? 2 : 1;
+  for (int pass = 0; pass < passes; pass++)
     for (size_t p = 0; p < np && !rc; p++) {
       const double r = 0.5 * (g->dim == 2 ? sqrt(vol0[p]) : cbrt(vol0[p]));
+      const double deep = passes > 1 ? HUGE_VAL : 1.5 * r, far = passes > 1 ? fmax(1.5 * r, reach * g->cell) : 1.5 * r;
       double n[3], uv[3];
-      const double gap = wall_distance_uv(w, g->dim, x + 3 * p, n, uv) - r;
+      const double gap = wall_distance_uv(w, g->dim, x + 3 * p, n, uv, deep, far) - r;
       if (pass == 0 && gap <= WALL_TOUCH_SLACK * r) rc = touch_visit(w, g, x + 3 * p, uv, r, reach, 1, gap > 0.0);
       else if (pass == 1 && gap > 0.0 && gap + r < reach * g->cell) rc = touch_visit(w, g, x + 3 * p, uv, r, reach, 0, 0);
     }
@@ -609,8 +691,9 @@ static void rotate(double R[9], const double omega[3], double dt) {
   memcpy(R, out, sizeof out);
 }
 
-double mrn_walls_step_end(mrn_walls *ws, double dt, double hold_share) {
+double mrn_walls_step_end(mrn_walls *ws, double dt, double hold_share, const double gravity[3]) {
   double work = 0.0;
+  if (ws) ws->damping_work = 0.0;
   for (int i = 0; ws && i < ws->count; i++) {
     mrn_wall *w = &ws->wall[i];
     for (int d = 0; d < 3; d++) {
@@ -624,9 +707,11 @@ double mrn_walls_step_end(mrn_walls *ws, double dt, double hold_share) {
       w->total_impulse[d] -= w->impulse[d];
     }
     w->work += w->step_work;
-    work += w->step_work;
+    if (w->spec.body) ws->damping_work += mrn_body_advance(w, ws->dim, dt, gravity, ws->cundall);
+    else work += w->step_work;
     for (int d = 0; d < 3; d++) w->ref[d] += w->spec.velocity[d] * dt;
     rotate(w->rot, w->spec.omega, dt);
+    if (w->spec.body) mrn_body_respin(w, ws->dim);
   }
   return work;
 }

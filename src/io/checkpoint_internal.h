@@ -63,7 +63,7 @@ typedef struct ck_data {
 /* a wall as read (checkpoint_walls.c) */
 typedef struct ck_wall {
   mrn_wall_spec spec;
-  double ref[3], rot[9], force[3], moment[3], total_impulse[3], work, work_friction;
+  double ref[3], rot[9], force[3], moment[3], total_impulse[3], work, work_friction, body_work;
   int64_t ncontact;
   int64_t *contact;
 } ck_wall;

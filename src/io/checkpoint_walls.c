@@ -1,5 +1,8 @@
 /* moraine: the rigid walls in a checkpoint (/walls, doc/checkpoint-format.md).
  *
+ * A rigid body is a wall with its body keys besides; its velocity and
+ * angular velocity are the wall's, its centre of mass the wall's pivot.
+ *
  * A wall is kept whole: its spec (shape, placement at creation, kind, mu,
  * motion as last set), where it is now, its accumulators and the nodes in
  * contact at the end of the last step. A motion function cannot be stored:
@@ -14,6 +17,19 @@
 #include "core/error.h"
 #include "grid/wall.h"
 #include "io/checkpoint_internal.h"
+
+/* a rigid body's keys and the work done on it; its velocities are the wall's */
+static void save_body(mrn_h5w *w, hid_t g, const mrn_wall *wall) {
+  const mrn_wall_spec *s = &wall->spec;
+  if (!s->body) return;
+  mrn_h5w_int32(w, g, "body", 1);
+  mrn_h5w_double(w, g, "density", s->density);
+  mrn_h5w_double(w, g, "mass", s->mass);
+  mrn_h5w_int32(w, g, "fix", (int)s->fix);
+  mrn_h5w_doubles(w, g, "external_force", s->load, 3);
+  mrn_h5w_doubles(w, g, "external_moment", s->load_moment, 3);
+  mrn_h5w_double(w, g, "body_work", wall->body_work);
+}
 
 static void save_wall(mrn_h5w *w, hid_t g, const mrn_wall *wall, const mrn_grid *grid) {
   const mrn_wall_spec *s = &wall->spec;
@@ -38,9 +54,15 @@ static void save_wall(mrn_h5w *w, hid_t g, const mrn_wall *wall, const mrn_grid 
   mrn_h5w_double(w, g, "work", wall->work);
   mrn_h5w_double(w, g, "work_friction", wall->work_friction);
   mrn_h5w_int32(w, g, "motion_function", wall->motion != NULL);
+  save_body(w, g, wall);
   mrn_h5w_int32(w, g, "vertex_count", s->nvertex);
   if (s->nvertex)
     mrn_h5w_dataset(w, g, "vertices", H5T_NATIVE_DOUBLE, s->vertex, (size_t)s->nvertex, 2, "m", "polygon corners");
+  if (s->ntriangle) {
+    mrn_h5w_int32(w, g, "triangle_count", s->ntriangle);
+    mrn_h5w_dataset(w, g, "triangles", H5T_NATIVE_DOUBLE, s->triangle, (size_t)s->ntriangle, 9, "m",
+                    "mesh triangles: corners a, b, c");
+  }
   size_t count = 0;
   for (size_t n = 0; n < grid->n; n++) count += (wall->state[n] & MRN_WALL_CONTACT) != 0;
   int64_t *rows = malloc((count ? count : 1) * sizeof *rows);
@@ -74,6 +96,32 @@ void ck_save_walls(mrn_h5w *w, const mrn_sim *sim) {
   H5Gclose(g);
 }
 
+/* a mesh wall's triangles */
+static int read_triangles(mrn_h5r *r, const char *g, mrn_wall_spec *s) {
+  int64_t nt = 0;
+  char path[96];
+  if (mrn_h5r_int(r, g, "triangle_count", &nt)) return MRN_ERR;
+  if (nt < 1 || nt > MRN_WALL_MAX_TRIANGLES) return mrn_h5r_fail(r, "%s: triangle_count out of range", g);
+  snprintf(path, sizeof path, "%s/triangles", g);
+  s->ntriangle = (int)nt;
+  return (s->triangle = mrn_h5r_dataset(r, path, MRN_H5_FLOAT64, nt, 9)) ? MRN_OK : MRN_ERR;
+}
+
+/* a body's attributes, when the wall is one (a file without them: a wall) */
+static int read_body(mrn_h5r *r, const char *g, ck_wall *c) {
+  mrn_wall_spec *s = &c->spec;
+  if (mrn_h5r_has_attr(r, g, "body") != 1) return MRN_OK;
+  int64_t fix = 0;
+  if (mrn_h5r_double(r, g, "density", &s->density) || mrn_h5r_double(r, g, "mass", &s->mass) ||
+      mrn_h5r_int(r, g, "fix", &fix) || mrn_h5r_doubles(r, g, "external_force", s->load, 3) ||
+      mrn_h5r_doubles(r, g, "external_moment", s->load_moment, 3) ||
+      mrn_h5r_double(r, g, "body_work", &c->body_work))
+    return MRN_ERR;
+  if (fix < 0 || fix >= 64) return mrn_h5r_fail(r, "%s: fix %lld out of range", g, (long long)fix);
+  s->body = 1, s->fix = (unsigned)fix;
+  return MRN_OK;
+}
+
 static void read_wall(mrn_h5r *r, const char *g, ck_wall *c, int64_t nodes) {
   mrn_wall_spec *s = &c->spec;
   int shape = 0, kind = 0;
@@ -89,7 +137,7 @@ static void read_wall(mrn_h5r *r, const char *g, ck_wall *c, int64_t nodes) {
       mrn_h5r_doubles(r, g, "force", c->force, 3) || mrn_h5r_doubles(r, g, "moment", c->moment, 3) ||
       mrn_h5r_doubles(r, g, "impulse", c->total_impulse, 3) || mrn_h5r_double(r, g, "work", &c->work) ||
       mrn_h5r_double(r, g, "work_friction", &c->work_friction) || mrn_h5r_int(r, g, "vertex_count", &nv) ||
-      mrn_h5r_int(r, g, "contact_count", &c->ncontact))
+      mrn_h5r_int(r, g, "contact_count", &c->ncontact) || read_body(r, g, c))
     return;
   s->shape = (mrn_wall_shape)shape, s->kind = (mrn_wall_kind)kind, s->inside = inside != 0;
   int64_t check = 0; /* absent from older checkpoints: off */
@@ -103,6 +151,7 @@ static void read_wall(mrn_h5r *r, const char *g, ck_wall *c, int64_t nodes) {
   s->nvertex = (int)nv;
   snprintf(path, sizeof path, "%s/vertices", g);
   if (nv && !(s->vertex = mrn_h5r_dataset(r, path, MRN_H5_FLOAT64, nv, 2))) return;
+  if (s->shape == MRN_WALL_MESH && read_triangles(r, g, s)) return;
   snprintf(path, sizeof path, "%s/contact", g);
   c->contact = mrn_h5r_dataset(r, path, MRN_H5_INT64, c->ncontact, MRN_H5_RANK1);
   for (int64_t k = 0; c->contact && k < c->ncontact; k++)
@@ -143,7 +192,7 @@ int ck_take_walls(mrn_sim *sim, const ck_data *d) {
     memcpy(w->force, c->force, sizeof w->force);
     memcpy(w->moment, c->moment, sizeof w->moment);
     memcpy(w->total_impulse, c->total_impulse, sizeof w->total_impulse);
-    w->work = c->work, w->work_friction = c->work_friction;
+    w->work = c->work, w->work_friction = c->work_friction, w->body_work = c->body_work;
     size_t *nodes = malloc((size_t)(c->ncontact ? c->ncontact : 1) * sizeof *nodes);
     if (!nodes) return mrn_error("out of memory for a wall");
     for (int64_t k = 0; k < c->ncontact; k++) nodes[k] = (size_t)c->contact[k];
@@ -157,6 +206,7 @@ int ck_take_walls(mrn_sim *sim, const ck_data *d) {
 void ck_free_walls(ck_data *d) {
   for (int i = 0; i < d->nwalls; i++) {
     free(d->walls[i].spec.vertex);
+    free(d->walls[i].spec.triangle);
     free(d->walls[i].contact);
   }
   free(d->walls);

@@ -59,6 +59,8 @@ int l_sim_energy(lua_State *L) {
   lua_pushnumber(L, d.inflow_work); lua_setfield(L, -2, "inflow_work");
   lua_pushnumber(L, d.outflow); lua_setfield(L, -2, "outflow");
   lua_pushnumber(L, d.walls); lua_setfield(L, -2, "walls");
+  lua_pushnumber(L, d.bodies); lua_setfield(L, -2, "bodies");
+  lua_pushnumber(L, d.bodies_work); lua_setfield(L, -2, "bodies_work");
   lua_pushnumber(L, d.mpm_error); lua_setfield(L, -2, "mpm_error");
   return 1;
 }

@@ -10,7 +10,8 @@ typedef struct column {
 /* the CSV header and the thermo columns come from this one table */
 static const column columns[] = {
     {"E_kinetic", "J"}, {"E_gravity", "J"},  {"E_elastic", "J"}, {"E_total", "J"},  {"W_plastic", "J"},
-    {"W_friction", "J"}, {"W_damping", "J"}, {"W_external", "J"}, {"W_walls", "J"}, {"E_inflow", "J"},
+    {"W_friction", "J"}, {"W_damping", "J"}, {"W_external", "J"}, {"W_walls", "J"}, {"E_bodies", "J"},
+    {"W_bodies", "J"}, {"E_inflow", "J"},
     {"W_inflow", "J"}, {"E_outflow", "J"}, {"W_MPM", "J"}, {"momentum_x", "kg m/s"}, {"momentum_y", "kg m/s"},
     {"momentum_z", "kg m/s"},
     {"angular_x", "kg m^2/s"}, {"angular_y", "kg m^2/s"}, {"angular_z", "kg m^2/s"}, {"L_centroid", "kg m^2/s"},
@@ -43,6 +44,8 @@ void mrn_diagnostics_values(const mrn_diagnostics *d, double *v) {
   v[k++] = d->damping;
   v[k++] = d->external;
   v[k++] = d->walls;
+  v[k++] = d->bodies;
+  v[k++] = d->bodies_work;
   v[k++] = d->inflow;
   v[k++] = d->inflow_work;
   v[k++] = d->outflow;

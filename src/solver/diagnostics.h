@@ -14,9 +14,11 @@ typedef struct mrn_diagnostics {
   double inflow;       /* E_in, E_k + E_g + E_el of the particles added (sources, hooks), accumulated */
   double inflow_work;  /* W_in, work of the sources' inlet nodes, accumulated */
   double outflow;      /* E_out, E_k + E_g + E_el - W_pl of the particles deleted on leaving, accumulated */
-  double walls;        /* W_walls, work of the rigid walls on the material, accumulated */
-  double mpm_error;    /* W_MPM = E - E_ref - W_pl - W_frict - W_damp - W_ext - W_walls - E_in - W_in
-                        * + E_out (000, Eqs. 67-68) */
+  double walls;        /* W_walls, work of the rigid walls of prescribed motion on the material, accumulated */
+  double bodies;       /* E_bodies, kinetic energy of the rigid bodies (grid/wall.h) */
+  double bodies_work;  /* W_bodies, work of gravity, loads and fixings on the rigid bodies, accumulated */
+  double mpm_error;    /* W_MPM = E + E_bodies - E_ref - W_pl - W_frict - W_damp - W_ext - W_walls - W_bodies
+                        * - E_in - W_in + E_out (000, Eqs. 67-68) */
   double total;        /* E_k + E_g + E_el */
   double mass;
   double momentum[3];  /* sum m v */

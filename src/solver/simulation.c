@@ -171,6 +171,7 @@ void mrn_sim_energies(const mrn_sim *sim, mrn_diagnostics *out) {
   out->damping = sim->work_damping;
   out->external = sim->work_external;
   out->walls = sim->work_walls;
+  mrn_walls_body_energy(sim->boundary.walls, &out->bodies, &out->bodies_work);
   out->total = ek + eg + eel;
   out->inflow = sim->energy_inflow;
   out->inflow_work = sim->work_inflow;
@@ -178,8 +179,9 @@ void mrn_sim_energies(const mrn_sim *sim, mrn_diagnostics *out) {
   /* (000, Eq. 68) summed over the steps since the balance started, with what
    * came in and went out through sources and free faces */
   out->mpm_error = sim->energy_ref_set
-                       ? out->total - sim->energy_ref - wpl - sim->work_friction - sim->work_damping - sim->work_external -
-                             sim->work_walls + sim->energy_outflow - sim->energy_inflow - sim->work_inflow
+                       ? out->total + out->bodies - sim->energy_ref - wpl - sim->work_friction - sim->work_damping -
+                             sim->work_external - sim->work_walls - out->bodies_work + sim->energy_outflow -
+                             sim->energy_inflow - sim->work_inflow
                        : 0.0;
   out->mass = mass;
   for (int d = 0; d < 3; d++) {
@@ -373,8 +375,8 @@ void mrn_sim_energy_balance_start(mrn_sim *sim) {
   mrn_diagnostics d;
   sim->energy_ref_set = 0;
   mrn_sim_diagnostics(sim, &d);
-  sim->energy_ref = d.total - d.plastic - d.friction - d.damping + sim->energy_outflow - sim->energy_inflow -
-                    sim->work_inflow;
+  sim->energy_ref = d.total + d.bodies - d.bodies_work - d.plastic - d.friction - d.damping + sim->energy_outflow -
+                    sim->energy_inflow - sim->work_inflow;
   sim->energy_ref_set = 1;
 }
 

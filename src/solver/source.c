@@ -254,16 +254,16 @@ int mrn_sources_begin_step(mrn_sim *sim, double dt) {
   return MRN_OK;
 }
 
-void mrn_sources_apply(mrn_sim *sim, double *vel, double dt) {
+void mrn_sources_apply(mrn_sim *sim, double *vel, double dt, double share) {
   for (int k = 0; k < sim->nsources; k++) {
     mrn_source *s = &sim->sources[k];
-    mrn_constraint_apply(&s->inlet, &sim->grid, vel, sim->mass_floor, dt);
-    if (!(dt > 0.0)) continue;
-    /* the reaction sum m (v - V~) / dt times v dt: the friction faces' sum m dV . V_after */
+    mrn_constraint_apply(&s->inlet, &sim->grid, vel, sim->mass_floor, share > 0.0 ? dt : 0.0);
+    if (!(share > 0.0)) continue;
+    /* the reaction sum m (v - V) / dt times v dt: the friction faces' sum m dV . V_after */
     double work = 0.0;
     for (int d = 0; d < 3; d++) work += s->inlet.reaction[d] * s->v[d] * dt;
-    s->st.work += work;
-    sim->work_inflow += work;
+    s->st.work += share * work;
+    sim->work_inflow += share * work;
   }
 }
 

@@ -83,11 +83,13 @@ int mrn_sim_add_source(struct mrn_sim *sim, const mrn_source_config *cfg);
 void mrn_sim_free_sources(struct mrn_sim *sim);
 
 /* The step's part (solver/step.c): the velocity of each source for a step
- * of dt from sim->time (at its middle); the inlet nodes held at it (dt > 0:
- * their work booked); the layers that crossed the plane made real once the
- * step has ended. 0 or an error code with the message set. */
+ * of dt from sim->time (at its middle); the inlet nodes held at it, with
+ * `share` of the hold's work booked (1 in V~; in the step's first V the
+ * part of V that reaches the particles' momentum; 0 for a hold already
+ * booked); the layers that crossed the plane made real once the step has
+ * ended. 0 or an error code with the message set. */
 int mrn_sources_begin_step(struct mrn_sim *sim, double dt);
-void mrn_sources_apply(struct mrn_sim *sim, double *vel, double dt);
+void mrn_sources_apply(struct mrn_sim *sim, double *vel, double dt, double share);
 int mrn_sources_emit(struct mrn_sim *sim, double dt);
 
 /* The sources of `from` (a deck's simulation) move to `to` (the one loaded

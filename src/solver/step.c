@@ -42,8 +42,22 @@ static void scale_grid_mass(mrn_sim *sim, const mrn_node_ranges *r) {
     }
 }
 
-/* nodal velocity from momentum, for nodes above the mass floor */
-static void grid_velocity(mrn_sim *sim) {
+/* The part of the holds in V (walls, inlets) that reaches the particles' momentum:
+ * PIC-like updates take V~ whole, FLIP only V~ - V (which the holds in V do
+ * not change), a blend X of FLIP; XPIC takes V* + V~ - V, V* being V
+ * smoothed, so with the holds. */
+static double hold_share(const mrn_scheme *s) {
+  switch (s->velocity_update) {
+  case MRN_VUPDATE_FLIP: return 0.0;
+  case MRN_VUPDATE_BLEND: return 1.0 - s->flip_fraction;
+  default: return 1.0;
+  }
+}
+
+/* nodal velocity from momentum, for nodes above the mass floor; `first`:
+ * the step's first V, whose inlet holds reach the particles' momentum as far
+ * as the velocity update passes V on (hold_share) */
+static void grid_velocity(mrn_sim *sim, double dt, int first) {
   const double t0 = mrn_phase_begin();
   mrn_grid *g = &sim->grid;
   const double floor_mass = sim->mass_floor;
@@ -57,7 +71,7 @@ static void grid_velocity(mrn_sim *sim) {
     }
   mrn_boundary_apply(&sim->boundary, g, floor_mass, g->vel, 0);
   for (int c = 0; c < sim->nconstraints; c++) mrn_constraint_apply(&sim->constraints[c], g, g->vel, floor_mass, 0.0);
-  if (sim->nsources) mrn_sources_apply(sim, g->vel, 0.0);
+  if (sim->nsources) mrn_sources_apply(sim, g->vel, dt, first ? hold_share(&sim->scheme) : 0.0);
   mrn_phase_end(MRN_PHASE_GRID, t0);
 }
 
@@ -82,6 +96,7 @@ static void grid_update(mrn_sim *sim, double dt) {
   const double floor_mass = sim->mass_floor;
   const double D = sim->damping_cundall, alpha = sim->damping_viscous;
   const int damped = D > 0.0 || alpha > 0.0;
+  const int bodies = D > 0.0 && mrn_walls_have_bodies(sim->boundary.walls);
   /* gravity acts on the true mass, the nodal mass over mass_scaling */
   double gravity[3];
   for (int d = 0; d < 3; d++) gravity[d] = sim->gravity[d] / sim->mass_scaling;
@@ -99,7 +114,10 @@ static void grid_update(mrn_sim *sim, double dt) {
         }
         double v = g->vel[3 * i + d];
         double f = g->force[3 * i + d] + m * gravity[d];
-        double fd = damped ? damping_force(D, alpha, f, v, m) : 0.0;
+        /* a body's nodes move with it: Cundall's force there would act on the
+         * body as a dry friction of D times their force */
+        const double Dn = bodies && mrn_walls_body_holds(sim->boundary.walls, (size_t)i) ? 0.0 : D;
+        double fd = damped ? damping_force(Dn, alpha, f, v, m) : 0.0;
         double v_new = v + dt * (f + fd) / m;
         g->vel_new[3 * i + d] = v_new;
         work += fd * 0.5 * (v + v_new) * dt;
@@ -112,10 +130,10 @@ static void grid_update(mrn_sim *sim, double dt) {
   sim->work_damping += work;
   /* the inlets' work is that on the velocity the forces gave, before any
    * face condition: booked here, and the inlets held again after the faces */
-  if (sim->nsources) mrn_sources_apply(sim, g->vel_new, dt);
+  if (sim->nsources) mrn_sources_apply(sim, g->vel_new, dt, 1.0);
   sim->work_friction += mrn_boundary_apply(&sim->boundary, g, floor_mass, g->vel_new, 1);
   for (int c = 0; c < sim->nconstraints; c++) mrn_constraint_apply(&sim->constraints[c], g, g->vel_new, floor_mass, dt);
-  if (sim->nsources) mrn_sources_apply(sim, g->vel_new, 0.0);
+  if (sim->nsources) mrn_sources_apply(sim, g->vel_new, dt, 0.0);
   sim->work_external += mrn_point_forces_work(sim, dt);
   mrn_phase_end(MRN_PHASE_GRID, t0);
 }
@@ -300,8 +318,8 @@ static void delete_leaving(mrn_sim *sim, const unsigned char *keep) {
 }
 
 /* grid velocity from the particles, and XPIC's smoothed velocity when needed */
-static int grid_velocity_stage(mrn_sim *sim, mrn_transfer *tr) {
-  grid_velocity(sim);
+static int grid_velocity_stage(mrn_sim *sim, mrn_transfer *tr, double dt) {
+  grid_velocity(sim, dt, 1);
   if (sim->scheme.velocity_update == MRN_VUPDATE_XPIC) {
     double *ps = scratch(sim, 3 * sim->particles.n);
     if (!ps && sim->particles.n) return mrn_error("step: out of memory");
@@ -342,7 +360,7 @@ static int move_pass(mrn_sim *sim, mrn_transfer *tr, unsigned stages, double dt,
 static int step_usf(mrn_sim *sim, mrn_transfer *tr, double dt, step_end *end) {
   int rc;
   mrn_p2g(tr, 1, 0);                                   /* mass, momentum */
-  if ((rc = grid_velocity_stage(sim, tr))) return rc; /* V^i */
+  if ((rc = grid_velocity_stage(sim, tr, dt))) return rc; /* V^i */
   mrn_particle_stages update = {UPDATE_FORCE, .gvel = sim->grid.vel, .material_dt = dt};
   if ((rc = mrn_particle_stages_run(sim, tr, &update))) return rc; /* gradient -> material update -> force */
   grid_update(sim, dt);                                           /* V~^i */
@@ -353,7 +371,7 @@ static int step_usf(mrn_sim *sim, mrn_transfer *tr, double dt, step_end *end) {
 static int step_usl(mrn_sim *sim, mrn_transfer *tr, double dt, step_end *end) {
   int rc;
   mrn_p2g(tr, 1, 1);                                   /* mass, momentum, internal force */
-  if ((rc = grid_velocity_stage(sim, tr))) return rc; /* V^i */
+  if ((rc = grid_velocity_stage(sim, tr, dt))) return rc; /* V^i */
   grid_update(sim, dt);                                /* V~^i */
   return move_pass(sim, tr, MOVE_UPDATE_END, dt, dt, end); /* move -> gradient -> material update -> check */
 }
@@ -374,7 +392,7 @@ static int move_remap_update(mrn_sim *sim, mrn_transfer *tr, double dt, double m
   if ((rc = mrn_particle_stages_run(sim, tr, &move))) return rc; /* new velocities; positions held back */
   mrn_blocks_reuse(tr->blocks);
   mrn_p2g(tr, 1, 0); /* re-map the new momenta */
-  grid_velocity(sim);
+  grid_velocity(sim, dt, 0);
   mrn_particle_stages update = {MRN_STAGE_GRADIENT | MRN_STAGE_MATERIAL, .gvel = sim->grid.vel, .material_dt = material_dt};
   if ((rc = mrn_particle_stages_run(sim, tr, &update))) return rc; /* gradient -> material update */
   mrn_particles *ps = &sim->particles;
@@ -388,7 +406,7 @@ static int move_remap_update(mrn_sim *sim, mrn_transfer *tr, double dt, double m
 static int step_musl(mrn_sim *sim, mrn_transfer *tr, double dt, step_end *end) {
   int rc;
   mrn_p2g(tr, 1, 1);                                   /* mass, momentum, internal force */
-  if ((rc = grid_velocity_stage(sim, tr))) return rc; /* V^i */
+  if ((rc = grid_velocity_stage(sim, tr, dt))) return rc; /* V^i */
   grid_update(sim, dt);                                /* V~^i */
   return move_remap_update(sim, tr, dt, dt, end);
 }
@@ -400,23 +418,11 @@ static int step_musl(mrn_sim *sim, mrn_transfer *tr, double dt, step_end *end) {
 static int step_usavg(mrn_sim *sim, mrn_transfer *tr, double dt, step_end *end) {
   int rc;
   mrn_p2g(tr, 1, 0);                                   /* mass, momentum */
-  if ((rc = grid_velocity_stage(sim, tr))) return rc; /* V^i */
+  if ((rc = grid_velocity_stage(sim, tr, dt))) return rc; /* V^i */
   mrn_particle_stages update = {UPDATE_FORCE, .gvel = sim->grid.vel, .material_dt = 0.5 * dt};
   if ((rc = mrn_particle_stages_run(sim, tr, &update))) return rc; /* gradient -> material update -> force */
   grid_update(sim, dt);                                           /* V~^i */
   return move_remap_update(sim, tr, dt, 0.5 * dt, end);
-}
-
-/* The part of the walls' holds in V that reaches the particles' momentum:
- * PIC-like updates take V~ whole, FLIP only V~ - V (which the holds in V do
- * not change), a blend X of FLIP; XPIC takes V* + V~ - V, V* being V
- * smoothed, so with the holds. */
-static double hold_share(const mrn_scheme *s) {
-  switch (s->velocity_update) {
-  case MRN_VUPDATE_FLIP: return 0.0;
-  case MRN_VUPDATE_BLEND: return 1.0 - s->flip_fraction;
-  default: return 1.0;
-  }
 }
 
 int mrn_sim_step_dt(mrn_sim *sim, double dt) {
@@ -443,7 +449,11 @@ int mrn_sim_step_dt(mrn_sim *sim, double dt) {
   }
   mrn_sim_transfer_end(sim, &tr);
   if (rc) return rc;
-  if (sim->boundary.walls) sim->work_walls += mrn_walls_step_end(sim->boundary.walls, dt, hold_share(&sim->scheme));
+  if (sim->boundary.walls) {
+    sim->boundary.walls->cundall = sim->damping_cundall;
+    sim->work_walls += mrn_walls_step_end(sim->boundary.walls, dt, hold_share(&sim->scheme), sim->gravity);
+    sim->work_damping += sim->boundary.walls->damping_work;
+  }
   sim->time += dt;
   sim->step++;
   rc = !end.pass ? end_of_step(sim) : end.bad >= 0 ? mrn_sim_particle_error(sim, (size_t)end.bad) : MRN_OK;

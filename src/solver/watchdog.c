@@ -37,7 +37,8 @@ static double energy_scale(const mrn_watchdog_state *s, const mrn_sim *sim, cons
   double fall = 0.0; /* |g| L = sum_i |g_i| size_i */
   for (int i = 0; i < sim->dim; i++) fall += fabs(sim->gravity[i]) * sim->grid.size[i];
   double scale = s->e_start + d->mass * fall + fabs(d->plastic) + fabs(d->friction) + fabs(d->damping) +
-                 fabs(d->external) + fabs(d->inflow) + fabs(d->inflow_work) + fabs(d->outflow);
+                 fabs(d->external) + fabs(d->inflow) + fabs(d->inflow_work) + fabs(d->outflow) +
+                 d->bodies + fabs(d->bodies_work);
   const double crawl = 1e-3 * sim->grid.cell / sim->dt; /* a thousandth of a cell per step */
   return fmax(scale, 0.5 * d->mass * crawl * crawl);
 }
