@@ -1,6 +1,7 @@
 #include "grid/boundary.h"
 
 #include <math.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include "core/error.h"
@@ -162,11 +163,34 @@ static void face_layers(const mrn_grid *g, int axis, int side, int lo[3], int hi
   hi[axis] = side == 0 ? 0 : g->ncell[axis] + g->pad;
 }
 
-/* Mark the face nodes of face `face` whose columns the momentum of a
- * particle at x reaches: those within `reach` cells of it along the face;
- * with `held_only`, only those whose column ended the last step in contact. */
-static void touch_mark(mrn_grid *g, const double *x, int face, double reach, int held_only) {
+/* 1 when a particle at x of half side r lies over the cell-sized patch of
+ * a face or wall centred at c along the surface coordinate: their extents
+ * overlap by more than round-off (a regular lattice of particles has its
+ * extents end exactly on the patches' edges) */
+int mrn_contact_over_patch(double x, double c, double r, double cell) {
+  return fabs(x - c) < r + 0.5 * cell - 1e-9 * cell;
+}
+
+/* 1 when the particle at x, of half side r, lies over the patch of face
+ * node (i, j, k) of a face normal to `axis` */
+static int face_over(const mrn_grid *g, const double *x, double r, int axis, int i, int j, int k) {
+  const int ijk[3] = {i, j, k};
+  for (int d = 0; d < g->dim; d++)
+    if (d != axis && !mrn_contact_over_patch(x[d], g->origin[d] + ijk[d] * g->cell, r, g->cell)) return 0;
+  return 1;
+}
+
+/* Visit the face nodes of face `face` within `reach` cells of a particle at
+ * x, of half side r, whose columns its momentum lands in. A particle on the
+ * face (`on`) marks them touched (with `held_only`, only those whose column
+ * ended the last step in contact), and in `over` those whose patch it lies
+ * over. A particle above the face unmarks those whose patch it lies over
+ * unless material on the face lies over it too: that point of the face has
+ * material standing clear of it (see doc/numerics.md, "Rolling"). */
+static void touch_visit(mrn_grid *g, unsigned char *over, const double *x, double r, int face, double reach, int on,
+                        int held_only) {
   const int axis = face / 2;
+  const unsigned char bit = (unsigned char)(1u << face);
   int lo[3], hi[3];
   mrn_grid_reach_box(g, x, reach, lo, hi);
   lo[axis] = hi[axis] = face % 2 == 0 ? 0 : g->ncell[axis]; /* the face nodes only */
@@ -174,7 +198,13 @@ static void touch_mark(mrn_grid *g, const double *x, int face, double reach, int
     for (int j = lo[1]; j <= hi[1]; j++)
       for (int i = lo[0]; i <= hi[0]; i++) {
         const size_t n = mrn_grid_index(g, i, j, k);
-        if (!held_only || (g->contact[n] & (1u << face))) g->touch[n] |= (unsigned char)(1u << face);
+        const int above = face_over(g, x, r, axis, i, j, k);
+        if (on && (!held_only || (g->contact[n] & bit))) {
+          g->touch[n] |= bit;
+          if (above && over) over[n] |= bit;
+        } else if (!on && above && !(over[n] & bit)) {
+          g->touch[n] &= (unsigned char)~bit;
+        }
       }
 }
 
@@ -198,6 +228,13 @@ static void touch_clear(mrn_grid *g, int face) {
  * caught higher each time and climbed by the slack. */
 #define MRN_TOUCH_SLACK 0.5
 
+/* the distance of x from face `face` less the half side r */
+static double face_gap(const mrn_grid *g, const double *x, int face, double r) {
+  const int axis = face / 2;
+  const double lo = g->origin[axis], hi = lo + g->size[axis];
+  return (face % 2 == 0 ? x[axis] - lo : hi - x[axis]) - r;
+}
+
 void mrn_boundary_touch(const mrn_boundary *bc, mrn_grid *g, double reach, const double *x, const double *vol0,
                         size_t n) {
   int faces[MRN_FACE_COUNT], nf = 0;
@@ -205,16 +242,24 @@ void mrn_boundary_touch(const mrn_boundary *bc, mrn_grid *g, double reach, const
     if (bc->face[f].kind == MRN_BC_FRICTION) faces[nf++] = f;
   if (!nf) return;
   for (int k = 0; k < nf; k++) touch_clear(g, faces[k]);
-  for (size_t p = 0; p < n; p++) {
-    /* half the particle's initial side, as uGIMP's (transfer/stencil.h) */
-    const double r = 0.5 * (g->dim == 2 ? sqrt(vol0[p]) : cbrt(vol0[p]));
-    for (int k = 0; k < nf; k++) {
-      const int axis = faces[k] / 2;
-      const double lo = g->origin[axis], hi = lo + g->size[axis];
-      const double gap = (faces[k] % 2 == 0 ? x[3 * p + axis] - lo : hi - x[3 * p + axis]) - r;
-      if (gap <= MRN_TOUCH_SLACK * r) touch_mark(g, x + 3 * p, faces[k], reach, gap > 0.0);
+  /* bit 1 << face: material on the face lies over the column; needed by the
+   * faces with gap_check only (without the memory they release nothing) */
+  int check = 0;
+  for (int k = 0; k < nf; k++) check |= bc->face[faces[k]].gap_check;
+  unsigned char *over = check ? calloc(g->n, 1) : NULL;
+  for (int pass = 0; pass < (over ? 2 : 1); pass++)
+    for (size_t p = 0; p < n; p++) {
+      /* half the particle's initial side, as uGIMP's (transfer/stencil.h) */
+      const double r = 0.5 * (g->dim == 2 ? sqrt(vol0[p]) : cbrt(vol0[p]));
+      for (int k = 0; k < nf; k++) {
+        const double gap = face_gap(g, x + 3 * p, faces[k], r);
+        if (pass == 0 && gap <= MRN_TOUCH_SLACK * r)
+          touch_visit(g, over, x + 3 * p, r, faces[k], reach, 1, gap > 0.0);
+        else if (pass == 1 && bc->face[faces[k]].gap_check && gap > 0.0 && gap + r < reach * g->cell)
+          touch_visit(g, over, x + 3 * p, r, faces[k], reach, 0, 0);
+      }
     }
-  }
+  free(over);
 }
 
 /* one friction face, column by column: the face node and the ghost nodes

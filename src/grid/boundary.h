@@ -38,6 +38,7 @@ enum { MRN_FACE_XMIN = 0, MRN_FACE_XMAX, MRN_FACE_YMIN, MRN_FACE_YMAX, MRN_FACE_
 typedef struct mrn_face_bc {
   mrn_bc_kind kind;
   double mu;          /* friction coefficient for MRN_BC_FRICTION */
+  int gap_check;      /* MRN_BC_FRICTION: release a column where the material over it stands clear */
   double velocity[3]; /* prescribed velocity for MRN_BC_VELOCITY (m/s) */
 } mrn_face_bc;
 
@@ -74,6 +75,11 @@ typedef struct mrn_contact_column {
 double mrn_contact_apply(const mrn_contact_column *c, mrn_grid *g, double mass_floor, double *vel, double mu,
                          int with_friction, int touching, unsigned char *state, unsigned char bit, double J[3]);
 
+/* 1 when a particle at surface coordinate x, of half side r, lies over the
+ * patch of a face or wall centred at c (one cell wide): a column is touched
+ * only by the material over it (see "Rolling" in doc/numerics.md) */
+int mrn_contact_over_patch(double x, double c, double r, double cell);
+
 const char *mrn_bc_kind_name(mrn_bc_kind k);
 /* NULL-terminated list of kind names, in enum order */
 const char *const *mrn_bc_kind_names(void);
@@ -100,7 +106,8 @@ double mrn_boundary_apply(const mrn_boundary *bc, mrn_grid *g, double mass_floor
  * touches the face: for each particle (positions x, initial volumes vol0, 3
  * and 1 values per particle) whose initial half side reaches a friction
  * face, the face nodes within `reach` cells of it along the face (the reach
- * of its shape functions), whose columns its momentum lands in. A column not
+ * of its shape functions, where its momentum lands) whose cell-sized patch
+ * of the face its extent covers (mrn_contact_over_patch). A column not
  * in contact is touched only by material on the face; one in contact stays
  * touched while material is within a slack of it (see boundary.c). */
 void mrn_boundary_touch(const mrn_boundary *bc, mrn_grid *g, double reach, const double *x, const double *vol0,

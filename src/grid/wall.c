@@ -247,6 +247,19 @@ static int check_shape(mrn_wall_spec *s, int dim) {
   }
 }
 
+/* the length of the closed surface coordinate u: a cylinder's
+ * circumference, a polygon's perimeter; 0 where u is open (a plane, a
+ * box's faces, a mesh's planar groups) */
+static double surface_period(const mrn_wall_spec *s, int dim) {
+  if (s->shape == MRN_WALL_MESH) return 0.0;
+  if (s->shape == MRN_WALL_CYLINDER) return 2.0 * 3.14159265358979323846 * s->radius;
+  if (s->shape != MRN_WALL_POLYGON || dim != 2) return 0.0;
+  double len = 0.0;
+  for (int i = 0, j = s->nvertex - 1; i < s->nvertex; j = i++)
+    len += hypot(s->vertex[2 * i] - s->vertex[2 * j], s->vertex[2 * i + 1] - s->vertex[2 * j + 1]);
+  return len;
+}
+
 /* 1 when some node of the grid (ghosts included) lies inside the wall or
  * within a cell of it */
 static int reaches_grid(const mrn_wall *w, const mrn_grid *g) {
@@ -319,6 +332,7 @@ int mrn_walls_add(mrn_walls **wsp, const mrn_grid *g, const mrn_wall_spec *spec)
   int rc = check_spec(*wsp, &w.spec, g->dim);
   if (!rc) rc = copy_shape(&w, spec);
   if (!rc) rc = check_shape(&w.spec, g->dim);
+  if (!rc) w.period = surface_period(&w.spec, g->dim);
   if (!rc && spec->shape == MRN_WALL_MESH) {
     w.mesh = mrn_trimesh_new(w.spec.triangle, (size_t)w.spec.ntriangle, g->cell, spec->source);
     if (!w.mesh) rc = MRN_ERR;
@@ -403,18 +417,40 @@ static int outside_push(mrn_wall *w, size_t node) {
   return MRN_OK;
 }
 
-/* mark the nodes inside the wall (signed distance <= 0) within `reach`
- * cells of a particle at x, the nodes its momentum lands in; with
- * `held_only`, only those that ended the last step in contact */
-static int touch_mark(mrn_wall *w, const mrn_grid *g, const double *x, double reach, int held_only) {
+/* 1 when a particle of half side r, whose nearest point of the surface has
+ * the coordinates uv, lies over the patch `key` (as the faces'
+ * mrn_contact_over_patch; a box's other faces are other patches, a closed
+ * coordinate is taken the short way round) */
+static int over_patch(const mrn_wall *w, const mrn_grid *g, const long long key[3], const double uv[3], double r) {
+  if (key[0] != (long long)uv[2]) return 0;
+  for (int d = 0; d < g->dim - 1; d++) {
+    const double c = (double)key[1 + d] * g->cell;
+    const double x = d == 0 && w->period > 0.0 ? c + remainder(uv[0] - c, w->period) : uv[d];
+    if (!mrn_contact_over_patch(x, c, r, g->cell)) return 0;
+  }
+  return 1;
+}
+
+/* Visit the nodes inside the wall (signed distance <= 0) within `reach`
+ * cells of a particle at x (the nodes its momentum lands in); uvp: its
+ * nearest point of the surface, r its half side. A particle on the wall
+ * (`on`) marks them touched (with `held_only`, only those that ended the
+ * last step in contact) and OVER those whose patch it lies over; a particle
+ * above the wall marks CLEAR the touched ones whose patch it lies over. A
+ * node found outside is marked so and not asked again this step. */
+static int touch_visit(mrn_wall *w, const mrn_grid *g, const double *x, const double uvp[3], double r, double reach,
+                       int on, int held_only) {
   int lo[3], hi[3];
   mrn_grid_reach_box(g, x, reach, lo, hi);
   for (int k = lo[2]; k <= hi[2]; k++)
     for (int j = lo[1]; j <= hi[1]; j++)
       for (int i = lo[0]; i <= hi[0]; i++) {
         const size_t node = mrn_grid_index(g, i, j, k);
-        if (w->state[node] & (MRN_WALL_TOUCH | MRN_WALL_OUTSIDE)) continue;
-        if (held_only && !(w->state[node] & MRN_WALL_CONTACT)) continue;
+        const unsigned char st = w->state[node];
+        /* found outside already this step: never touched, in either pass */
+        if (st & MRN_WALL_OUTSIDE) continue;
+        if (on ? held_only && !(st & MRN_WALL_CONTACT) : !(st & MRN_WALL_TOUCH)) continue;
+        if (on && (st & MRN_WALL_TOUCH) && !w->spec.gap_check) continue; /* nothing to learn */
         double xn[3], n[3], v[3], uv[3];
         mrn_grid_node_position(g, node, xn);
         /* on the surface counts as inside: a node of a grid-aligned plane must not
@@ -423,9 +459,11 @@ static int touch_mark(mrn_wall *w, const mrn_grid *g, const double *x, double re
           if (outside_push(w, node)) return MRN_ERR;
           continue;
         }
-        mrn_wall_velocity_at(w, g->dim, xn, v);
         /* the patch: the cell-sized piece of the surface nearest the node */
         const long long key[3] = {(long long)uv[2], llround(uv[0] * g->inv_cell), llround(uv[1] * g->inv_cell)};
+        if (w->spec.gap_check && over_patch(w, g, key, uvp, r)) w->state[node] |= on ? MRN_WALL_OVER : MRN_WALL_CLEAR;
+        if (!on || (st & MRN_WALL_TOUCH)) continue;
+        mrn_wall_velocity_at(w, g->dim, xn, v);
         w->state[node] |= MRN_WALL_TOUCH;
         if (touched_push(w, node, n, v, key)) return MRN_ERR;
       }
@@ -474,12 +512,19 @@ static int build_columns(mrn_wall *w) {
   }
   qsort(e, w->count, sizeof *e, by_patch);
   w->col_start[0] = 0;
-  size_t lo = 0;
+  size_t lo = 0, m = 0;
   for (size_t k = 0; k < w->count; k++) {
-    order[k] = e[k].k;
-    w->col_node[k] = e[k].node;
     if (k + 1 < w->count && memcmp(e[k].key, e[k + 1].key, sizeof e[k].key) == 0) continue;
-    column_close(w, order, lo, k + 1);
+    unsigned char seen = 0;
+    for (size_t q = lo; q <= k; q++) seen |= w->state[e[q].node];
+    if ((seen & MRN_WALL_CLEAR) && !(seen & MRN_WALL_OVER)) {
+      /* the material over this patch stands clear of the wall: no contact */
+      for (size_t q = lo; q <= k; q++) w->state[e[q].node] &= (unsigned char)~(MRN_WALL_TOUCH | MRN_WALL_CONTACT);
+    } else {
+      const size_t first = m;
+      for (size_t q = lo; q <= k; q++, m++) order[m] = e[q].k, w->col_node[m] = e[q].node;
+      column_close(w, order, first, m);
+    }
     lo = k + 1;
   }
   free(e), free(order);
@@ -490,7 +535,8 @@ static int build_columns(mrn_wall *w) {
  * longer touched lose their contact too (as a face's untouched column). */
 static int wall_touch(mrn_wall *w, const mrn_grid *g, double reach, const double *x, const double *vol0, size_t np) {
   const size_t old = w->count;
-  for (size_t k = 0; k < old; k++) w->state[w->node[k]] &= (unsigned char)~MRN_WALL_TOUCH;
+  for (size_t k = 0; k < old; k++)
+    w->state[w->node[k]] &= (unsigned char)~(MRN_WALL_TOUCH | MRN_WALL_OVER | MRN_WALL_CLEAR);
   for (size_t k = 0; k < w->nout; k++) w->state[w->outside[k]] &= (unsigned char)~MRN_WALL_OUTSIDE;
   w->nout = 0;
   w->count = 0;
@@ -499,11 +545,18 @@ static int wall_touch(mrn_wall *w, const mrn_grid *g, double reach, const double
   if (old && !prev) return mrn_error("out of memory for a wall's contacts");
   if (old) memcpy(prev, w->node, old * sizeof *prev);
   int rc = MRN_OK;
-  for (size_t p = 0; p < np && !rc; p++) {
-    const double r = 0.5 * (g->dim == 2 ? sqrt(vol0[p]) : cbrt(vol0[p]));
-    const double gap = wall_distance_near(w, g->dim, x + 3 * p, 1.5 * r) - r;
-    if (gap <= WALL_TOUCH_SLACK * r) rc = touch_mark(w, g, x + 3 * p, reach, gap > 0.0);
-  }
+  /* first the material on the wall, then the material above it; the
+   * distance exact where the passes compare it (a mesh stops beyond) */
+  const int passes = w->spec.gap_check ? 2 : 1;
+  for (int pass = 0; pass < passes; pass++)
+    for (size_t p = 0; p < np && !rc; p++) {
+      const double r = 0.5 * (g->dim == 2 ? sqrt(vol0[p]) : cbrt(vol0[p]));
+      const double deep = passes > 1 ? HUGE_VAL : 1.5 * r, far = passes > 1 ? fmax(1.5 * r, reach * g->cell) : 1.5 * r;
+      double n[3], uv[3];
+      const double gap = wall_distance_uv(w, g->dim, x + 3 * p, n, uv, deep, far) - r;
+      if (pass == 0 && gap <= WALL_TOUCH_SLACK * r) rc = touch_visit(w, g, x + 3 * p, uv, r, reach, 1, gap > 0.0);
+      else if (pass == 1 && gap > 0.0 && gap + r < reach * g->cell) rc = touch_visit(w, g, x + 3 * p, uv, r, reach, 0, 0);
+    }
   for (size_t k = 0; k < old; k++)
     if (!(w->state[prev[k]] & MRN_WALL_TOUCH)) w->state[prev[k]] &= (unsigned char)~MRN_WALL_CONTACT;
   free(prev);

@@ -57,6 +57,7 @@ typedef struct mrn_wall_spec {
   const char *source; /* mesh: where the triangles came from, for messages; not kept */
   mrn_wall_kind kind;
   double mu;          /* friction */
+  int gap_check;      /* release a column where the material over it stands clear (doc/numerics.md, "Rolling") */
   double velocity[3]; /* m/s */
   double omega[3];    /* rad/s, about `center` (2D: only z) */
   double center[3];   /* the reference point: rotation, moment */
@@ -80,6 +81,7 @@ typedef struct mrn_wall {
   struct mrn_trimesh *mesh; /* mesh: its triangles, searchable */
   double ref[3];      /* where the reference point is now */
   double rot[9];      /* rotation from the reference placement, row-major */
+  double period;      /* the length of a closed surface coordinate u (cylinder, polygon), else 0 */
   /* the last step: impulse on the material and its moment about ref (in
    * V~), and the reaction on the wall, -impulse / dt (N, N m; per metre in 2D) */
   double impulse[3], angular[3];
@@ -105,7 +107,8 @@ typedef struct mrn_wall {
   void *motion_ctx;
   void (*motion_release)(void *ctx);
   /* per node of the grid: bit 0 touched this step, bit 1 in contact at the
-   * end of the last step, bit 2 found outside the wall this step */
+   * end of the last step, bit 2 found outside the wall this step, bits 3
+   * and 4 MRN_WALL_OVER and MRN_WALL_CLEAR (only bit 1 outlives the step) */
   unsigned char *state;
   /* the nodes found outside this step (their bit 2 is cleared next step) */
   size_t *outside;
@@ -135,6 +138,10 @@ typedef struct mrn_walls {
 #define MRN_WALL_TOUCH 1u
 #define MRN_WALL_CONTACT 2u
 #define MRN_WALL_OUTSIDE 4u
+/* in the touch of a step: material on the wall lies over the node's patch
+ * (OVER), material above the wall does (CLEAR) */
+#define MRN_WALL_OVER 8u
+#define MRN_WALL_CLEAR 16u
 
 /* Check a spec against the grid (shape, normal, radius, vertices, mu, a wall
  * that reaches the grid) and append the wall; *ws is created on first use.

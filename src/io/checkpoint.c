@@ -149,6 +149,7 @@ static void save_boundary(mrn_h5w *w, const mrn_boundary *bc) {
     if (face < 0) break;
     mrn_h5w_string(w, face, "kind", mrn_bc_kind_name(bc->face[f].kind));
     mrn_h5w_double(w, face, "mu", bc->face[f].mu);
+    mrn_h5w_int32(w, face, "gap_check", bc->face[f].gap_check);
     mrn_h5w_doubles(w, face, "velocity", bc->face[f].velocity, 3);
     H5Gclose(face);
   }

@@ -236,6 +236,9 @@ static void read_boundary(mrn_h5r *r, ck_data *d) {
     if (mrn_h5r_group(r, g) || mrn_h5r_choice(r, g, "kind", mrn_bc_kind_names(), &kind)) return;
     d->boundary.face[f].kind = (mrn_bc_kind)kind;
     read_finite(r, g, "mu", 0.0, &d->boundary.face[f].mu);
+    int64_t check = 0; /* absent from older checkpoints: off */
+    if (mrn_h5r_has_attr(r, g, "gap_check")) mrn_h5r_int(r, g, "gap_check", &check);
+    d->boundary.face[f].gap_check = check != 0;
     double *v = d->boundary.face[f].velocity;
     if (!mrn_h5r_doubles(r, g, "velocity", v, 3))
       require(r, isfinite(v[0]) && isfinite(v[1]) && isfinite(v[2]),

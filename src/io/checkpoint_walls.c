@@ -37,6 +37,7 @@ static void save_wall(mrn_h5w *w, hid_t g, const mrn_wall *wall, const mrn_grid 
   mrn_h5w_string(w, g, "shape", mrn_wall_shape_names()[s->shape]);
   mrn_h5w_string(w, g, "kind", mrn_wall_kind_names()[s->kind]);
   mrn_h5w_int32(w, g, "inside", s->inside);
+  mrn_h5w_int32(w, g, "gap_check", s->gap_check);
   mrn_h5w_double(w, g, "mu", s->mu);
   mrn_h5w_double(w, g, "radius", s->radius);
   mrn_h5w_doubles(w, g, "point", s->point, 3);
@@ -139,6 +140,9 @@ static void read_wall(mrn_h5r *r, const char *g, ck_wall *c, int64_t nodes) {
       mrn_h5r_int(r, g, "contact_count", &c->ncontact) || read_body(r, g, c))
     return;
   s->shape = (mrn_wall_shape)shape, s->kind = (mrn_wall_kind)kind, s->inside = inside != 0;
+  int64_t check = 0; /* absent from older checkpoints: off */
+  if (mrn_h5r_has_attr(r, g, "gap_check")) mrn_h5r_int(r, g, "gap_check", &check);
+  s->gap_check = check != 0;
   if (nv < 0 || nv > MRN_WALL_MAX_VERTICES || c->ncontact < 0 || c->ncontact > nodes) {
     mrn_h5r_fail(r, "%s: vertex_count or contact_count out of range", g);
     return;

@@ -41,6 +41,8 @@ static const mrn_spec face_specs[] = {
     {"kind", MRN_SPEC_STRING, 0, 0, 0, 0, 0, 0, NULL, "free, fixed, slip, friction, velocity or periodic", NULL},
     {"mu", MRN_SPEC_NUMBER, 0, 0, 0, HUGE_VAL, 0, 0, "", "Coulomb friction coefficient (friction faces)", NULL},
     {"v", MRN_SPEC_VECTOR, 0, 0, -HUGE_VAL, HUGE_VAL, 0, 0, "m/s", "prescribed velocity (velocity faces)", NULL},
+    {"gap_check", MRN_SPEC_BOOLEAN, 0, 0, 0, 0, 0, 0, NULL,
+     "friction faces: no contact where the material over the face stands clear of it (default false)", NULL},
 };
 
 static const mrn_spec dt_specs[] = {
@@ -73,6 +75,7 @@ static void read_face(lua_State *L, int value_idx, const char *where, const char
   value_idx = lua_absindex(L, value_idx);
   const char *kind = NULL;
   f->mu = 0.0;
+  f->gap_check = 0;
   f->velocity[0] = f->velocity[1] = f->velocity[2] = 0.0;
   if (lua_type(L, value_idx) == LUA_TSTRING) {
     kind = lua_tostring(L, value_idx);
@@ -100,6 +103,7 @@ static void read_face(lua_State *L, int value_idx, const char *where, const char
       lua_pop(L, 1);
       f->mu = mrn_lua_get_number(L, value_idx, where, face_specs, MRN_COUNT(face_specs), "mu");
     }
+    f->gap_check = mrn_lua_get_boolean(L, value_idx, where, face_specs, MRN_COUNT(face_specs), "gap_check", 0);
   } else {
     mrn_lua_error(L, where, "%s must be a condition name or a table like {\"friction\", mu = 0.3}, got %s", key,
                   luaL_typename(L, value_idx));

@@ -32,6 +32,8 @@ static const mrn_spec wall_specs[] = {
      NULL},
     {"translate", MRN_SPEC_VECTOR, 0, 0, -HUGE_VAL, HUGE_VAL, 0, 0, "m", "mesh: added to its scaled corners", NULL},
     {"inside", MRN_SPEC_BOOLEAN, 0, 0, 0, 0, 0, 0, NULL, "the material is inside the shape (default false)", NULL},
+    {"gap_check", MRN_SPEC_BOOLEAN, 0, 0, 0, 0, 0, 0, NULL,
+     "no contact where the material over the wall stands clear of it (default false)", NULL},
     {"velocity", MRN_SPEC_ANY, 0, 0, -HUGE_VAL, HUGE_VAL, 0, 0, "m/s",
      "velocity of the wall: a vector, or a function of time returning one", NULL},
     {"omega", MRN_SPEC_ANY, 0, 0, -HUGE_VAL, HUGE_VAL, 0, 0, "rad/s",
@@ -342,6 +344,7 @@ static int l_sim_add_wall(lua_State *L) {
   if (s.kind == MRN_WALL_FRICTION && !mrn_lua_has(L, 2, "mu")) mrn_lua_error(L, where, "mu: a friction wall needs mu");
   s.mu = mrn_lua_get_number(L, 2, where, wall_specs, NSPECS, "mu");
   s.inside = mrn_lua_get_boolean(L, 2, where, wall_specs, NSPECS, "inside", 0);
+  s.gap_check = mrn_lua_get_boolean(L, 2, where, wall_specs, NSPECS, "gap_check", 0);
   read_shape(L, 2, where, dim, &s);
   read_body(L, 2, where, dim, &s);
   check_no_function(L, 2, where, &s);
@@ -393,6 +396,7 @@ static int l_sim_wall(lua_State *L) {
   lua_pushnumber(L, w->work_friction), lua_setfield(L, -2, "work_friction");
   lua_pushinteger(L, w->contacts), lua_setfield(L, -2, "contacts");
   lua_pushstring(L, w->spec.name), lua_setfield(L, -2, "name");
+  lua_pushboolean(L, w->spec.gap_check), lua_setfield(L, -2, "gap_check");
   if (w->spec.body) push_body(L, w, dim);
   return 1;
 }

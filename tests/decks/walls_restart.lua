@@ -2,7 +2,8 @@
 -- at 30 degrees pushed by a turning plate moved by a function of time, run
 -- straight for 0.2 s and stopped at 0.1 s, saved, loaded (the plate's
 -- function set again) and run on. Positions, velocities, stresses, W_walls
--- and every wall's impulse, work and pivot must agree exactly.
+-- and every wall's impulse, work and pivot must agree exactly (the plane with
+-- gap_check, which the checkpoint keeps).
 local T = dofile(mpm.deck_dir .. "/testlib.lua")
 local scheme = mpm.param("scheme", "APIC")
 local function build()
@@ -11,7 +12,7 @@ local function build()
                               dt = { a_tau = 0.2 }, diagnostics = false, thermo = 0, progress = false }
   local th = math.rad(30)
   sim:add_wall{ name = "plane", shape = "plane", point = { 0.1, 0.9 }, normal = { math.sin(th), math.cos(th) },
-                kind = "friction", mu = 0.3 }
+                kind = "friction", mu = 0.3, gap_check = true }
   sim:add_wall{ name = "plate", shape = "polygon", vertices = { { 1.3, 0.05 }, { 1.4, 0.05 }, { 1.4, 0.35 }, { 1.3, 0.35 } },
                 kind = "friction", mu = 0.2, velocity = function(t) return { -0.1 * t, 0 } end, omega = 0.05 }
   sim:add_particles(mpm.box{ min = { 0.3, 0.85 }, max = { 0.5, 1.0 } },
@@ -27,6 +28,7 @@ first:run{ steps = 300 }
 local path = first:save("walls_restart.h5")
 local again = mpm.load(path)
 again:set_wall("plate", { velocity = function(t) return { -0.1 * t, 0 } end })
+T.check(again:wall("plane").gap_check and not again:wall("plate").gap_check, "gap_check lost in the checkpoint")
 again:run{ steps = 300 }
 T.check(again:step() == straight:step(), "steps %d and %d", again:step(), straight:step())
 for i = 1, straight:particle_count() do

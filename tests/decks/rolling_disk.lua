@@ -1,0 +1,89 @@
+-- An elastic disk on an inclined friction plane (R = 0.1 m, E = 10 MPa,
+-- nu = 0.3, rho = 1000 kg/m^3, 2 x 2 points per cell, quadratic B-splines,
+-- APIC), from rest, theta = 30 degrees. With mu >= tan(theta) / 3 it rolls
+-- without slipping, a = (2/3) g sin(theta); below, it slides,
+-- a = g (sin(theta) - mu cos(theta)). a: least squares s = s0 + v0 t + a t^2 / 2
+-- of the centre of mass along the plane, 20 samples.
+--   slide  wall (not grid-aligned, gravity vertical), mu = 0.1, 8 cells per
+--          radius, 0.4 s: a within 3 %;
+--   roll   friction face (gravity tilted), mu = 0.5, 16 cells per radius,
+--          0.6 s, gap_check: a within 3 %;
+--   roll   wall, mu = 0.5, 8 cells per radius, 0.6 s: with gap_check within
+--          5 % (asserted), without it (the default, reported) 11.5 % short.
+-- doc/numerics.md, "Rolling".
+--   --set only=slide|face|wall  --set cells=N (overrides)  --set strategy=FLIP
+local T = dofile(mpm.deck_dir .. "/testlib.lua")
+local g, rho, E, R = 9.81, 1000, 1e7, 0.1
+local th = math.rad(30)
+local only = mpm.param("only", "")
+local strategy = mpm.param("strategy", "APIC")
+
+-- one run; returns the fitted acceleration along the plane
+local function roll(o)
+  local cell = R / (tonumber(mpm.param("cells", "")) or o.cells)
+  local n, t, sim, c0 = { math.sin(th), math.cos(th) }, { math.cos(th), -math.sin(th) }
+  local common = { dim = 2, shape = "quadratic_bspline", scheme = strategy, dt = { a_tau = 0.2 }, diagnostics = false,
+                   thermo = 0, progress = false }
+  if o.wall then
+    local p = { 0.05, 0.75 }
+    common.grid, common.gravity = { size = { 1.0, 0.9 }, cell = cell }, { 0, -g }
+    common.boundary = { all = "slip", top = "free" }
+    sim = mpm.simulation(common)
+    sim:add_wall{ name = "incline", shape = "plane", point = p, normal = n, kind = "friction", mu = o.mu,
+                  gap_check = o.gap_check }
+    c0 = { p[1] + 0.12 * t[1] + R * n[1], p[2] + 0.12 * t[2] + R * n[2] }
+  else
+    n, t = { 0, 1 }, { 1, 0 }
+    common.grid, common.gravity = { size = { 1.0, 0.3 }, cell = cell }, { g * math.sin(th), -g * math.cos(th) }
+    common.boundary = { all = "slip", top = "free", bottom = { "friction", mu = o.mu, gap_check = o.gap_check } }
+    sim = mpm.simulation(common)
+    c0 = { 0.15, R }
+  end
+  sim:add_particles(mpm.disk{ center = c0, radius = R },
+                    { material = mpm.material.linear_elastic{ density = rho, E = E, nu = 0.3 }, per_cell = 4 })
+  -- the normal equations of the fit, sums of t^k and s t^k
+  local S, b = { 0, 0, 0, 0, 0 }, { 0, 0, 0 }
+  for _ = 1, 20 do
+    sim:run{ time = o.time / 20 }
+    local c, time = sim:diagnostics().center_of_mass, sim:time()
+    local s = (c[1] - c0[1]) * t[1] + (c[2] - c0[2]) * t[2]
+    for k = 0, 4 do S[k + 1] = S[k + 1] + time ^ k end
+    for k = 0, 2 do b[k + 1] = b[k + 1] + s * time ^ k end
+  end
+  local function det(m)
+    return m[1][1] * (m[2][2] * m[3][3] - m[2][3] * m[3][2]) - m[1][2] * (m[2][1] * m[3][3] - m[2][3] * m[3][1]) +
+             m[1][3] * (m[2][1] * m[3][2] - m[2][2] * m[3][1])
+  end
+  local A = { { S[1], S[2], S[3] }, { S[2], S[3], S[4] }, { S[3], S[4], S[5] } }
+  local A3 = { { S[1], S[2], b[1] }, { S[2], S[3], b[2] }, { S[3], S[4], b[3] } }
+  return 2 * det(A3) / det(A)
+end
+
+local rolling = 2 / 3 * g * math.sin(th)
+local function off(a, exact) return 100 * (a / exact - 1) end
+
+if only == "" or only == "slide" then
+  local mu = 0.1
+  local exact = g * (math.sin(th) - mu * math.cos(th))
+  local a = roll{ wall = true, mu = mu, cells = 8, time = 0.4, gap_check = true }
+  T.expect{ id = "rolling.slide", what = "disk on a wall below mu = tan(theta) / 3: |a / g (sin - mu cos) - 1|",
+            value = math.abs(off(a, exact)), max = 3, unit = "%" }
+  print(string.format("slide, wall, mu %g: a = %.4f m/s^2, closed form %.4f (%+.1f %%)", mu, a, exact, off(a, exact)))
+end
+if only == "" or only == "face" then
+  local a = roll{ wall = false, mu = 0.5, cells = 16, time = 0.6, gap_check = true }
+  T.expect{ id = "rolling.face", what = "disk rolling on a friction face, 16 cells per radius: |a / (2/3) g sin - 1|",
+            value = math.abs(off(a, rolling)), max = 3, unit = "%" }
+  print(string.format("roll, face, 16 cells: a = %.4f m/s^2, (2/3) g sin %.4f (%+.1f %%)", a, rolling, off(a, rolling)))
+end
+if only == "" or only == "wall" then
+  local a = roll{ wall = true, mu = 0.5, cells = 8, time = 0.6, gap_check = true }
+  local a0 = roll{ wall = true, mu = 0.5, cells = 8, time = 0.6, gap_check = false }
+  print(string.format("roll, wall, 8 cells: a = %.4f m/s^2 (%+.1f %%), without gap_check %.4f (%+.1f %%)", a,
+                      off(a, rolling), a0, off(a0, rolling)))
+  T.expect{ id = "rolling.wall", what = "disk rolling on an inclined wall, 8 cells per radius: |a / (2/3) g sin - 1|",
+            value = math.abs(off(a, rolling)), max = 5, unit = "%" }
+  T.expect{ id = "rolling.wall_default", asserted = false, value = math.abs(off(a0, rolling)), unit = "%",
+            what = "the same without gap_check (the default): |a / (2/3) g sin - 1|" }
+end
+T.done("rolling_disk")
