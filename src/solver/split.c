@@ -6,6 +6,7 @@
 #include "core/error.h"
 #include "core/tensor.h"
 #include "material/principal.h"
+#include "particles/domain.h"
 #include "solver/simulation.h"
 
 /* where the two fields sit in a particle's record of ps->user, or -1 */
@@ -14,10 +15,8 @@ typedef struct split_fields {
 } split_fields;
 
 static split_fields find_fields(const mrn_particles *ps) {
-  const mrn_user_field *u = mrn_particles_user_field(ps, MRN_SPLIT_DOMAIN_FIELD);
   const mrn_user_field *l = mrn_particles_user_field(ps, MRN_SPLIT_LEVEL_FIELD);
-  split_fields f = {-1, -1};
-  if (u && u->ncomp == 9) f.domain = u->offset;
+  split_fields f = {mrn_particle_domain_offset(ps), -1};
   if (l && l->ncomp == 1) f.level = l->offset;
   return f;
 }
@@ -55,19 +54,10 @@ typedef struct domain {
 static void read_domain(const mrn_sim *sim, split_fields f, size_t i, domain *dm) {
   const mrn_particles *ps = &sim->particles;
   const int dim = sim->dim;
-  const double *u = ps->user + i * (size_t)ps->user_stride;
-  dm->level = (int)u[f.level];
+  dm->level = (int)ps->user[i * (size_t)ps->user_stride + (size_t)f.level];
   /* each split halves vol0: the ancestor's vol0 is vol0 2^level */
   dm->r_ref = 0.5 * pow(ldexp(ps->vol0[i], dm->level), 1.0 / dim);
-  memcpy(dm->U0, u + f.domain, sizeof dm->U0);
-  int set = 0;
-  for (int k = 0; k < 9; k++) set |= dm->U0[k] != 0.0;
-  if (!set) /* never split: the sphere of radius r_ref */
-    for (int a = 0; a < dim; a++) dm->U0[4 * a] = dm->r_ref;
-  double F[9];
-  mrn_tensor_expand(dim, ps->F + (size_t)mrn_tensor_stride(dim) * i, 1.0, F);
-  if (dim == 2) F[8] = 0.0; /* the in-plane block only */
-  mat_mul(F, dm->U0, dm->A);
+  mrn_particle_domain(ps, dim, i, f.domain, dm->r_ref, dm->U0, dm->A);
 }
 
 /* the largest half-axis sigma of A's ellipsoid, its direction n now and the

@@ -21,11 +21,13 @@
 
 #include <stddef.h>
 
+#include "particles/domain.h"
+
 struct mrn_sim;
 
 /* the registered fields: U0 (m, 3 x 3 row-major; all zero: never split, the
  * sphere of radius vol0^(1/dim) / 2) and the splits in the ancestry */
-#define MRN_SPLIT_DOMAIN_FIELD "split_domain"
+#define MRN_SPLIT_DOMAIN_FIELD MRN_DOMAIN_FIELD /* particles/domain.h */
 #define MRN_SPLIT_LEVEL_FIELD "split_level"
 
 /* Split particles whose domain stretched beyond `stretch` (> 1), at most
