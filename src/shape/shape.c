@@ -11,9 +11,11 @@ static const mrn_shape_info shapes[MRN_SHAPE_KIND_COUNT] = {
      "quadratic B-spline, C1, support of 3 cells per axis (002 §4, Eq. 52)"},
     {MRN_SHAPE_CUBIC_BSPLINE, "cubic_bspline", 4,
      "cubic B-spline, C2, support of 4 cells per axis (000 §2.3; 002 Fig. 4)"},
+    {MRN_SHAPE_CPDI, "cpdi", 2,
+     "CPDI: linear hat functions averaged over the particle's domain, tracked from F (Sadeghirad et al. 2011)"},
 };
 
-static const char *const names[] = {"linear", "gimp", "quadratic_bspline", "cubic_bspline", NULL};
+static const char *const names[] = {"linear", "gimp", "quadratic_bspline", "cubic_bspline", "cpdi", NULL};
 static const char *const boundary_names[] = {"extended", "truncated", "modified", "wls", NULL};
 
 const char *const *mrn_kernel_boundary_names(void) { return boundary_names; }

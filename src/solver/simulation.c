@@ -103,6 +103,7 @@ void mrn_sim_free(mrn_sim *sim) {
   mrn_sim_free_sources(sim);
   free(sim->constraints);
   free(sim->scratch);
+  free(sim->domain);
   free(sim);
 }
 

@@ -91,6 +91,9 @@ typedef struct mrn_sim {
   /* scratch, sized to the particle count */
   double *scratch;
   size_t scratch_cap;
+  /* CPDI: the particles' domains as the step froze them (transfer/cpdi.h) */
+  double *domain;
+  size_t domain_cap;
 } mrn_sim;
 
 typedef struct mrn_sim_config {

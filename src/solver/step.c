@@ -25,6 +25,7 @@
 #include "solver/update.h"
 #include "grid/active.h"
 #include "grid/wall.h"
+#include "transfer/cpdi.h"
 #include "transfer/kernels.h"
 #include "transfer/profile.h"
 #include "transfer/xpic.h"
@@ -433,6 +434,28 @@ static int step_usavg(mrn_sim *sim, mrn_transfer *tr, double dt, step_end *end) 
   return move_remap_update(sim, tr, dt, 0.5 * dt, end);
 }
 
+/* CPDI: refuse what it does not combine with, then freeze the domains for
+ * every transfer of the step (P2G, force and G2P see the same S_ip, so
+ * mass and momentum are conserved to round-off), and widen *reach (cells)
+ * by their extent for the walls and friction faces */
+static int cpdi_begin(mrn_sim *sim, double *reach) {
+  if (sim->kernel_boundary != MRN_KERNEL_EXTENDED)
+    return mrn_error("shape = 'cpdi' takes shape_boundary = 'extended' only, not '%s'",
+                     mrn_kernel_boundary_names()[sim->kernel_boundary]);
+  if (sim->scheme.mls_gradient)
+    return mrn_error("shape = 'cpdi' does not take scheme gradient = 'mls' (its gradients are domain averages)");
+  if (sim->contact && sim->contact->npairs)
+    return mrn_error("shape = 'cpdi' does not take contact between bodies (sim:add_contact)");
+  const size_t need = 9 * sim->particles.n;
+  if (need > sim->domain_cap) {
+    double *d = realloc(sim->domain, need * sizeof(double));
+    if (!d) return mrn_error("step: out of memory for the CPDI domains");
+    sim->domain = d, sim->domain_cap = need;
+  }
+  *reach += mrn_cpdi_domains(&sim->particles, sim->dim, sim->grid.inv_cell, sim->domain);
+  return MRN_OK;
+}
+
 int mrn_sim_step_dt(mrn_sim *sim, double dt) {
   if (!(dt > 0.0) || !isfinite(dt)) return mrn_error("step %ld: invalid time step %s", sim->step + 1, mrn_num(dt).s);
   sim->dt = dt;
@@ -442,13 +465,14 @@ int mrn_sim_step_dt(mrn_sim *sim, double dt) {
   end_ctx e = end_setup(sim);
   const mrn_particle_pass end_pass = {end_chunk, &e};
   step_end end = {sim->on_leave == MRN_LEAVE_DELETE ? NULL : &end_pass, -1};
-  mrn_boundary_touch(&sim->boundary, &sim->grid, 0.5 * mrn_shape_support(sim->shape), sim->particles.x,
-                     sim->particles.vol0, sim->particles.n);
-  if (sim->boundary.walls && (rc = mrn_walls_touch(sim->boundary.walls, &sim->grid, sim->time + 0.5 * dt,
-                                                   0.5 * mrn_shape_support(sim->shape), sim->particles.x,
-                                                   sim->particles.vol0, sim->particles.n)))
+  double reach = 0.5 * mrn_shape_support(sim->shape); /* cells from a particle its shape functions reach */
+  if (sim->shape == MRN_SHAPE_CPDI && (rc = cpdi_begin(sim, &reach))) return rc;
+  mrn_boundary_touch(&sim->boundary, &sim->grid, reach, sim->particles.x, sim->particles.vol0, sim->particles.n);
+  if (sim->boundary.walls && (rc = mrn_walls_touch(sim->boundary.walls, &sim->grid, sim->time + 0.5 * dt, reach,
+                                                   sim->particles.x, sim->particles.vol0, sim->particles.n)))
     return rc;
   mrn_transfer tr = mrn_sim_transfer(sim);
+  if (sim->shape == MRN_SHAPE_CPDI) tr.domain = sim->domain;
   if (sim->contact && sim->contact->npairs) {
     rc = mrn_contact_step(sim, &tr, dt);
     end.pass = NULL; /* the contact step's G2P has no end-of-step stage */

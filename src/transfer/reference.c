@@ -13,6 +13,7 @@
 
 #include "core/tensor.h"
 #include "transfer/affine_fit.h"
+#include "transfer/cpdi.h"
 #include "transfer/wls.h"
 
 /* ---- the stencil -------------------------------------------------------------- */
@@ -81,6 +82,10 @@ static int axis_stencil(const mrn_transfer *t, int d, double x, double lp, int *
  * kernel was cut (002, Eqs. 58, 61) and of the gradients (002, Eq. 62) there
  * or, with the MLS gradient, everywhere (002 Remark 4). */
 void mrn_ref_stencil_build(const mrn_transfer *t, size_t p, mrn_ref_stencil *s) {
+  if (t->kernel.shape == MRN_SHAPE_CPDI) { /* the domain's corners (cpdi.h) */
+    mrn_cpdi_stencil(t, p, s);
+    return;
+  }
   const mrn_kernel_options *k = &t->kernel;
   const mrn_grid *g = t->grid;
   const int dim = t->dim, sup = mrn_shape_support(k->shape);

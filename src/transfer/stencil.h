@@ -76,7 +76,7 @@ static inline void KNAME(stencil_build)(const mrn_grid *g, const mrn_kernel_opti
   for (int d = 0; d < DIM; d++) {
     double xi = (x[d] - g->origin[d]) * g->inv_cell;
     base[d] = mrn_shape_weights_1d(opt->shape, xi, lp, w[d], dw[d]);
-    if (opt->shape == MRN_SHAPE_LINEAR && base[d] == g->ncell[d]) {
+    if (sup == 2 && base[d] == g->ncell[d]) { /* linear, or CPDI's grid basis at a point */
       /* a particle exactly on the upper face belongs to the last cell, not to
        * one beyond the domain (same values, gradient from inside) */
       base[d] = g->ncell[d] - 1;
