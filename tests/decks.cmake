@@ -22,6 +22,11 @@ moraine_deck_test(inflow inflow.lua)
 moraine_deck_test(mass_scaling mass_scaling.lua)
 # particle splitting: a bar pulled to 3x stays continuous (standard MPM leaves empty cells), a checkpoint bit for bit
 moraine_deck_test(split_tension_bar split_tension_bar.lua)
+# CPDI: the tension bar pulled to 3x stays whole with PIC, FLIP and APIC (standard MPM fractures); the bouncing
+# cube's energy with CPDI (through the impact here, the whole 1.9 s under `long`)
+moraine_deck_test(cpdi_tension_bar cpdi.lua ARGS --set part=bar)
+moraine_deck_test(cpdi_bouncing_cube_short cpdi.lua ARGS --set part=cube --set time=0.6)
+moraine_deck_test(cpdi_bouncing_cube cpdi.lua ARGS --set part=cube LABELS long)
 # point forces (sim:point_force, load_factor, clear_forces): momentum, energy, traction, checkpoint
 moraine_deck_test(point_force point_force.lua)
 # every setter (found in the method table) refuses NaN, inf and out-of-range values as its constructor key does

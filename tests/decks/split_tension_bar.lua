@@ -1,8 +1,6 @@
--- A large-deformation tension bar: a soft elastic (neo-Hookean) bar 1 m
--- long is pulled to 3 times its length by two heavy grips moving apart at
--- 0.5 m/s; it starts with the matching linear velocity profile, and its
--- stress (E = 10 Pa) stays small against its inertia (rho V^2 = 250 Pa), so
--- the exact motion is the uniform stretch. With 2 x 2 particles per cell
+-- A large-deformation tension bar (tension_bar.lua): a soft elastic bar
+-- pulled to 3 times its length, whose exact motion is the uniform
+-- stretch. With 2 x 2 particles per cell
 -- the particles of standard MPM end 1.5 cells apart along the bar: cells
 -- inside the bar are left with no particle, and the bar separates
 -- numerically. With particle splitting (simulation{split}, doc/numerics.md
@@ -17,66 +15,19 @@
 -- apart only by the grid's velocity).
 local T = dofile(mpm.deck_dir .. "/testlib.lua")
 
-local CELL, L0, H, V_END = 0.025, 1.0, 0.1, 0.5
-local T_END = (3 - 1) * L0 / (2 * V_END) -- the grips 3 L0 apart (inner faces)
-local bar = mpm.material.neo_hookean{ density = 1000, E = 10, nu = 0.3, name = "bar" }
-local grip = mpm.material.neo_hookean{ density = 1e9, E = 10, nu = 0.3, name = "grip" }
+local B = dofile(mpm.deck_dir .. "/tension_bar.lua")
+local L0 = B.L0
 
-local function build(split, scheme, name)
-  local sim = mpm.simulation{
-    dim = 2, grid = { origin = { -2, 0 }, size = { 4, 0.25 }, cell = CELL },
-    scheme = scheme, dt = { fixed = 2.5e-3 }, split = split, thermo = 0, diagnostics = false, series = false,
-    name = name or (split and "split_" or "standard_") .. scheme,
-  }
-  local function velocity(x) return V_END * math.max(-1, math.min(1, x / (0.5 * L0))), 0 end
-  sim:add_particles(mpm.box{ min = { -0.5 * L0, 0.075 }, max = { 0.5 * L0, 0.075 + H } },
-                    { material = bar, per_axis = 2, velocity = velocity })
-  local nbar = sim:particle_count()
-  sim:add_particles(mpm.box{ min = { -0.5 * L0 - 0.1, 0.075 }, max = { -0.5 * L0, 0.075 + H } },
-                    { material = grip, per_axis = 2, velocity = { -V_END, 0 } })
-  sim:add_particles(mpm.box{ min = { 0.5 * L0, 0.075 }, max = { 0.5 * L0 + 0.1, 0.075 + H } },
-                    { material = grip, per_axis = 2, velocity = { V_END, 0 } })
-  return sim, nbar
-end
+local function build(split, scheme, name) return B.build{ split = split, scheme = scheme, name = name } end
 
 local function run(split, scheme)
   local sim, nbar = build(split, scheme)
   local mass0 = sim:diagnostics().mass
-  sim:run{ time = T_END }
+  sim:run{ time = B.T_END }
   return sim, nbar, mass0
 end
 
--- the cells of the bar's two middle rows between the grips' inner faces
--- that hold no particle, and the bar's length and mean axial stress
-local function inspect(sim)
-  local lo, hi, n = math.huge, -math.huge, sim:particle_count()
-  local cells, sxx, vol = {}, 0, 0
-  for i = 1, n do
-    local p = sim:particle(i)
-    if p.material == 2 then
-      if p.x[1] < 0 then lo = math.min(lo, p.x[1]) else hi = math.max(hi, p.x[1]) end
-    end
-  end
-  local grip_lo, grip_hi = -math.huge, math.huge
-  for i = 1, n do
-    local p = sim:particle(i)
-    if p.material == 2 then
-      if p.x[1] < 0 then grip_lo = math.max(grip_lo, p.x[1]) else grip_hi = math.min(grip_hi, p.x[1]) end
-    else
-      local cx, cy = math.floor((p.x[1] + 2) / CELL), math.floor(p.x[2] / CELL)
-      cells[cx * 1000 + cy] = true
-      sxx, vol = sxx + p.stress[1] * p.volume, vol + p.volume
-    end
-  end
-  local empty = 0
-  local first, last = math.floor((grip_lo + 2) / CELL) + 2, math.floor((grip_hi + 2) / CELL) - 2
-  for cx = first, last do
-    for _, cy in ipairs{ 4, 5 } do -- y in [0.1, 0.15]: the middle of the bar (0.075 to 0.175 at the start)
-      if not cells[cx * 1000 + cy] then empty = empty + 1 end
-    end
-  end
-  return { empty = empty, length = grip_hi - grip_lo, stress = sxx / vol, particles = n, span = hi - lo }
-end
+local inspect = B.inspect
 
 local results = {}
 local SPLIT = { stretch = 1.3, max_level = 4 }
