@@ -21,7 +21,7 @@ set(MORAINE_PUBLIC_HEADERS
   core/error.h core/interrupt.h core/log.h core/parallel.h core/spec.h core/tensor.h core/warn.h
   shape/shape.h
   grid/active.h grid/boundary.h grid/constraint.h grid/grid.h
-  particles/particles.h particles/region.h particles/seed.h
+  particles/particles.h particles/region.h particles/seed.h particles/domain.h
   transfer/blocks.h transfer/context.h transfer/scheme.h
   material/material.h
   solver/contact.h solver/diagnostics.h solver/run.h solver/sim_scalars.h solver/simulation.h solver/source.h
