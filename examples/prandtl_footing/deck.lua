@@ -25,8 +25,9 @@
 --   python3 examples/prandtl_footing/plot.py out/prandtl out/prandtl/load_settlement.png
 --
 -- Parameters: k (5), travel (1e-3 m), rough (false), material (von_mises),
--- boundary (wls), tag (footing: the names of the files written), vtk (true),
--- quick (false: k = 3, 0.4 mm, no VTK). Returns a table of the results.
+-- boundary (wls), nu (0.333), tag (footing: the names of the files
+-- written), vtk (true), quick (false: k = 3, 0.4 mm, no VTK). Returns a
+-- table of the results.
 local quick = mpm.param("quick", false)
 local k = math.tointeger(mpm.param("k", quick and 3 or 5))
 local travel = tonumber(mpm.param("travel", quick and 4e-4 or 1e-3))
@@ -34,7 +35,7 @@ local rough = mpm.param("rough", false)
 local material = mpm.param("material", "von_mises")
 local tag = mpm.param("tag", "footing")
 local vtk = mpm.param("vtk", not quick)
-local E, nu, rho, c = 1e9, 0.333, 1000, 10e3
+local E, nu, rho, c = 1e9, tonumber(mpm.param("nu", 0.333)), 1000, 10e3
 local B, L = 1.0, 5.0
 local h = B / (2 * k + 1)
 local V, ramp = 4e-3, 0.02
@@ -115,7 +116,7 @@ local r = { k = k, h = h, B = B, c = c, qu = qu, travel = travel, curve = curve,
 print(string.format("footing %s %s, h = B/%d (%d particles, %d steps): q/q_u = %.4f at s/B = %.1e, %.4f at %.1e",
                     rough and "rough" or "smooth", material, 2 * k + 1, r.particles, r.steps, r.q_04 / qu,
                     math.min(4e-4, travel) / B, r.q_end / qu, travel / B))
-print(string.format("  reaction %.1f N/m (mean of ten steps), sigma_yy across the width at depth B %.1f N/m; E_k %.3g J/m = %.2g of the"
-                    .. " plastic work %.3g J/m (at most %.2g over the second half)", r.force, r.section, e.kinetic,
-                    e.kinetic / -e.plastic, -e.plastic, ek_ratio))
+print(string.format("  reaction %.1f N/m (mean of ten steps), sigma_yy across the width at depth B %.1f N/m;"
+                    .. " E_k %.3g J/m = %.2g of the plastic work %.3g J/m (at most %.2g over the second half)",
+                    r.force, r.section, e.kinetic, e.kinetic / -e.plastic, -e.plastic, ek_ratio))
 return r
