@@ -28,3 +28,10 @@ if(COMMAND moraine_deck_test)
   moraine_deck_test(inclined_plane inclined_plane.lua LABELS physics)
   moraine_deck_test(inclined_plane_full inclined_plane.lua ARGS --set full=true LABELS "physics;slow;long")
 endif()
+
+# a strip footing pushed through a wall of prescribed motion: Prandtl's (2 + pi) c within 5 %, the reaction
+# against the integrated stress; the full run refines to h = B/21 and adds a rough footing and Mohr-Coulomb
+if(COMMAND moraine_deck_test)
+  moraine_deck_test(prandtl_footing prandtl_footing.lua LABELS physics)
+  moraine_deck_test(prandtl_footing_full prandtl_footing.lua ARGS --set full=true LABELS "physics;slow;long")
+endif()

@@ -134,6 +134,19 @@ def strip_footing(case, run, records, runs, path):
     finish(fig, ax, path, "Strip footing (002 §5.2): load-settlement", "settlement (mm)", "q / q_u")
 
 
+def prandtl_footing(case, run, records, runs, path):
+    fig, ax = plt.subplots(figsize=(7, 4.5))
+    for tag, label in (("smooth_k3", "smooth, h = B/7"), ("smooth_k5", "smooth, h = B/11"),
+                       ("smooth_k10", "smooth, h = B/21"), ("rough_k5", "rough, h = B/11"),
+                       ("rough_k10", "rough, h = B/21"), ("mc_k5", "Mohr-Coulomb phi = 0, h = B/11")):
+        f = os.path.join(run, tag + ".csv")
+        if os.path.isfile(f):
+            c = read_csv(f)
+            ax.plot(c["settlement_over_B"][:-1], c["q_over_c"][:-1], label=label)
+    ax.axhline(2 + np.pi, color="k", ls="--", lw=1, label="Prandtl 2 + pi")
+    finish(fig, ax, path, "Strip footing through a wall: load-settlement", "settlement / B", "q / c")
+
+
 def channel_convergence(case, run, records, runs, path):
     fig, ax = plt.subplots(figsize=(6, 4.5))
     by_transfer = {}
@@ -219,7 +232,7 @@ def collapse_picture(run, path, ratio="2.4"):
 
 PLOTTERS = {f.__name__: f for f in (settling_energy, axial_bar, bouncing_cube_energy, bouncing_cube_updates,
                                     rotating_cube_L, rotating_cube_scaling, pic_wmpm_collapse, strip_footing,
-                                    channel_convergence, dam_break, sand_column, lube)}
+                                    prandtl_footing, channel_convergence, dam_break, sand_column, lube)}
 
 
 def draw(name, case, out, records, runs, figures):
