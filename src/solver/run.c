@@ -1,4 +1,5 @@
 #include "solver/run.h"
+#include "solver/dist.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -245,7 +246,7 @@ static int end_of_step(mrn_sim *sim, mrn_run_options *opt, run_clock *clk) {
   if (rc == MRN_OK && mrn_interrupt_pending()) rc = MRN_ERR_INTERRUPTED;
   /* the run log is an output like the others: a run that cannot write it stops */
   if (rc == MRN_OK && mrn_log_failed()) rc = mrn_error_code(MRN_ERR_IO, "%s", mrn_log_failure());
-  return rc;
+  return mrn_dist_agree(sim, rc); /* a signal or a hook's error on one process stops all */
 }
 
 /* the every_time hooks' schedule from the run's start; a resumed run past
@@ -264,6 +265,8 @@ static void schedule_hooks(const mrn_sim *sim, mrn_run_options *opt, double t_st
 /* Before the first step: the hooks' schedule, what the step needs set up,
  * and the reports of the starting state. 0, or what ended the run. */
 static int start_run(mrn_sim *sim, mrn_run_options *opt, run_clock *clk) {
+  int rc = mrn_dist_start(sim); /* each process keeps its own particles from here on */
+  if (rc != MRN_OK) return rc;
   schedule_hooks(sim, opt, clk->t_start);
   opt->cut_short = 0;
   /* the affine matrices belong to the explicit transfers */
@@ -275,7 +278,7 @@ static int start_run(mrn_sim *sim, mrn_run_options *opt, run_clock *clk) {
   /* a resumed run's state was reached before the stop, which may have cut
    * its reports short: the observers get it again as a step (each writes
    * only what it lacks); the hooks too when the stop came inside them */
-  int rc = !opt->resume       ? after_step(sim, opt, 1, clk)
+  rc = !opt->resume           ? after_step(sim, opt, 1, clk)
            : opt->resume_hooks ? after_step(sim, opt, 0, clk)
                                : report_snapshots(sim, opt);
   if (rc == MRN_OK && opt->resume && !opt->resume_hooks) rc = report_rows(sim, opt, MRN_RUN_STEP, clk);
