@@ -103,6 +103,8 @@ static int keep_own(mrn_sim *sim, size_t first) {
 
 int mrn_dist_start(mrn_sim *sim) {
   if (sim->dist || mrn_comm_size() < 2) return MRN_OK;
+  /* what is refused is refused by every process alike: process 0 says it */
+  mrn_comm_set_shared_error(1);
   int rc = refuse(sim);
   if (rc) return rc;
   const int axis = sim->dim - 1, nc = sim->grid.ncell[axis];
@@ -115,6 +117,7 @@ int mrn_dist_start(mrn_sim *sim) {
     mrn_dist_free(d);
     return mrn_error("parallel: out of memory");
   }
+  mrn_comm_set_shared_error(0);
   d->rank = mrn_comm_rank();
   d->size = mrn_comm_size();
   d->axis = axis;
@@ -141,7 +144,7 @@ void mrn_dist_reduce(const mrn_sim *sim, double *v, int n, mrn_comm_op op) {
 
 int mrn_dist_agree(const mrn_sim *sim, int rc) {
   if (!sim->dist) return rc;
-  const int failed = rc > 0;
+  const int failed = rc != MRN_OK; /* an error, or a stop asked for */
   long first = failed ? sim->dist->rank : sim->dist->size;
   mrn_comm_allreduce_long(&first, 1, MRN_COMM_MIN);
   if (first == sim->dist->size) return rc;

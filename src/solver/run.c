@@ -212,9 +212,12 @@ static int report_rows(mrn_sim *sim, mrn_run_options *opt, mrn_run_moment when, 
 
 /* hooks, observers and thermo for the state just reached; returns 0, MRN_STOP or an error */
 static int after_step(mrn_sim *sim, mrn_run_options *opt, int first, run_clock *clk) {
-  int rc;
-  for (int i = 0; i < opt->nhooks; i++)
-    if (due_hook(&opt->hooks[i], sim) && (rc = opt->hooks[i].fn(opt->hooks[i].ctx, sim)) != 0) return rc;
+  int rc = MRN_OK;
+  for (int i = 0; i < opt->nhooks && rc == MRN_OK; i++)
+    if (due_hook(&opt->hooks[i], sim)) rc = opt->hooks[i].fn(opt->hooks[i].ctx, sim);
+  /* a hook that failed or stopped on one process stops all before the
+   * snapshots and rows, which every process takes part in */
+  if ((rc = mrn_dist_agree(sim, rc)) != MRN_OK) return rc;
   if ((rc = report_snapshots(sim, opt)) != MRN_OK) return rc;
   if ((rc = report_rows(sim, opt, first ? MRN_RUN_START : MRN_RUN_STEP, clk)) != MRN_OK) return rc;
   if (!first && opt->stop_when && (rc = opt->stop_when(opt->stop_ctx, sim)) != 0) return rc;
@@ -238,7 +241,7 @@ static int take_step(mrn_sim *sim, const mrn_run_options *opt, double t_end) {
 
 /* the first error a step's end finds: the watchdog, the hooks, a signal, the log */
 static int end_of_step(mrn_sim *sim, mrn_run_options *opt, run_clock *clk) {
-  int rc = mrn_watchdog_check(&sim->watch, sim, sim->step == clk->step_start + 1);
+  int rc = mrn_dist_agree(sim, mrn_watchdog_check(&sim->watch, sim, sim->step == clk->step_start + 1));
   if (rc == MRN_OK) {
     rc = after_step(sim, opt, 0, clk);
     if (rc != MRN_OK && rc != MRN_STOP) opt->cut_short = 1;

@@ -4,7 +4,8 @@
 -- APIC/USL elastic cube, spinning, dropped on a slip floor with viscous
 -- damping.
 -- Writes the diagnostics every step (NAME.csv) and the final state
--- (NAME.h5, sim:save: every particle, in the order of their ids).
+-- (NAME.h5, sim:save: every particle, in the order of their ids); the 2D
+-- case also a VTK series every 250 steps (NAME.pvd), for ParaView's reader.
 -- --set rebalance=N re-cuts the slabs every N steps; --set load=FILE
 -- continues from a checkpoint of either case instead (tests/parallel/restart.py).
 local case = mpm.param("case", "collapse2d")
@@ -20,7 +21,8 @@ elseif case == "collapse2d" then
   sim = mpm.simulation{ dim = 2, grid = { size = { 3.0, 1.0 }, cell = 0.025 }, shape = "quadratic_bspline",
     scheme = { transfer = "FLIP", stress_update = "USF" }, gravity = { 0, -9.81 },
     boundary = { left = "slip", right = "slip", bottom = { "friction", mu = 0.3 }, top = "free" },
-    dt = { cfl = 0.5 }, thermo = 0, diagnostics = name .. ".csv", diagnostics_every = 1 }
+    dt = { cfl = 0.5 }, thermo = 0, diagnostics = name .. ".csv", diagnostics_every = 1,
+    output = { vtk = name, every_steps = 250, fields = { "velocity", "stress", "id" } } }
   sim:add_particles(mpm.box{ min = { 0, 0 }, max = { 0.5, 0.8 } }, { material = sand, per_axis = 2 })
 elseif case == "cube3d" then
   local rubber = mpm.material.linear_elastic{ density = 1000, E = 1e6, nu = 0.3 }
