@@ -640,6 +640,8 @@ static int import_data(mrn_sim *sim, const ck_data *d, mrn_material *override, c
   size_t first = ps->n;
   for (int64_t q = 0; q < d->n; q++) import_one(sim, d, &plan, offset, first + (size_t)q, q);
   ps->n = first + (size_t)d->n;
+  /* a simulation already spread keeps this process's share */
+  if (sim->dist && mrn_dist_adopt(sim, first) != MRN_OK) return MRN_ERR;
   mrn_sim_particles_changed(sim);
   if (count) *count = (long)d->n;
   return MRN_OK;

@@ -17,7 +17,6 @@ static int refuse(const mrn_sim *sim) {
   const char *what = NULL;
   const int axis = sim->dim - 1;
   if (sim->integrator.step) what = "the implicit integrator (simulation{integrator})";
-  else if (sim->scheme.velocity_update == MRN_VUPDATE_XPIC) what = "XPIC (scheme)";
   else if (sim->contact && sim->contact->npairs) what = "contact between bodies (sim:add_contact)";
   else if (sim->boundary.walls) what = "walls and rigid bodies (sim:add_wall)";
   else if (sim->nsources) what = "inflow sources (sim:add_source)";
@@ -83,12 +82,8 @@ static int cut_by_count(mrn_sim *sim, mrn_dist *d, int replicated) {
   return MRN_OK;
 }
 
-static int keep_own(mrn_sim *sim, size_t first);
-
 /* keep only the particles [first, n) this process owns (those before stay) */
-int mrn_dist_adopt(mrn_sim *sim, size_t first) { return keep_own(sim, first); }
-
-static int keep_own(mrn_sim *sim, size_t first) {
+int mrn_dist_adopt(mrn_sim *sim, size_t first) {
   mrn_particles *ps = &sim->particles;
   const mrn_dist *d = sim->dist;
   unsigned char *keep = malloc(ps->n + 1);
@@ -122,7 +117,7 @@ int mrn_dist_start(mrn_sim *sim) {
   d->size = mrn_comm_size();
   d->axis = axis;
   sim->dist = d;
-  if ((rc = cut_by_count(sim, d, 1)) || (rc = keep_own(sim, 0))) return rc;
+  if ((rc = cut_by_count(sim, d, 1)) || (rc = mrn_dist_adopt(sim, 0))) return rc;
   /* the books of work done so far are process 0's; the others start at 0 */
   if (d->rank != 0) {
     sim->work_friction = sim->work_damping = sim->energy_outflow = sim->outflow_mass = 0.0;
@@ -196,15 +191,22 @@ static const double *add(const double *m, double *a, const band *b, int nc) {
   return m + nc * b->nodes;
 }
 
+/* a nodal array and its values per node */
+typedef struct nodal {
+  double *a;
+  int nc;
+} nodal;
+
 /* Sum the band around cut c with process `peer`: the message holds the
- * spans of its rows, then the arrays named in `what`. A node the peer's
- * span covers and this one's did not held zero here, so the span widens
- * to it before the sum. */
-static int exchange_band(mrn_sim *sim, int peer, int c, unsigned what) {
+ * spans of its rows, then the arrays. A node the peer's span covers and
+ * this one's did not held zero here, so the span widens to it before the
+ * sum. */
+static int exchange_band(mrn_sim *sim, int peer, int c, const nodal *arr, int narr) {
   mrn_grid *g = &sim->grid;
   mrn_dist *d = sim->dist;
   const band b = band_at(g, c);
-  const int nd = (what & MRN_CLEAR_MASS_MOM ? 4 : 0) + (what & MRN_CLEAR_FORCE ? 3 : 0);
+  int nd = 0;
+  for (int k = 0; k < narr; k++) nd += arr[k].nc;
   const size_t bytes = b.nrows * 2 * sizeof(int) + (size_t)nd * (size_t)b.nodes * sizeof(double);
   unsigned char *out = buffer(d, 2 * bytes), *in = out + bytes;
   if (!out) return mrn_error("parallel: out of memory for the halo exchange");
@@ -215,16 +217,14 @@ static int exchange_band(mrn_sim *sim, int peer, int c, unsigned what) {
     span[2 * r + 1] = a->hi[b.row0 + r];
   }
   double *m = (double *)(out + b.nrows * 2 * sizeof(int));
-  if (what & MRN_CLEAR_MASS_MOM) m = put(put(m, g->mass, &b, 1), g->mom, &b, 3);
-  if (what & MRN_CLEAR_FORCE) put(m, g->force, &b, 3);
+  for (int k = 0; k < narr; k++) m = put(m, arr[k].a, &b, arr[k].nc);
   mrn_comm_exchange(peer, out, bytes, in, bytes);
   d->halo_bytes += (double)bytes;
   const int *theirs = (const int *)in;
   for (size_t r = 0; r < b.nrows; r++) mrn_grid_active_widen(g, b.row0 + r, theirs[2 * r], theirs[2 * r + 1]);
   mrn_grid_active_refresh(g);
   const double *q = (const double *)(in + b.nrows * 2 * sizeof(int));
-  if (what & MRN_CLEAR_MASS_MOM) q = add(add(q, g->mass, &b, 1), g->mom, &b, 3);
-  if (what & MRN_CLEAR_FORCE) add(q, g->force, &b, 3);
+  for (int k = 0; k < narr; k++) q = add(q, arr[k].a, &b, arr[k].nc);
   return MRN_OK;
 }
 
@@ -246,12 +246,31 @@ static int neighbours(const mrn_dist *d, int peer[2], int cut[2]) {
   return n;
 }
 
+static int sum_arrays(mrn_sim *sim, const nodal *arr, int narr) {
+  int peer[2], cut[2], rc = MRN_OK;
+  const int n = neighbours(sim->dist, peer, cut);
+  for (int k = 0; k < n && rc == MRN_OK; k++) rc = exchange_band(sim, peer[k], cut[k], arr, narr);
+  return rc;
+}
+
 int mrn_dist_sum_halo(mrn_sim *sim, unsigned what, int rc) {
   if (!sim->dist || (rc = mrn_dist_agree(sim, rc)) != MRN_OK) return rc;
-  int peer[2], cut[2];
-  const int n = neighbours(sim->dist, peer, cut);
-  for (int k = 0; k < n && rc == MRN_OK; k++) rc = exchange_band(sim, peer[k], cut[k], what);
-  return mrn_dist_agree(sim, rc);
+  mrn_grid *g = &sim->grid;
+  nodal arr[3];
+  int narr = 0;
+  if (what & MRN_CLEAR_MASS_MOM) {
+    arr[narr++] = (nodal){g->mass, 1};
+    arr[narr++] = (nodal){g->mom, 3};
+  }
+  if (what & MRN_CLEAR_FORCE) arr[narr++] = (nodal){g->force, 3};
+  return mrn_dist_agree(sim, sum_arrays(sim, arr, narr));
+}
+
+void mrn_dist_sum_nodal(void *ctx, double *values, int ncomp) {
+  mrn_sim *sim = ctx;
+  if (!sim->dist) return;
+  const nodal arr = {values, ncomp};
+  (void)mrn_dist_agree(sim, sum_arrays(sim, &arr, 1));
 }
 
 void mrn_dist_touch(mrn_sim *sim) {
@@ -350,10 +369,11 @@ static int move_particles(mrn_sim *sim) {
     mrn_comm_alltoallv(out, m.cnt, m.sdispl, in, m.rcnt, m.rdispl);
     d->migrate_bytes += (double)m.sent;
     d->migrated += (long)(m.sent / m.rec);
-    mrn_particles_compact(ps, m.keep);
+    if (m.sent > 0) mrn_particles_compact(ps, m.keep);
     for (size_t at = 0; at < m.got && rc == MRN_OK; at += m.rec)
       if (mrn_particles_unpack(ps, in + at) < 0) rc = MRN_ERR;
-    if (sim->blocks) mrn_blocks_forget(sim->blocks);
+    /* a step without arrivals or departures keeps the binning's incremental update */
+    if (sim->blocks && (m.sent > 0 || m.got > 0)) mrn_blocks_forget(sim->blocks);
   }
   free(m.cnt);
   free(m.dest);
@@ -567,4 +587,11 @@ int mrn_sim_set_rebalance(mrn_sim *sim, long every, double imbalance) {
   sim->rebalance_every = every;
   sim->rebalance_imbalance = imbalance;
   return MRN_OK;
+}
+
+int mrn_dist_refuse_late_affine(const mrn_sim *sim) {
+  mrn_comm_set_shared_error(1); /* every process holds the same settings */
+  return mrn_error("parallel: the initial affine field of particles given velocities after the first step (scheme "
+                   "%s) is found on one process only; give the velocities before the first run (doc/parallel.md)",
+                   sim->scheme.name);
 }

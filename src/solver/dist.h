@@ -79,12 +79,20 @@ int mrn_dist_agree(const struct mrn_sim *sim, int rc);
 /* after a P2G into `what` (MRN_CLEAR_MASS_MOM, MRN_CLEAR_FORCE), given the
  * outcome so far: agree, then sum the bands with the neighbours */
 int mrn_dist_sum_halo(struct mrn_sim *sim, unsigned what, int rc);
+/* the same for one nodal array of ncomp values per node that a transfer
+ * scattered into (mrn_transfer.sum_nodal: XPIC's smoothing passes); ctx
+ * is the simulation */
+void mrn_dist_sum_nodal(void *ctx, double *values, int ncomp);
 /* the friction faces' touch bits, OR-ed over the bands */
 void mrn_dist_touch(struct mrn_sim *sim);
 /* after the step: agree on rc, re-cut if due, send the particles that left */
 int mrn_dist_migrate(struct mrn_sim *sim, int rc);
 /* re-cut the grid by particle count now and move the particles */
 int mrn_dist_rebalance(struct mrn_sim *sim);
+
+/* the error for particles given velocities (APIC's, TPIC's initial affine
+ * field) after the run was spread over the processes */
+int mrn_dist_refuse_late_affine(const struct mrn_sim *sim);
 
 /* the re-cut policy: every `every` steps (0: never) when the largest
  * particle count exceeds the mean by `imbalance` (>= 1); 0 or an error */

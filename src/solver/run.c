@@ -268,13 +268,16 @@ static void schedule_hooks(const mrn_sim *sim, mrn_run_options *opt, double t_st
 /* Before the first step: the hooks' schedule, what the step needs set up,
  * and the reports of the starting state. 0, or what ended the run. */
 static int start_run(mrn_sim *sim, mrn_run_options *opt, run_clock *clk) {
+  /* the affine matrices belong to the explicit transfers; found while every
+   * process still holds every particle, as on one (solver/dist.h) */
+  if (!sim->integrator.step && sim->affine_pending && sim->scheme.grid_velocity != MRN_VGRID_PLAIN) {
+    if (sim->dist) return mrn_dist_refuse_late_affine(sim);
+    mrn_sim_init_affine(sim);
+  }
   int rc = mrn_dist_start(sim); /* each process keeps its own particles from here on */
   if (rc != MRN_OK) return rc;
   schedule_hooks(sim, opt, clk->t_start);
   opt->cut_short = 0;
-  /* the affine matrices belong to the explicit transfers */
-  if (!sim->integrator.step && sim->affine_pending && sim->scheme.grid_velocity != MRN_VGRID_PLAIN)
-    mrn_sim_init_affine(sim);
   if (!sim->energy_ref_set) mrn_sim_energy_balance_start(sim);
   mrn_watchdog_start(&sim->watch, sim);
   if (thermo_on(opt)) thermo_header(opt);

@@ -74,7 +74,9 @@ mrn_transfer mrn_sim_transfer(mrn_sim *sim) {
                      .kernel = mrn_sim_kernel_options(sim),
                      .mass_floor = sim->mass_floor,
                      .blocks = sim->blocks,
-                     .sort_now = sort_due(sim)};
+                     .sort_now = sort_due(sim),
+                     .sum_nodal = sim->dist ? mrn_dist_sum_nodal : NULL,
+                     .sum_ctx = sim};
   return tr;
 }
 

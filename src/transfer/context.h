@@ -27,6 +27,11 @@ typedef struct mrn_transfer {
   double mass_floor;            /* nodes lighter than this are treated as empty (kg) */
   mrn_blocks *blocks;           /* the particles binned by block (transfer/blocks.h), kept between steps */
   int sort_now;                 /* reorder the particles by block at the next binning; cleared once done */
+  /* after a scatter into a nodal array of ncomp values per node (XPIC's
+   * passes), its owner may complete the sums: a distributed run adds its
+   * neighbours' part (solver/dist.h). NULL: nothing to add */
+  void (*sum_nodal)(void *ctx, double *values, int ncomp);
+  void *sum_ctx;
 } mrn_transfer;
 
 #endif

@@ -5,6 +5,8 @@
 --   case=lua_error   a hook raises an error on the last process only, at step 20
 --   case=leave       the same block's second step carries it out of the grid: every
 --                    process stops with the diagnosis and one checkpoint is written
+--   case=outflow     as leave with on_leave = "delete": the block is deleted on the
+--                    process that holds it, and every process books its energy as outflow
 --   case=small_grid  8 cells along y for 3 processes (4 each at least)
 --   case=sigint      a long run that the driver interrupts (SIGINT to mpirun)
 local case = mpm.param("case", "crossing")
@@ -13,19 +15,29 @@ local function check(ok, fmt, ...)
   if not ok then error(string.format(fmt, ...), 2) end
 end
 
-if case == "crossing" or case == "leave" then
+if case == "crossing" or case == "leave" or case == "outflow" then
   -- 12 cells of 0.1 m along y on 3 processes: slabs of 4 cells; no gravity, no
   -- stress (a rigid translation), one step of 0.01 s at 100 m/s carries the
   -- block 1 m = 10 cells up, from process 0's slab over process 1's into 2's
   -- (ten cells a step: the watchdog, which would stop that, is off)
   local sim = mpm.simulation{ dim = 2, grid = { size = { 0.4, 1.2 }, cell = 0.1 }, gravity = { 0, 0 },
     scheme = { transfer = "PIC", stress_update = "USL" }, dt = { fixed = 0.01 }, thermo = 0, watchdog = false,
-    boundary = { all = "free" }, diagnostics = "crossing.csv", diagnostics_every = 1, name = case }
+    boundary = { all = "free" }, diagnostics = "crossing.csv", diagnostics_every = 1, name = case,
+    on_leave = case == "outflow" and "delete" or "stop" }
   sim:add_particles(mpm.box{ min = { 0.1, 0.05 }, max = { 0.3, 0.15 } },
                     { material = steel, per_axis = 2, velocity = { 0, 100 } })
   local d0 = sim:diagnostics()
-  sim:run{ steps = case == "leave" and 2 or 1 }
+  sim:run{ steps = case == "crossing" and 1 or 2 }
   local d, par = sim:diagnostics(), sim:parallel()
+  if case == "outflow" then
+    check(d.particles == 0, "%d particles left after the block went out", d.particles)
+    check(math.abs(d.E_outflow - d0.E_kinetic) <= 1e-12 * d0.E_kinetic, "E_outflow %.17g, the block had E_k %.17g",
+          d.E_outflow, d0.E_kinetic)
+    check(math.abs(d.W_MPM) <= 1e-9 * d0.E_kinetic, "W_MPM %.3g after the outflow", d.W_MPM)
+    print(string.format("outflow: the block's %.6g J/m left as E_outflow %.6g J/m on %d processes", d0.E_kinetic,
+                        d.E_outflow, par.size))
+    return
+  end
   print(string.format("process %d of %d holds %d particles; cuts %s", par.rank, par.size, par.particles,
                       table.concat(par.cuts or {}, " ")))
   check(d.particles == d0.particles, "particles %d after the step, %d before", d.particles, d0.particles)

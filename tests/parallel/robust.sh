@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # moraine: distributed runs that go wrong, or nearly, on 3 processes
 # (tests/parallel/robust.lua): a block crossing two slabs in one step with
-# two processes empty, a particle leaving the grid, a Lua error on one
+# two processes empty, a particle leaving the grid (stopping the run, or
+# deleted with its energy booked as outflow), a Lua error on one
 # process, a grid too thin for the processes, and SIGINT to mpirun. Each
 # must end (no hang: every run has a time limit) with its message once and,
 # where the state is kept, one checkpoint.
@@ -35,6 +36,11 @@ n=$(grep -c "left the grid" "$out/leave.out")
 [ -s "$out/leave/leave_failed.h5" ] || bad "leave: no checkpoint leave_failed.h5"
 say "leave: exit $s; $(grep -o 'particle [0-9]* left the grid[^;]*' "$out/leave.out" | head -1)"
 
+# outflow: deleted where it is, booked by every process, summed once
+run3 outflow; s=$?
+[ $s -eq 0 ] || { bad "outflow exited $s"; cat "$out/outflow.out"; }
+say "outflow: exit $s; $(grep -o 'outflow: .*' "$out/outflow.out")"
+
 # lua_error: the last process's hook fails; all stop with its message once, and the state is kept
 run3 lua_error; s=$?
 [ $s -ne 0 ] || bad "lua_error exited 0"
@@ -66,5 +72,5 @@ n=$(grep -c "interrupted by signal" "$out/sigint.out")
 [ -z "$(find "$out" -name '.*.tmp.*')" ] || bad "temporary files left"
 say "sigint: exit $s; $(grep -o 'interrupted by signal [0-9]* after step [0-9]*' "$out/sigint.out")"
 
-if [ $fail -eq 0 ]; then echo "5 passed, 0 failed"; else echo "some failed"; fi
+if [ $fail -eq 0 ]; then echo "6 passed, 0 failed"; else echo "some failed"; fi
 exit $fail
