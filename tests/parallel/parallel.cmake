@@ -15,7 +15,7 @@ add_test(NAME mpi.equivalence_cube3d
 # XPIC(2): each smoothing pass with its own halo sum
 add_test(NAME mpi.equivalence_xpic
          COMMAND ${Python3_EXECUTABLE} ${MORAINE_PAR_DIR}/equivalence.py $<TARGET_FILE:moraine> ${MORAINE_PAR_DECK}
-                 ${MORAINE_TEST_OUT}/mpi_equivalence_xpic collapse2d 500 2 3 --transfer XPIC(2))
+                 ${MORAINE_TEST_OUT}/mpi_equivalence_xpic collapse2d 500 2 3 --transfer XPIC2)
 # the VTK series of the 3-process collapse read by ParaView's reader: every particle once, as on one process
 add_test(NAME mpi.vtk_series
          COMMAND ${Python3_EXECUTABLE} ${MORAINE_PAR_DIR}/check_vtk.py
