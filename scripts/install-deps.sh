@@ -15,6 +15,8 @@ packages=(
   python3-matplotlib gnuplot-nox  # plots (scripts/moraine-plot uses matplotlib, else gnuplot)
   clang libclang-rt-14-dev        # the libFuzzer harnesses (-DMORAINE_FUZZ=ON, tests/fuzz/README.md)
   valgrind                        # the weekly memcheck target (scripts/memcheck.sh)
+  libopenmpi-dev openmpi-bin      # distributed runs under mpirun (doc/parallel.md)
+  python3-mpi4py                  # bench/mpi_pingpong.py: latency and bandwidth between processes
 )
 
 missing=()

@@ -15,7 +15,8 @@ cmake --build build -j "$jobs"
 (cd build && ctest --output-on-failure -j "$jobs")
 
 if [ "$sanitize" = 1 ]; then
-  cmake -S . -B build-asan -DCMAKE_BUILD_TYPE=RelWithDebInfo -DMORAINE_SANITIZE=ON
+  # the sanitised build is also the one-process build without MPI: both builds are tested
+  cmake -S . -B build-asan -DCMAKE_BUILD_TYPE=RelWithDebInfo -DMORAINE_SANITIZE=ON -DMORAINE_MPI=OFF
   cmake --build build-asan -j "$jobs"
   # the suite again, sanitised; tests labelled "long" or "slow" (minute-long physics runs
   # whose code paths the shorter tests cover) are left to the release pass

@@ -18,6 +18,7 @@
 #include <omp.h>
 #endif
 
+#include "core/comm.h"
 #include "core/error.h"
 #include "core/interrupt.h"
 #include "core/log.h"
@@ -442,9 +443,17 @@ int main(int argc, char **argv) {
     return 1;
   }
   memcpy(args, argv, (size_t)argc * sizeof *args);
-  int rc = parse_args(argc, args, &c);
+  int rc = mrn_comm_init(&argc, &argv); /* under mpirun: one of several processes (doc/parallel.md) */
+  if (rc != MRN_OK) {
+    fprintf(stderr, "moraine: %s\n", mrn_error_message());
+    return 1;
+  }
+  rc = parse_args(argc, args, &c);
   if (rc == GO_ON) rc = run(argc, argv, &c);
   free(args);
   free(c.sets);
+  /* an error met by one process alone leaves the others waiting: stop them */
+  if (rc != 0 && rc != MRN_EXIT_INTERRUPTED && mrn_comm_size() > 1 && !mrn_comm_shared_error()) mrn_comm_abort(rc);
+  mrn_comm_finalize();
   return rc;
 }

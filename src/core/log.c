@@ -8,6 +8,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include "core/comm.h"
 #include "core/error.h"
 
 static int quiet_mode = 0;
@@ -51,6 +52,7 @@ static void file_write(const char *text, size_t len) {
 int mrn_log_open(const char *path, int append) {
   mrn_log_close();
   file.failure[0] = '\0';
+  if (!mrn_comm_writes()) return MRN_OK; /* process 0 keeps the run's log */
   /* O_APPEND also when new: each message lands at the end, whatever else wrote there */
   const int flags = O_WRONLY | O_CREAT | O_APPEND | O_NOFOLLOW | O_CLOEXEC | (append ? 0 : O_TRUNC);
   int fd = open(path, flags, 0644);
@@ -135,6 +137,7 @@ void mrn_log_bar_end(int keep) {
 /* ---- messages ------------------------------------------------------------ */
 
 void mrn_log_text(FILE *screen, const char *text, size_t len) {
+  if (!mrn_comm_writes()) return; /* a distributed run speaks through process 0 */
   if (screen) {
     screen_begin();
     fwrite(text, 1, len, screen);
@@ -191,6 +194,9 @@ void mrn_log_error(const char *fmt, ...) {
   va_start(ap, fmt);
   vsnprintf(last_error, sizeof last_error, fmt, ap);
   va_end(ap);
+  /* an error only this process met is its own to say */
+  if (!mrn_comm_writes() && !mrn_comm_shared_error())
+    fprintf(stderr, "moraine (process %d): %s\n", mrn_comm_rank(), last_error);
   mrn_log_printf(stderr, "moraine: %s\n", last_error);
 }
 

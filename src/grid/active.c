@@ -122,6 +122,20 @@ void mrn_grid_active_switch(mrn_grid *g, unsigned clear) {
   spans_to_ranges(a, g);
 }
 
+void mrn_grid_active_widen(mrn_grid *g, size_t row, int x0, int x1) {
+  mrn_grid_active *a = g->active;
+  if (x0 >= x1) return;
+  if (a->lo[row] >= a->hi[row]) {
+    a->lo[row] = x0;
+    a->hi[row] = x1;
+    return;
+  }
+  if (x0 < a->lo[row]) a->lo[row] = x0;
+  if (x1 > a->hi[row]) a->hi[row] = x1;
+}
+
+void mrn_grid_active_refresh(mrn_grid *g) { spans_to_ranges(g->active, g); }
+
 mrn_node_ranges mrn_grid_active_ranges(const mrn_grid *g) {
   const mrn_grid_active *a = g->active;
   mrn_node_ranges r = {(long)a->nranges, a->range_lo, a->range_hi, a->range_sum, a->nodes};

@@ -52,6 +52,12 @@ static inline void mrn_grid_active_reach(mrn_grid_active *a, size_t row, int x0,
  * the arrays named on them. */
 void mrn_grid_active_switch(struct mrn_grid *g, unsigned clear);
 
+/* Widen the span of `row` to cover [x0, x1) as well (an empty interval
+ * changes nothing), for nodes that are zero and about to be added to (a
+ * distributed run's halo sum, solver/dist.h); then refresh the ranges. */
+void mrn_grid_active_widen(struct mrn_grid *g, size_t row, int x0, int x1);
+void mrn_grid_active_refresh(struct mrn_grid *g);
+
 /* Node index ranges [lo[k], hi[k]) outside which every nodal array is zero;
  * `sum` has room for one double per range. */
 typedef struct mrn_node_ranges {

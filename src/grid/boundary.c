@@ -280,8 +280,9 @@ static double apply_friction_face(const mrn_face_bc *f, mrn_grid *g, double mass
     for (int j = lo[1]; j <= hi[1]; j++)
       for (int i = lo[0]; i <= hi[0]; i++) {
         c.first = mrn_grid_index(g, i, j, k);
-        work += mrn_contact_apply(&c, g, mass_floor, vel, f->mu, with_friction, (g->touch[c.first] & bit) != 0,
-                                  g->contact + c.first, bit, NULL);
+        const double w = mrn_contact_apply(&c, g, mass_floor, vel, f->mu, with_friction,
+                                           (g->touch[c.first] & bit) != 0, g->contact + c.first, bit, NULL);
+        if (mrn_grid_owns(g, (long)c.first)) work += w; /* booked once in a distributed run */
       }
   return work;
 }

@@ -45,6 +45,8 @@ int mrn_grid_init(mrn_grid *g, int dim, const double origin[3], const double siz
   g->stride[0] = 1;
   g->stride[1] = g->nnode[0];
   g->stride[2] = (long)g->nnode[0] * g->nnode[1];
+  g->own_lo = -g->pad;
+  g->own_hi = g->ncell[dim - 1] + g->pad + 1;
   total = (long)g->nnode[0] * g->nnode[1] * g->nnode[2];
   if (total > 400000000L) return mrn_error("grid: %ld nodes is more than this build allows (4e8)", total);
   /* a grid whose arrays alone exceed the machine's memory (a cell size typed

@@ -39,6 +39,13 @@ typedef struct mrn_grid {
    * material touches the face there (mrn_boundary_touch, each step) */
   unsigned char *touch;
 
+  /* the rows of nodes, along the last axis (y in 2D, z in 3D; domain
+   * numbering), whose work (damping, friction) this process books: in a
+   * distributed run (solver/dist.h) the nodes next to another process's
+   * part of the grid are updated by both, and booked once; every row
+   * otherwise */
+  int own_lo, own_hi;
+
   /* the node spans that can be nonzero (grid/active.h): outside them every
    * array above except vel_star and work is zero */
   struct mrn_grid_active *active;
@@ -55,6 +62,12 @@ void mrn_grid_clear(mrn_grid *g);
 static inline size_t mrn_grid_index(const mrn_grid *g, int i, int j, int k) {
   return (size_t)((i + g->pad) * g->stride[0] + (j + g->pad) * g->stride[1] +
                   (g->dim == 3 ? (k + g->pad) * g->stride[2] : 0));
+}
+
+/* 1 when this process books the work done at node idx (see own_lo) */
+static inline int mrn_grid_owns(const mrn_grid *g, long idx) {
+  const long s = idx / g->stride[g->dim - 1] - g->pad;
+  return s >= g->own_lo && s < g->own_hi;
 }
 
 /* node coordinates of a linear index */

@@ -10,11 +10,13 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "core/comm.h"
 #include "core/error.h"
 #include "io/atomic_file.h"
 #include "io/h5image.h"
 #include "io/checkpoint_internal.h"
 #include "io/h5util.h"
+#include "solver/dist.h"
 
 /* ---- units of the particle fields ------------------------------------------ */
 
@@ -391,7 +393,19 @@ static int build_image(const mrn_sim *sim, const mrn_stash *stash, const char *f
 
 int mrn_checkpoint_save(const mrn_sim *sim, const char *path) { return mrn_checkpoint_save_stash(sim, NULL, path); }
 
+static int save_whole(const mrn_sim *sim, const mrn_stash *stash, const char *path);
+
+/* In a distributed run process 0 writes the checkpoint with every particle
+ * gathered to it, in the order of their ids: a file like a one-process
+ * run's, which a run on any number of processes loads (solver/dist.h). */
 int mrn_checkpoint_save_stash(const mrn_sim *sim, const mrn_stash *stash, const char *path) {
+  int rc = mrn_dist_gather_begin(sim);
+  if (rc == MRN_OK && mrn_comm_writes()) rc = save_whole(sim, stash, path);
+  mrn_dist_gather_end(sim);
+  return mrn_dist_agree(sim, rc);
+}
+
+static int save_whole(const mrn_sim *sim, const mrn_stash *stash, const char *path) {
   void *image;
   size_t size;
   mrn_h5_quiet quiet;
@@ -626,6 +640,8 @@ static int import_data(mrn_sim *sim, const ck_data *d, mrn_material *override, c
   size_t first = ps->n;
   for (int64_t q = 0; q < d->n; q++) import_one(sim, d, &plan, offset, first + (size_t)q, q);
   ps->n = first + (size_t)d->n;
+  /* a simulation already spread keeps this process's share */
+  if (sim->dist && mrn_dist_adopt(sim, first) != MRN_OK) return MRN_ERR;
   mrn_sim_particles_changed(sim);
   if (count) *count = (long)d->n;
   return MRN_OK;

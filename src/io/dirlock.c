@@ -1,4 +1,5 @@
 #include "io/dirlock.h"
+#include "core/comm.h"
 
 #include <errno.h>
 #include <fcntl.h>
@@ -41,6 +42,8 @@ static int held_by_other(mrn_dirlock *lock, const char *dir, int fd) {
 
 int mrn_dirlock_take(mrn_dirlock *lock, const char *dir) {
   lock->fd = -1;
+  lock->path = NULL;
+  if (!mrn_comm_writes()) return MRN_OK; /* process 0 holds the directory for the whole run */
   lock->path = mrn_path_join(dir, MRN_DIRLOCK_NAME);
   for (int attempt = 0; attempt < 100; attempt++) {
     int fd = open(lock->path, O_RDWR | O_CREAT | O_CLOEXEC, 0644);

@@ -9,6 +9,7 @@
 #include <string.h>
 #include <unistd.h>
 
+#include "core/comm.h"
 #include "core/error.h"
 #include "core/spec.h"
 #include "grid/wall.h"
@@ -18,6 +19,7 @@
 #include "io/summary.h"
 #include "io/vti.h"
 #include "io/vtkhdf.h"
+#include "solver/dist.h"
 #include "solver/simulation.h"
 
 static char *dup_or_null(const char *s) { return s ? strdup(s) : NULL; }
@@ -247,8 +249,7 @@ static int write_grid_snapshot(mrn_output *o, const mrn_sim *sim, const char *ba
   return rc;
 }
 
-int mrn_output_write_vtk(mrn_output *o, const mrn_sim *sim) {
-  if (!o->vtk_name) return MRN_OK;
+static int write_vtk_whole(mrn_output *o, const mrn_sim *sim) {
   char *base = snapshot_base(o);
   if (!base) return MRN_ERR_IO;
   size_t len = strlen(base) + 32;
@@ -275,6 +276,20 @@ int mrn_output_write_vtk(mrn_output *o, const mrn_sim *sim) {
   free(path);
   free(base);
   return rc;
+}
+
+/* In a distributed run process 0 writes the snapshot with every particle
+ * gathered to it (solver/dist.h); the others go through the same steps
+ * into no file, so that every process keeps the same series. */
+int mrn_output_write_vtk(mrn_output *o, const mrn_sim *sim) {
+  if (!o->vtk_name) return MRN_OK;
+  if (sim->dist && o->grid_vtk)
+    return mrn_error("parallel: grid snapshots (output{grid}) are not written in a distributed run; each "
+                     "process holds only its slab of the grid");
+  int rc = mrn_dist_gather_begin(sim);
+  if (rc == MRN_OK) rc = write_vtk_whole(o, sim);
+  mrn_dist_gather_end(sim);
+  return mrn_dist_agree(sim, rc);
 }
 
 int mrn_output_maybe_vtk(mrn_output *o, const mrn_sim *sim) {
@@ -453,7 +468,9 @@ static int open_csv(mrn_output *o, const mrn_sim *sim) {
   }
   int append = csv_seen_before(path);
   /* O_APPEND: every row lands at the end, also after a row taken back */
-  o->csv_fd = open(path, O_WRONLY | O_CREAT | O_APPEND | O_CLOEXEC | (append ? 0 : O_TRUNC), 0666);
+  /* process 0 writes the rows of a distributed run */
+  o->csv_fd = open(mrn_comm_writes() ? path : "/dev/null",
+                   O_WRONLY | O_CREAT | O_APPEND | O_CLOEXEC | (append ? 0 : O_TRUNC), 0666);
   o->csv_path = path;
   if (o->csv_fd < 0) {
     int rc = csv_error(o, errno, "");

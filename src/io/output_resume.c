@@ -10,6 +10,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include "core/comm.h"
 #include "core/error.h"
 #include "io/atomic_file.h"
 #include "io/output.h"
@@ -229,8 +230,9 @@ static int resume_csv(mrn_output *o) {
   if (st.st_size < o->csv_size)
     rc = mrn_error_code(MRN_ERR_IO, "cannot continue '%s': it holds %lld bytes, fewer than the %lld the checkpoint's run "
                         "had written (it is another run's file)", path, (long long)st.st_size, (long long)o->csv_size);
-  int fd = rc == MRN_OK ? open(path, O_WRONLY | O_APPEND | O_CLOEXEC) : -1;
-  if (rc == MRN_OK && (fd < 0 || ftruncate(fd, o->csv_size) != 0))
+  /* process 0 continues the rows of a distributed run */
+  int fd = rc == MRN_OK ? open(mrn_comm_writes() ? path : "/dev/null", O_WRONLY | O_APPEND | O_CLOEXEC) : -1;
+  if (rc == MRN_OK && (fd < 0 || (mrn_comm_writes() && ftruncate(fd, o->csv_size) != 0)))
     rc = mrn_error_code(MRN_ERR_IO, "cannot continue '%s': %s", path, strerror(errno));
   if (rc != MRN_OK) {
     if (fd >= 0) close(fd);

@@ -8,6 +8,7 @@
 #include <time.h>
 
 #include "core/log.h"
+#include "solver/dist.h"
 #include "transfer/profile.h"
 
 /* ---- the simulations' runs ------------------------------------------------ */
@@ -61,9 +62,12 @@ void mrn_summary_add_run(int *record, const char *name, long step0, double t0, c
   }
   r->step1 = sim->step;
   r->t1 = sim->time;
-  r->particles = (long)sim->particles.n;
+  /* every process's particles (collective in a distributed run) */
+  double v[2] = {(double)sim->particles.n, st->particle_steps};
+  mrn_dist_reduce(sim, v, 2, MRN_COMM_SUM);
+  r->particles = (long)v[0];
   r->total.steps += st->steps;
-  r->total.particle_steps += st->particle_steps;
+  r->total.particle_steps += v[1];
   r->total.wall += st->wall;
 }
 

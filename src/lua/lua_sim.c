@@ -157,6 +157,9 @@ static const luaL_Reg methods[] = {
     {"set_damping", l_sim_set_damping},
     {"set_split", l_sim_set_split},
     {"split", l_sim_split},
+    {"set_parallel", l_sim_set_parallel},
+    {"parallel", l_sim_parallel},
+    {"rebalance", l_sim_rebalance},
     {"dt_estimate", l_sim_dt_estimate},
     {"output", l_sim_output},
     {"write_vtk", l_sim_write_vtk},
@@ -191,7 +194,7 @@ static const mrn_spec_group *const groups[] = {
     &mrn_lua_run_group,        &mrn_lua_thermo_group, &mrn_lua_checkpoint_group, &mrn_lua_hook_group,
     &mrn_lua_particle_group,   &mrn_lua_load_group,
     &mrn_lua_constrain_group,  &mrn_lua_reduce_group, &mrn_lua_import_group, &mrn_lua_wall_group,
-    &mrn_lua_contact_group,
+    &mrn_lua_contact_group,    &mrn_lua_parallel_group,
 };
 
 void mrn_lua_open_simulation(lua_State *L, int module) {

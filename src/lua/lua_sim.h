@@ -157,6 +157,11 @@ int l_sim_set_scheme(lua_State *L);
 int l_sim_set_dt(lua_State *L);
 int l_sim_set_damping(lua_State *L);
 int l_sim_set_split(lua_State *L);
+/* lua_sim_parallel.c: a distributed run */
+int l_sim_set_parallel(lua_State *L);
+int l_sim_parallel(lua_State *L);
+int l_sim_rebalance(lua_State *L);
+extern const mrn_spec_group mrn_lua_parallel_group;
 int l_sim_split(lua_State *L);
 int l_sim_output(lua_State *L);
 int l_sim_constrain(lua_State *L);

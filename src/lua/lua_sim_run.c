@@ -67,6 +67,9 @@ static int call_stop_when(void *ctx, mrn_sim *sim) {
 
 /* raise the engine's message; a hook's own error already carries its location */
 static int raise_engine_error(lua_State *L, int rc, const char *where, sim_box *b) {
+  /* in a distributed run the hook may have failed on another process, out
+   * of the deck's sight here: the state every process stopped in is kept */
+  if (rc == MRN_ERR_HOOK && b->sim->dist) rc = MRN_ERR_STATE;
   if (rc == MRN_ERR_HOOK) {
     lua_pushstring(L, mrn_error_message());
     return lua_error(L);

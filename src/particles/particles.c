@@ -152,6 +152,39 @@ long mrn_particles_clone(mrn_particles *p, size_t i) {
   return (long)j;
 }
 
+/* the record of a particle: each field's values, the history variables and
+ * registered fields, then the material index and the id */
+void mrn_particles_pack(const mrn_particles *p, size_t i, unsigned char *buf) {
+  for (int f = 0; f < FIELD_COUNT; f++) {
+    const size_t nc = stride_of(p, f);
+    memcpy(buf, *field_ptr((mrn_particles *)p, f) + i * nc, sizeof(double) * nc);
+    buf += sizeof(double) * nc;
+  }
+  if (p->state_stride) memcpy(buf, p->state + i * p->state_stride, sizeof(double) * p->state_stride);
+  buf += sizeof(double) * p->state_stride;
+  if (p->user_stride) memcpy(buf, p->user + i * p->user_stride, sizeof(double) * p->user_stride);
+  buf += sizeof(double) * p->user_stride;
+  memcpy(buf, p->material + i, sizeof *p->material);
+  memcpy(buf + sizeof *p->material, p->id + i, sizeof *p->id);
+}
+
+long mrn_particles_unpack(mrn_particles *p, const unsigned char *buf) {
+  if (p->n == p->cap && mrn_particles_reserve(p, p->cap ? 2 * p->cap : 256) != MRN_OK) return -1;
+  const size_t j = p->n++;
+  for (int f = 0; f < FIELD_COUNT; f++) {
+    const size_t nc = stride_of(p, f);
+    memcpy(*field_ptr(p, f) + j * nc, buf, sizeof(double) * nc);
+    buf += sizeof(double) * nc;
+  }
+  if (p->state_stride) memcpy(p->state + j * p->state_stride, buf, sizeof(double) * p->state_stride);
+  buf += sizeof(double) * p->state_stride;
+  if (p->user_stride) memcpy(p->user + j * p->user_stride, buf, sizeof(double) * p->user_stride);
+  buf += sizeof(double) * p->user_stride;
+  memcpy(p->material + j, buf, sizeof *p->material);
+  memcpy(p->id + j, buf + sizeof *p->material, sizeof *p->id);
+  return (long)j;
+}
+
 void mrn_particles_compact(mrn_particles *p, const unsigned char *keep) {
   size_t out = 0;
   for (size_t i = 0; i < p->n; i++) {

@@ -87,6 +87,12 @@ size_t mrn_particles_record_bytes(const mrn_particles *p);
  * field) with a new id. Returns its index, or -1 on allocation failure
  * (message set). */
 long mrn_particles_clone(mrn_particles *p, size_t i);
+/* particle i's record (mrn_particles_record_bytes bytes, id included) into
+ * buf, and a record appended as a particle with the id it holds: how a
+ * particle moves between the processes of a distributed run. Both sets
+ * must have the same dimension, history and registered fields. */
+void mrn_particles_pack(const mrn_particles *p, size_t i, unsigned char *buf);
+long mrn_particles_unpack(mrn_particles *p, const unsigned char *buf);
 /* remove particles whose keep[i] == 0, preserving order */
 void mrn_particles_compact(mrn_particles *p, const unsigned char *keep);
 

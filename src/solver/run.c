@@ -1,4 +1,5 @@
 #include "solver/run.h"
+#include "solver/dist.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -211,9 +212,12 @@ static int report_rows(mrn_sim *sim, mrn_run_options *opt, mrn_run_moment when, 
 
 /* hooks, observers and thermo for the state just reached; returns 0, MRN_STOP or an error */
 static int after_step(mrn_sim *sim, mrn_run_options *opt, int first, run_clock *clk) {
-  int rc;
-  for (int i = 0; i < opt->nhooks; i++)
-    if (due_hook(&opt->hooks[i], sim) && (rc = opt->hooks[i].fn(opt->hooks[i].ctx, sim)) != 0) return rc;
+  int rc = MRN_OK;
+  for (int i = 0; i < opt->nhooks && rc == MRN_OK; i++)
+    if (due_hook(&opt->hooks[i], sim)) rc = opt->hooks[i].fn(opt->hooks[i].ctx, sim);
+  /* a hook that failed or stopped on one process stops all before the
+   * snapshots and rows, which every process takes part in */
+  if ((rc = mrn_dist_agree(sim, rc)) != MRN_OK) return rc;
   if ((rc = report_snapshots(sim, opt)) != MRN_OK) return rc;
   if ((rc = report_rows(sim, opt, first ? MRN_RUN_START : MRN_RUN_STEP, clk)) != MRN_OK) return rc;
   if (!first && opt->stop_when && (rc = opt->stop_when(opt->stop_ctx, sim)) != 0) return rc;
@@ -237,7 +241,7 @@ static int take_step(mrn_sim *sim, const mrn_run_options *opt, double t_end) {
 
 /* the first error a step's end finds: the watchdog, the hooks, a signal, the log */
 static int end_of_step(mrn_sim *sim, mrn_run_options *opt, run_clock *clk) {
-  int rc = mrn_watchdog_check(&sim->watch, sim, sim->step == clk->step_start + 1);
+  int rc = mrn_dist_agree(sim, mrn_watchdog_check(&sim->watch, sim, sim->step == clk->step_start + 1));
   if (rc == MRN_OK) {
     rc = after_step(sim, opt, 0, clk);
     if (rc != MRN_OK && rc != MRN_STOP) opt->cut_short = 1;
@@ -245,7 +249,7 @@ static int end_of_step(mrn_sim *sim, mrn_run_options *opt, run_clock *clk) {
   if (rc == MRN_OK && mrn_interrupt_pending()) rc = MRN_ERR_INTERRUPTED;
   /* the run log is an output like the others: a run that cannot write it stops */
   if (rc == MRN_OK && mrn_log_failed()) rc = mrn_error_code(MRN_ERR_IO, "%s", mrn_log_failure());
-  return rc;
+  return mrn_dist_agree(sim, rc); /* a signal or a hook's error on one process stops all */
 }
 
 /* the every_time hooks' schedule from the run's start; a resumed run past
@@ -264,18 +268,23 @@ static void schedule_hooks(const mrn_sim *sim, mrn_run_options *opt, double t_st
 /* Before the first step: the hooks' schedule, what the step needs set up,
  * and the reports of the starting state. 0, or what ended the run. */
 static int start_run(mrn_sim *sim, mrn_run_options *opt, run_clock *clk) {
+  /* the affine matrices belong to the explicit transfers; found while every
+   * process still holds every particle, as on one (solver/dist.h) */
+  if (!sim->integrator.step && sim->affine_pending && sim->scheme.grid_velocity != MRN_VGRID_PLAIN) {
+    if (sim->dist) return mrn_dist_refuse_late_affine(sim);
+    mrn_sim_init_affine(sim);
+  }
+  int rc = mrn_dist_start(sim); /* each process keeps its own particles from here on */
+  if (rc != MRN_OK) return rc;
   schedule_hooks(sim, opt, clk->t_start);
   opt->cut_short = 0;
-  /* the affine matrices belong to the explicit transfers */
-  if (!sim->integrator.step && sim->affine_pending && sim->scheme.grid_velocity != MRN_VGRID_PLAIN)
-    mrn_sim_init_affine(sim);
   if (!sim->energy_ref_set) mrn_sim_energy_balance_start(sim);
   mrn_watchdog_start(&sim->watch, sim);
   if (thermo_on(opt)) thermo_header(opt);
   /* a resumed run's state was reached before the stop, which may have cut
    * its reports short: the observers get it again as a step (each writes
    * only what it lacks); the hooks too when the stop came inside them */
-  int rc = !opt->resume       ? after_step(sim, opt, 1, clk)
+  rc = !opt->resume           ? after_step(sim, opt, 1, clk)
            : opt->resume_hooks ? after_step(sim, opt, 0, clk)
                                : report_snapshots(sim, opt);
   if (rc == MRN_OK && opt->resume && !opt->resume_hooks) rc = report_rows(sim, opt, MRN_RUN_STEP, clk);

@@ -1,4 +1,5 @@
 #include "solver/simulation.h"
+#include "solver/dist.h"
 
 #include <math.h>
 #include <stdint.h>
@@ -42,6 +43,8 @@ mrn_sim *mrn_sim_new(const mrn_sim_config *cfg) {
   mrn_dt_policy_a_tau(&sim->dt_policy, 0.05);
   mrn_watchdog_default(&sim->watchdog);
   sim->sorted_step = -1;
+  sim->rebalance_every = MRN_DIST_REBALANCE_EVERY;
+  sim->rebalance_imbalance = MRN_DIST_IMBALANCE;
   sim->blocks = mrn_blocks_new(&sim->grid);
   if (!sim->blocks) {
     mrn_sim_free(sim);
@@ -71,7 +74,9 @@ mrn_transfer mrn_sim_transfer(mrn_sim *sim) {
                      .kernel = mrn_sim_kernel_options(sim),
                      .mass_floor = sim->mass_floor,
                      .blocks = sim->blocks,
-                     .sort_now = sort_due(sim)};
+                     .sort_now = sort_due(sim),
+                     .sum_nodal = sim->dist ? mrn_dist_sum_nodal : NULL,
+                     .sum_ctx = sim};
   return tr;
 }
 
@@ -99,6 +104,7 @@ void mrn_sim_free(mrn_sim *sim) {
   mrn_dt_policy_release(&sim->dt_policy);
   mrn_walls_free(sim->boundary.walls);
   mrn_contact_free(sim->contact);
+  mrn_dist_free(sim->dist);
   for (int i = 0; i < sim->nconstraints; i++) mrn_constraint_free(&sim->constraints[i]);
   mrn_sim_free_sources(sim);
   free(sim->constraints);
@@ -164,14 +170,17 @@ void mrn_sim_energies(const mrn_sim *sim, mrn_diagnostics *out) {
     for (int j = 0; j < DIAG_SUMS; j++) part[k][j] = s[j];
   }
   add_pieces(part, DIAG_SUMS, t);
+  mrn_dist_reduce(sim, t, DIAG_SUMS, MRN_COMM_SUM); /* over the processes of a distributed run */
+  double work_friction, work_damping, energy_outflow;
+  mrn_dist_books(sim, &work_friction, &work_damping, &energy_outflow);
   const double ek = t[S_EK], eg = t[S_EG], eel = t[S_EEL], wpl = t[S_WPL], mass = t[S_MASS];
   memset(out, 0, sizeof *out);
   out->kinetic = ek;
   out->gravity = eg;
   out->elastic = eel;
   out->plastic = wpl;
-  out->friction = sim->work_friction;
-  out->damping = sim->work_damping;
+  out->friction = work_friction;
+  out->damping = work_damping;
   out->external = sim->work_external;
   out->walls = sim->work_walls;
   mrn_walls_body_energy(sim->boundary.walls, &out->bodies, &out->bodies_work);
@@ -179,13 +188,13 @@ void mrn_sim_energies(const mrn_sim *sim, mrn_diagnostics *out) {
   out->total = ek + eg + eel;
   out->inflow = sim->energy_inflow;
   out->inflow_work = sim->work_inflow;
-  out->outflow = sim->energy_outflow;
+  out->outflow = energy_outflow;
   /* (000, Eq. 68) summed over the steps since the balance started, with what
    * came in and went out through sources and free faces */
   out->mpm_error = sim->energy_ref_set
-                       ? out->total + out->bodies - sim->energy_ref - wpl - sim->work_friction - sim->work_damping -
+                       ? out->total + out->bodies - sim->energy_ref - wpl - work_friction - work_damping -
                              sim->work_external - sim->work_walls - out->bodies_work - sim->work_contact +
-                             sim->energy_outflow - sim->energy_inflow - sim->work_inflow
+                             energy_outflow - sim->energy_inflow - sim->work_inflow
                        : 0.0;
   out->mass = mass;
   for (int d = 0; d < 3; d++) {
@@ -197,14 +206,16 @@ void mrn_sim_energies(const mrn_sim *sim, mrn_diagnostics *out) {
       out->com[d] = t[S_MX + d] / mass;
       out->com_velocity[d] = out->momentum[d] / mass;
     }
-  out->particles = n;
+  double count = (double)n;
+  mrn_dist_reduce(sim, &count, 1, MRN_COMM_SUM);
+  out->particles = (long)count;
 }
 
 void mrn_sim_diagnostics(const mrn_sim *sim, mrn_diagnostics *out) {
   const mrn_particles *ps = &sim->particles;
   const long n = (long)ps->n;
   mrn_sim_energies(sim, out);
-  if (n == 0) return;
+  if (out->particles == 0) return; /* in every process of a distributed run */
   /* angular momentum about the unweighted centroid (000, Eqs. 54 and 56) */
   double part[DIAG_PIECES][DIAG_SUMS], c[DIAG_SUMS];
 #pragma omp parallel for schedule(static) if (n > MRN_OMP_MIN_ITEMS)
@@ -217,7 +228,8 @@ void mrn_sim_diagnostics(const mrn_sim *sim, mrn_diagnostics *out) {
     for (int d = 0; d < 3; d++) part[k][d] = s[d];
   }
   add_pieces(part, 3, c);
-  for (int d = 0; d < 3; d++) c[d] /= n;
+  mrn_dist_reduce(sim, c, 3, MRN_COMM_SUM);
+  for (int d = 0; d < 3; d++) c[d] /= (double)out->particles;
 #pragma omp parallel for schedule(static) if (n > MRN_OMP_MIN_ITEMS)
   for (int k = 0; k < DIAG_PIECES; k++) {
     long lo, hi;
@@ -234,6 +246,7 @@ void mrn_sim_diagnostics(const mrn_sim *sim, mrn_diagnostics *out) {
   }
   double l[DIAG_SUMS];
   add_pieces(part, 3, l);
+  mrn_dist_reduce(sim, l, 3, MRN_COMM_SUM);
   out->L_centroid = sqrt(l[0] * l[0] + l[1] * l[1] + l[2] * l[2]);
 }
 
@@ -360,6 +373,8 @@ int mrn_sim_seed(mrn_sim *sim, const mrn_region *region, int material_index, int
     sim->particles.n = start; /* nothing half-added */
     return rc;
   }
+  /* a simulation already spread keeps this process's share of the new ones */
+  if (sim->dist && (rc = mrn_dist_adopt(sim, start)) != MRN_OK) return rc;
   *first = start;
   *count = (long)(sim->particles.n - start);
   mrn_sim_particles_changed(sim);
@@ -372,6 +387,7 @@ void mrn_sim_particles_changed(mrn_sim *sim) {
     if (sim->particles.mass[p] < lightest) lightest = sim->particles.mass[p];
   /* a node touched only by the far tail of a kernel carries a mass many orders below a
    * particle's; its velocity f/m is meaningless, so such nodes count as empty */
+  mrn_dist_reduce(sim, &lightest, 1, MRN_COMM_MIN); /* one floor for every process */
   sim->mass_floor = isfinite(lightest) ? 1e-12 * lightest : 0.0;
 }
 

@@ -75,6 +75,14 @@ typedef struct mrn_sim {
   mrn_source_state *source_states;
   int nsource_states;
 
+  /* the processes of a distributed run (solver/dist.h); NULL: one process,
+   * or not spread yet; and when its slabs are re-cut: every
+   * rebalance_every steps (0: never) when the largest particle count
+   * exceeds the mean by the factor rebalance_imbalance */
+  struct mrn_dist *dist;
+  long rebalance_every;
+  double rebalance_imbalance;
+
   /* the bodies and their contact pairs (solver/contact.h); NULL: one body */
   struct mrn_contact *contact;
 

@@ -19,6 +19,7 @@
 #include "core/parallel.h"
 #include "core/tensor.h"
 #include "solver/contact.h"
+#include "solver/dist.h"
 #include "solver/point_force.h"
 #include "solver/simulation.h"
 #include "solver/split.h"
@@ -133,7 +134,10 @@ void mrn_grid_update_on(mrn_sim *sim, mrn_grid *g, double dt) {
     r.sum[k] = work;
   }
   double work = 0.0;
-  for (long k = 0; k < r.count; k++) work += r.sum[k]; /* fixed order: the same for any thread count */
+  /* fixed order: the same for any thread count; a row another process
+   * books too (solver/dist.h) is booked by one */
+  for (long k = 0; k < r.count; k++)
+    if (mrn_grid_owns(g, r.lo[k])) work += r.sum[k];
   sim->work_damping += work;
   /* the inlets' work is that on the velocity the forces gave, before any
    * face condition: booked here, and the inlets held again after the faces */
@@ -365,14 +369,20 @@ static int move_pass(mrn_sim *sim, mrn_transfer *tr, unsigned stages, double dt,
   return rc;
 }
 
+/* In a distributed run each P2G is followed by the halo sum
+ * (solver/dist.h), which first agrees on what happened since the last:
+ * a stage that failed here passes its code on to it rather than return,
+ * so that every process meets the same exchanges. */
+
 /* USF: the stress from V^i, before the internal force is found from it */
 static int step_usf(mrn_sim *sim, mrn_transfer *tr, double dt, step_end *end) {
-  int rc;
-  mrn_p2g(tr, 1, 0);                                   /* mass, momentum */
-  if ((rc = grid_velocity_stage(sim, tr, dt))) return rc; /* V^i */
+  mrn_p2g(tr, 1, 0);                                                    /* mass, momentum */
+  int rc = mrn_dist_sum_halo(sim, MRN_CLEAR_MASS_MOM, MRN_OK);
+  if (rc == MRN_OK) rc = grid_velocity_stage(sim, tr, dt);              /* V^i */
   mrn_particle_stages update = {UPDATE_FORCE, .gvel = sim->grid.vel, .material_dt = dt};
-  if ((rc = mrn_particle_stages_run(sim, tr, &update))) return rc; /* gradient -> material update -> force */
-  grid_update(sim, dt);                                           /* V~^i */
+  if (rc == MRN_OK) rc = mrn_particle_stages_run(sim, tr, &update);     /* gradient -> material update -> force */
+  if ((rc = mrn_dist_sum_halo(sim, MRN_CLEAR_FORCE, rc))) return rc;
+  grid_update(sim, dt);                                                 /* V~^i */
   return move_pass(sim, tr, MOVE_END, dt, 0.0, end);              /* move -> end-of-step check */
 }
 
@@ -380,6 +390,7 @@ static int step_usf(mrn_sim *sim, mrn_transfer *tr, double dt, step_end *end) {
 static int step_usl(mrn_sim *sim, mrn_transfer *tr, double dt, step_end *end) {
   int rc;
   mrn_p2g(tr, 1, 1);                                   /* mass, momentum, internal force */
+  if ((rc = mrn_dist_sum_halo(sim, MRN_CLEAR_MASS_MOM | MRN_CLEAR_FORCE, MRN_OK))) return rc;
   if ((rc = grid_velocity_stage(sim, tr, dt))) return rc; /* V^i */
   grid_update(sim, dt);                                /* V~^i */
   return move_pass(sim, tr, MOVE_UPDATE_END, dt, dt, end); /* move -> gradient -> material update -> check */
@@ -398,9 +409,12 @@ static int move_remap_update(mrn_sim *sim, mrn_transfer *tr, double dt, double m
   double *dx = scratch(sim, 3 * sim->particles.n);
   if (!dx && sim->particles.n) return mrn_error("step: out of memory");
   mrn_particle_stages move = {MRN_STAGE_MOVE, .move_dt = dt, .dx = dx};
-  if ((rc = mrn_particle_stages_run(sim, tr, &move))) return rc; /* new velocities; positions held back */
-  mrn_blocks_reuse(tr->blocks);
-  mrn_p2g(tr, 1, 0); /* re-map the new momenta */
+  rc = mrn_particle_stages_run(sim, tr, &move); /* new velocities; positions held back */
+  if (rc == MRN_OK) {
+    mrn_blocks_reuse(tr->blocks);
+    mrn_p2g(tr, 1, 0); /* re-map the new momenta */
+  }
+  if ((rc = mrn_dist_sum_halo(sim, MRN_CLEAR_MASS_MOM, rc))) return rc;
   grid_velocity(sim, dt, 0);
   mrn_particle_stages update = {MRN_STAGE_GRADIENT | MRN_STAGE_MATERIAL, .gvel = sim->grid.vel, .material_dt = material_dt};
   if ((rc = mrn_particle_stages_run(sim, tr, &update))) return rc; /* gradient -> material update */
@@ -415,6 +429,7 @@ static int move_remap_update(mrn_sim *sim, mrn_transfer *tr, double dt, double m
 static int step_musl(mrn_sim *sim, mrn_transfer *tr, double dt, step_end *end) {
   int rc;
   mrn_p2g(tr, 1, 1);                                   /* mass, momentum, internal force */
+  if ((rc = mrn_dist_sum_halo(sim, MRN_CLEAR_MASS_MOM | MRN_CLEAR_FORCE, MRN_OK))) return rc;
   if ((rc = grid_velocity_stage(sim, tr, dt))) return rc; /* V^i */
   grid_update(sim, dt);                                /* V~^i */
   return move_remap_update(sim, tr, dt, dt, end);
@@ -425,11 +440,12 @@ static int step_musl(mrn_sim *sim, mrn_transfer *tr, double dt, step_end *end) {
  * and half from the re-mapped new momenta as in MUSL. In the stress and the
  * velocity this is the leapfrog drift-kick-drift: second order in dt. */
 static int step_usavg(mrn_sim *sim, mrn_transfer *tr, double dt, step_end *end) {
-  int rc;
-  mrn_p2g(tr, 1, 0);                                   /* mass, momentum */
-  if ((rc = grid_velocity_stage(sim, tr, dt))) return rc; /* V^i */
+  mrn_p2g(tr, 1, 0);                                                    /* mass, momentum */
+  int rc = mrn_dist_sum_halo(sim, MRN_CLEAR_MASS_MOM, MRN_OK);
+  if (rc == MRN_OK) rc = grid_velocity_stage(sim, tr, dt);              /* V^i */
   mrn_particle_stages update = {UPDATE_FORCE, .gvel = sim->grid.vel, .material_dt = 0.5 * dt};
-  if ((rc = mrn_particle_stages_run(sim, tr, &update))) return rc; /* gradient -> material update -> force */
+  if (rc == MRN_OK) rc = mrn_particle_stages_run(sim, tr, &update);     /* gradient -> material update -> force */
+  if ((rc = mrn_dist_sum_halo(sim, MRN_CLEAR_FORCE, rc))) return rc;
   grid_update(sim, dt);                                           /* V~^i */
   return move_remap_update(sim, tr, dt, 0.5 * dt, end);
 }
@@ -459,7 +475,8 @@ static int cpdi_begin(mrn_sim *sim, double *reach) {
 int mrn_sim_step_dt(mrn_sim *sim, double dt) {
   if (!(dt > 0.0) || !isfinite(dt)) return mrn_error("step %ld: invalid time step %s", sim->step + 1, mrn_num(dt).s);
   sim->dt = dt;
-  int rc = sim->nsources ? mrn_sources_begin_step(sim, dt) : MRN_OK;
+  int rc = mrn_dist_start(sim);
+  if (rc == MRN_OK && sim->nsources) rc = mrn_sources_begin_step(sim, dt);
   if (rc) return rc;
   /* the end of the step inside G2P, chunk by chunk (see end_ctx) */
   end_ctx e = end_setup(sim);
@@ -468,6 +485,7 @@ int mrn_sim_step_dt(mrn_sim *sim, double dt) {
   double reach = 0.5 * mrn_shape_support(sim->shape); /* cells from a particle its shape functions reach */
   if (sim->shape == MRN_SHAPE_CPDI && (rc = cpdi_begin(sim, &reach))) return rc;
   mrn_boundary_touch(&sim->boundary, &sim->grid, reach, sim->particles.x, sim->particles.vol0, sim->particles.n);
+  mrn_dist_touch(sim);
   if (sim->boundary.walls && (rc = mrn_walls_touch(sim->boundary.walls, &sim->grid, sim->time + 0.5 * dt, reach,
                                                    sim->particles.x, sim->particles.vol0, sim->particles.n)))
     return rc;
@@ -483,7 +501,7 @@ int mrn_sim_step_dt(mrn_sim *sim, double dt) {
   case MRN_STRESS_MUSL: rc = step_musl(sim, &tr, dt, &end); break;
   }
   mrn_sim_transfer_end(sim, &tr);
-  if (rc) return rc;
+  if (rc) return mrn_dist_migrate(sim, rc); /* agreed by every process */
   if (sim->boundary.walls) {
     sim->boundary.walls->cundall = sim->damping_cundall;
     sim->work_walls += mrn_walls_step_end(sim->boundary.walls, dt, mrn_hold_share(&sim->scheme), sim->gravity);
@@ -496,7 +514,8 @@ int mrn_sim_step_dt(mrn_sim *sim, double dt) {
   if (rc == MRN_OK && sim->nsources) rc = mrn_sources_emit(sim, dt);
   /* and so do the children of the particles split (solver/split.h) */
   if (rc == MRN_OK && sim->split_stretch > 0.0 && mrn_sim_split(sim) < 0) rc = MRN_ERR;
-  return rc;
+  /* and the particles that left this process's slab go to their new one */
+  return mrn_dist_migrate(sim, rc);
 }
 
 int mrn_sim_step(mrn_sim *sim) {

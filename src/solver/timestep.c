@@ -1,4 +1,5 @@
 #include "solver/timestep.h"
+#include "solver/dist.h"
 
 #include <math.h>
 
@@ -117,6 +118,13 @@ int mrn_dt_compute(mrn_sim *sim, double *out) {
     if (rc) return rc;
     break;
   }
+  }
+  /* the particles' and nodes' limits are those of every process; a bad
+   * value on one makes all report it */
+  if (sim->dist && (p->kind == MRN_DT_CFL || p->kind == MRN_DT_GRID_CFL)) {
+    double v = dt > 0.0 ? dt : -1.0; /* NaN too */
+    mrn_dist_reduce(sim, &v, 1, MRN_COMM_MIN);
+    dt = v > 0.0 ? v : NAN;
   }
   if (!(dt > 0.0) || !isfinite(dt))
     return mrn_error_code(MRN_ERR_STATE, "step %ld: the %s time-step policy gave dt = %s (must be > 0)", sim->step + 1,

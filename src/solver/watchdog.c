@@ -3,6 +3,7 @@
 #include <math.h>
 
 #include "core/error.h"
+#include "solver/dist.h"
 #include "solver/simulation.h"
 #include "solver/timestep.h"
 
@@ -67,15 +68,17 @@ static const char *dt_cause(double dt_ratio) {
                       : "energy fed in by a material law outside its range, a hook, or a boundary";
 }
 
-/* the dt and speed tests of an explicit step; p is the fastest particle */
-static int test_motion(mrn_watchdog_state *s, const mrn_sim *sim, double critical, long p, double speed) {
+/* the dt and speed tests of an explicit step; p is the fastest particle,
+ * `limiting` when it sets the step's limit */
+static int test_motion(mrn_watchdog_state *s, const mrn_sim *sim, double critical, long p, double speed,
+                       int limiting) {
   const mrn_watchdog *w = &sim->watchdog;
   const double h = sim->grid.cell, dt = sim->dt;
   const double dt_ratio = isfinite(critical) ? dt / critical : 0.0, cells = speed * dt / h;
   char what[512], wall[64];
   s->peak_dt = fmax(s->peak_dt, dt_ratio);
   s->peak_speed = fmax(s->peak_speed, cells);
-  if (w->dt > 0 && dt_ratio > w->dt) {
+  if (limiting && w->dt > 0 && dt_ratio > w->dt) {
     snprintf(what, sizeof what, "the step dt = %g s is %.3g times the particle CFL estimate h / max(c + |v|) = %g s "
              "(bound %g; the fastest particle %lld moves at %g m/s)", dt, dt_ratio, critical, w->dt,
              (long long)sim->particles.id[p], speed);
@@ -117,9 +120,16 @@ int mrn_watchdog_check(mrn_watchdog_state *s, const mrn_sim *sim, int force) {
   s->checks++;
   double speed;
   long p;
-  const double critical = mrn_dt_particle_critical_at(sim, &p, &speed);
-  int rc;
+  double critical = mrn_dt_particle_critical_at(sim, &p, &speed);
+  /* in a distributed run: the limit of every process; each judges the
+   * speeds of its own particles, and the process of the limiting particle
+   * the step (solver/dist.h), and all of them the energy */
+  double global = critical;
+  mrn_dist_reduce(sim, &global, 1, MRN_COMM_MIN);
+  int rc = MRN_OK;
   /* an implicit step may exceed the explicit limits by design (001) */
-  if (sim->integrator.step == NULL && (rc = test_motion(s, sim, critical, p, speed)) != MRN_OK) return rc;
-  return test_energy(s, sim, isfinite(critical) ? sim->dt / critical : 0.0);
+  if (sim->integrator.step == NULL && sim->particles.n > 0)
+    rc = test_motion(s, sim, global, p, speed, critical == global);
+  const int rc_energy = test_energy(s, sim, isfinite(global) ? sim->dt / global : 0.0);
+  return rc != MRN_OK ? rc : rc_energy;
 }

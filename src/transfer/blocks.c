@@ -507,3 +507,8 @@ mrn_blocks *mrn_blocks_prepare(mrn_transfer *tr, unsigned clear) {
   mrn_grid_active_switch(g, clear);
   return b;
 }
+
+void mrn_blocks_forget(mrn_blocks *b) {
+  b->np = 0;
+  b->reuse = 0;
+}

@@ -83,6 +83,9 @@ size_t mrn_blocks_bytes(const mrn_blocks *b);
  * the last P2G: the next one keeps its binning and spans and only clears the
  * arrays it accumulates into (USF's second P2G, for one). */
 void mrn_blocks_reuse(mrn_blocks *b);
+/* the particles changed wholesale (moved between processes): the next
+ * binning starts from scratch */
+void mrn_blocks_forget(mrn_blocks *b);
 
 /* Bin the particles of the transfer by block, reorder them when tr->sort_now
  * (then clear it), set the grid's new active spans and switch to them

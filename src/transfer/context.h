@@ -29,6 +29,11 @@ typedef struct mrn_transfer {
   int sort_now;                 /* reorder the particles by block at the next binning; cleared once done */
   const double *domain;         /* CPDI: each particle's domain A = F U0 (9 values) as the step froze it,
                                  * or NULL: formed from F at each use (transfer/cpdi.h) */
+  /* after a scatter into a nodal array of ncomp values per node (XPIC's
+   * passes), its owner may complete the sums: a distributed run adds its
+   * neighbours' part (solver/dist.h). NULL: nothing to add */
+  void (*sum_nodal)(void *ctx, double *values, int ncomp);
+  void *sum_ctx;
 } mrn_transfer;
 
 #endif

@@ -15,6 +15,7 @@ void mrn_xpic_smooth(mrn_transfer *tr, double *pscratch) {
   for (int k = 2; k <= m; k++) {
     mrn_grid_to_particles(tr, g->work, pscratch);
     mrn_particles_to_grid(tr, pscratch, g->work);
+    if (tr->sum_nodal) tr->sum_nodal(tr->sum_ctx, g->work, 3);
     /* the smoothed field obeys the same face conditions as the velocity */
     mrn_boundary_apply(tr->boundary, g, tr->mass_floor, g->work, 0);
     binom = binom * (m - k + 1) / k;

@@ -71,6 +71,10 @@ local cases = {
       call = function(s, v) s:set_split{ stretch = v } end,
       ctor = function(v) new_sim{ split = { stretch = v } } end, ctor_where = "simulation{} split" },
   },
+  set_parallel = {
+    { where = "set_parallel()", key = "imbalance", finite = "a finite value >= 1", bad = 0.5, range = "a value >= 1",
+      call = function(s, v) s:set_parallel{ imbalance = v } end },
+  },
   set_watchdog = {
     { where = "set_watchdog() watchdog", key = "energy", finite = "a finite value >= 0", bad = -1, range = "a value >= 0",
       call = function(s, v) s:set_watchdog{ energy = v } end,

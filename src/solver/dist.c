@@ -1,0 +1,598 @@
+/* moraine: a simulation spread over the processes of an MPI run (dist.h). */
+#include "solver/dist.h"
+
+#include <math.h>
+#include <stdint.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "core/error.h"
+#include "grid/active.h"
+#include "solver/contact.h"
+#include "solver/point_force.h"
+#include "solver/simulation.h"
+
+/* what the distributed step does not do yet, by the option that asks for it */
+static int refuse(const mrn_sim *sim) {
+  const char *what = NULL;
+  const int axis = sim->dim - 1;
+  if (sim->integrator.step) what = "the implicit integrator (simulation{integrator})";
+  else if (sim->contact && sim->contact->npairs) what = "contact between bodies (sim:add_contact)";
+  else if (sim->boundary.walls) what = "walls and rigid bodies (sim:add_wall)";
+  else if (sim->nsources) what = "inflow sources (sim:add_source)";
+  else if (sim->split_stretch > 0.0) what = "particle splitting (simulation{split})";
+  else if (sim->shape == MRN_SHAPE_CPDI) what = "CPDI (shape = \"cpdi\")";
+  else if (mrn_particles_user_field(&sim->particles, MRN_POINT_FORCE_FIELD)) what = "point forces (sim:set_point_force)";
+  else if (mrn_boundary_periodic(&sim->boundary, axis)) what = "a periodic face along the last axis (faces)";
+  for (int f = 0; !what && f < 2 * sim->dim; f++)
+    if (sim->boundary.face[f].gap_check) what = "gap_check on a friction face (faces)";
+  if (!what) return MRN_OK;
+  return mrn_error("parallel: %s runs on one process only; run this deck without mpirun (doc/parallel.md, "
+                   "\"What runs in parallel\")", what);
+}
+
+/* the cell row along the cut axis of a position, clamped to the grid */
+static int row_of(const mrn_grid *g, int axis, const double *x) {
+  const double t = (x[axis] - g->origin[axis]) * g->inv_cell;
+  if (!(t >= 0.0)) return 0; /* below the grid, or not a number: the end-of-step check reports it */
+  if (t >= g->ncell[axis]) return g->ncell[axis] - 1;
+  return (int)t;
+}
+
+static int owner_of(const mrn_dist *d, int row) {
+  int r = 0;
+  while (r + 1 < d->size && row >= d->cut[r + 1]) r++;
+  return r;
+}
+
+/* the rows whose nodal work this process books: its cells' rows, and the
+ * ghost layers beyond the grid's ends for the first and the last */
+static void set_own(mrn_sim *sim, const mrn_dist *d) {
+  mrn_grid *g = &sim->grid;
+  g->own_lo = d->rank == 0 ? -g->pad : d->cut[d->rank];
+  g->own_hi = d->rank == d->size - 1 ? g->ncell[d->axis] + g->pad + 1 : d->cut[d->rank + 1];
+}
+
+/* Cuts at the particle-count quantiles along the axis, then pushed apart
+ * to MRN_DIST_MIN_CELLS rows: neighbouring bands must not overlap, so that
+ * no node row is reached by three processes. `replicated`: every process
+ * holds every particle (the count is not summed). */
+static int cut_by_count(mrn_sim *sim, mrn_dist *d, int replicated) {
+  const mrn_grid *g = &sim->grid;
+  const int nc = g->ncell[d->axis];
+  double *count = calloc((size_t)nc, sizeof *count);
+  if (!count) return mrn_error("parallel: out of memory");
+  for (size_t p = 0; p < sim->particles.n; p++) count[row_of(g, d->axis, sim->particles.x + 3 * p)] += 1.0;
+  if (!replicated) mrn_comm_allreduce(count, nc, MRN_COMM_SUM);
+  double total = 0.0;
+  for (int j = 0; j < nc; j++) total += count[j];
+  d->cut[0] = 0;
+  d->cut[d->size] = nc;
+  double below = 0.0;
+  int j = 0;
+  for (int r = 1; r < d->size; r++) {
+    while (j < nc && below < total * r / d->size) below += count[j++];
+    d->cut[r] = j;
+  }
+  free(count);
+  for (int r = 1; r < d->size; r++)
+    if (d->cut[r] < d->cut[r - 1] + MRN_DIST_MIN_CELLS) d->cut[r] = d->cut[r - 1] + MRN_DIST_MIN_CELLS;
+  for (int r = d->size - 1; r > 0; r--)
+    if (d->cut[r] > d->cut[r + 1] - MRN_DIST_MIN_CELLS) d->cut[r] = d->cut[r + 1] - MRN_DIST_MIN_CELLS;
+  set_own(sim, d);
+  return MRN_OK;
+}
+
+/* keep only the particles [first, n) this process owns (those before stay) */
+int mrn_dist_adopt(mrn_sim *sim, size_t first) {
+  mrn_particles *ps = &sim->particles;
+  const mrn_dist *d = sim->dist;
+  unsigned char *keep = malloc(ps->n + 1);
+  if (!keep) return mrn_error("parallel: out of memory");
+  for (size_t p = 0; p < ps->n; p++)
+    keep[p] = p < first || owner_of(d, row_of(&sim->grid, d->axis, ps->x + 3 * p)) == d->rank;
+  mrn_particles_compact(ps, keep);
+  free(keep);
+  if (sim->blocks) mrn_blocks_forget(sim->blocks);
+  return MRN_OK;
+}
+
+int mrn_dist_start(mrn_sim *sim) {
+  if (sim->dist || mrn_comm_size() < 2) return MRN_OK;
+  /* what is refused is refused by every process alike: process 0 says it */
+  mrn_comm_set_shared_error(1);
+  int rc = refuse(sim);
+  if (rc) return rc;
+  const int axis = sim->dim - 1, nc = sim->grid.ncell[axis];
+  if (nc < MRN_DIST_MIN_CELLS * mrn_comm_size())
+    return mrn_error("parallel: %d processes need at least %d cells along %c (%d per process); the grid has %d",
+                     mrn_comm_size(), MRN_DIST_MIN_CELLS * mrn_comm_size(), "xyz"[axis], MRN_DIST_MIN_CELLS, nc);
+  mrn_dist *d = calloc(1, sizeof *d);
+  if (d) d->cut = calloc((size_t)mrn_comm_size() + 1, sizeof *d->cut);
+  if (!d || !d->cut) {
+    mrn_dist_free(d);
+    return mrn_error("parallel: out of memory");
+  }
+  mrn_comm_set_shared_error(0);
+  d->rank = mrn_comm_rank();
+  d->size = mrn_comm_size();
+  d->axis = axis;
+  sim->dist = d;
+  if ((rc = cut_by_count(sim, d, 1)) || (rc = mrn_dist_adopt(sim, 0))) return rc;
+  /* the books of work done so far are process 0's; the others start at 0 */
+  if (d->rank != 0) {
+    sim->work_friction = sim->work_damping = sim->energy_outflow = sim->outflow_mass = 0.0;
+    sim->outflow_particles = 0;
+  }
+  return MRN_OK;
+}
+
+void mrn_dist_free(mrn_dist *d) {
+  if (!d) return;
+  free(d->cut);
+  free(d->buf);
+  free(d);
+}
+
+void mrn_dist_reduce(const mrn_sim *sim, double *v, int n, mrn_comm_op op) {
+  if (sim->dist) mrn_comm_allreduce(v, n, op);
+}
+
+int mrn_dist_agree(const mrn_sim *sim, int rc) {
+  if (!sim->dist) return rc;
+  const int failed = rc != MRN_OK; /* an error, or a stop asked for */
+  long first = failed ? sim->dist->rank : sim->dist->size;
+  mrn_comm_allreduce_long(&first, 1, MRN_COMM_MIN);
+  if (first == sim->dist->size) return rc;
+  struct {
+    int code;
+    char text[1024];
+  } m = {rc, ""};
+  if (first == sim->dist->rank) snprintf(m.text, sizeof m.text, "%s", mrn_error_message());
+  mrn_comm_bcast(&m, sizeof m, (int)first);
+  mrn_comm_set_shared_error(1);
+  if (first == sim->dist->rank) return rc;
+  return mrn_error_code(m.code, "%s", m.text);
+}
+
+static unsigned char *buffer(mrn_dist *d, size_t bytes) {
+  if (bytes > d->buf_cap) {
+    unsigned char *b = realloc(d->buf, bytes);
+    if (!b) return NULL;
+    d->buf = b;
+    d->buf_cap = bytes;
+  }
+  return d->buf;
+}
+
+/* The band around cut c: node rows [c - 1, c + 1] along the cut axis, as a
+ * linear node range and as rows of the active spans (grid/active.h) */
+typedef struct band {
+  long first, nodes;   /* linear node indices [first, first + nodes) */
+  size_t row0, nrows;  /* active-span rows */
+} band;
+
+static band band_at(const mrn_grid *g, int c) {
+  const int axis = g->dim - 1;
+  const long slow0 = c - 1 + g->pad; /* storage index of the band's first row */
+  const size_t rows_per = g->dim == 3 ? (size_t)g->nnode[1] : 1;
+  band b = {slow0 * g->stride[axis], 3 * g->stride[axis], (size_t)slow0 * rows_per, 3 * rows_per};
+  return b;
+}
+
+/* one nodal array's band into the message, or the message's added to it */
+static double *put(double *m, const double *a, const band *b, int nc) {
+  memcpy(m, a + nc * b->first, sizeof(double) * (size_t)(nc * b->nodes));
+  return m + nc * b->nodes;
+}
+
+static const double *add(const double *m, double *a, const band *b, int nc) {
+  double *t = a + nc * b->first;
+  for (long i = 0; i < nc * b->nodes; i++) t[i] += m[i]; /* a + b == b + a: both sides hold the same sum */
+  return m + nc * b->nodes;
+}
+
+/* a nodal array and its values per node */
+typedef struct nodal {
+  double *a;
+  int nc;
+} nodal;
+
+/* Sum the band around cut c with process `peer`: the message holds the
+ * spans of its rows, then the arrays. A node the peer's span covers and
+ * this one's did not held zero here, so the span widens to it before the
+ * sum. */
+static int exchange_band(mrn_sim *sim, int peer, int c, const nodal *arr, int narr) {
+  mrn_grid *g = &sim->grid;
+  mrn_dist *d = sim->dist;
+  const band b = band_at(g, c);
+  int nd = 0;
+  for (int k = 0; k < narr; k++) nd += arr[k].nc;
+  const size_t bytes = b.nrows * 2 * sizeof(int) + (size_t)nd * (size_t)b.nodes * sizeof(double);
+  unsigned char *out = buffer(d, 2 * bytes), *in = out + bytes;
+  if (!out) return mrn_error("parallel: out of memory for the halo exchange");
+  const mrn_grid_active *a = g->active;
+  int *span = (int *)out;
+  for (size_t r = 0; r < b.nrows; r++) {
+    span[2 * r] = a->lo[b.row0 + r];
+    span[2 * r + 1] = a->hi[b.row0 + r];
+  }
+  double *m = (double *)(out + b.nrows * 2 * sizeof(int));
+  for (int k = 0; k < narr; k++) m = put(m, arr[k].a, &b, arr[k].nc);
+  mrn_comm_exchange(peer, out, bytes, in, bytes);
+  d->halo_bytes += (double)bytes;
+  const int *theirs = (const int *)in;
+  for (size_t r = 0; r < b.nrows; r++) mrn_grid_active_widen(g, b.row0 + r, theirs[2 * r], theirs[2 * r + 1]);
+  mrn_grid_active_refresh(g);
+  const double *q = (const double *)(in + b.nrows * 2 * sizeof(int));
+  for (int k = 0; k < narr; k++) q = add(q, arr[k].a, &b, arr[k].nc);
+  return MRN_OK;
+}
+
+/* the cuts this process shares, ordered so that pairs of processes meet
+ * at once: even ranks first up, odd ranks first down */
+static int neighbours(const mrn_dist *d, int peer[2], int cut[2]) {
+  int n = 0;
+  const int up = d->rank + 1 < d->size, down = d->rank > 0;
+  for (int pass = 0; pass < 2; pass++) {
+    const int go_up = (d->rank % 2 == 0) == (pass == 0);
+    if (go_up && up) {
+      peer[n] = d->rank + 1;
+      cut[n++] = d->cut[d->rank + 1];
+    } else if (!go_up && down) {
+      peer[n] = d->rank - 1;
+      cut[n++] = d->cut[d->rank];
+    }
+  }
+  return n;
+}
+
+static int sum_arrays(mrn_sim *sim, const nodal *arr, int narr) {
+  int peer[2], cut[2], rc = MRN_OK;
+  const int n = neighbours(sim->dist, peer, cut);
+  for (int k = 0; k < n && rc == MRN_OK; k++) rc = exchange_band(sim, peer[k], cut[k], arr, narr);
+  return rc;
+}
+
+int mrn_dist_sum_halo(mrn_sim *sim, unsigned what, int rc) {
+  if (!sim->dist || (rc = mrn_dist_agree(sim, rc)) != MRN_OK) return rc;
+  mrn_grid *g = &sim->grid;
+  nodal arr[3];
+  int narr = 0;
+  if (what & MRN_CLEAR_MASS_MOM) {
+    arr[narr++] = (nodal){g->mass, 1};
+    arr[narr++] = (nodal){g->mom, 3};
+  }
+  if (what & MRN_CLEAR_FORCE) arr[narr++] = (nodal){g->force, 3};
+  return mrn_dist_agree(sim, sum_arrays(sim, arr, narr));
+}
+
+void mrn_dist_sum_nodal(void *ctx, double *values, int ncomp) {
+  mrn_sim *sim = ctx;
+  if (!sim->dist) return;
+  const nodal arr = {values, ncomp};
+  (void)mrn_dist_agree(sim, sum_arrays(sim, &arr, 1));
+}
+
+void mrn_dist_touch(mrn_sim *sim) {
+  mrn_dist *d = sim->dist;
+  if (!d) return;
+  int friction = 0;
+  for (int f = 0; f < 2 * sim->dim; f++) friction |= sim->boundary.face[f].kind == MRN_BC_FRICTION;
+  if (!friction) return;
+  int peer[2], cut[2];
+  const int n = neighbours(d, peer, cut);
+  for (int k = 0; k < n; k++) {
+    const band b = band_at(&sim->grid, cut[k]);
+    unsigned char *in = buffer(d, (size_t)b.nodes), *mine = sim->grid.touch + b.first;
+    if (!in) continue; /* out of memory: this band's contacts stay one-sided for a step */
+    mrn_comm_exchange(peer[k], mine, (size_t)b.nodes, in, (size_t)b.nodes);
+    d->halo_bytes += (double)b.nodes;
+    for (long i = 0; i < b.nodes; i++) mine[i] |= in[i];
+  }
+}
+
+/* particles leaving this process: their destinations, the bytes for each
+ * process and the offsets of each one's share (all P-long) */
+typedef struct moves {
+  size_t P, rec;
+  int *dest;
+  unsigned char *keep;
+  size_t *cnt, *sdispl, *rcnt, *rdispl;
+  size_t sent, got;
+} moves;
+
+static int plan_moves(mrn_sim *sim, moves *m) {
+  const mrn_dist *d = sim->dist;
+  const mrn_particles *ps = &sim->particles;
+  m->P = (size_t)d->size;
+  m->rec = mrn_particles_record_bytes(ps);
+  m->cnt = calloc(4 * m->P, sizeof *m->cnt);
+  m->dest = malloc((ps->n + 1) * sizeof *m->dest);
+  m->keep = malloc(ps->n + 1);
+  if (!m->cnt || !m->dest || !m->keep) return mrn_error("parallel: out of memory moving particles");
+  m->sdispl = m->cnt + m->P;
+  m->rcnt = m->cnt + 2 * m->P;
+  m->rdispl = m->cnt + 3 * m->P;
+  for (size_t p = 0; p < ps->n; p++) {
+    m->dest[p] = owner_of(d, row_of(&sim->grid, d->axis, ps->x + 3 * p));
+    m->keep[p] = m->dest[p] == d->rank;
+    if (!m->keep[p]) m->cnt[m->dest[p]] += m->rec;
+  }
+  /* how much comes from each process: one size_t from each to each */
+  size_t *one = calloc(2 * m->P, sizeof *one);
+  if (!one) return mrn_error("parallel: out of memory moving particles");
+  for (size_t r = 0; r < m->P; r++) {
+    one[r] = sizeof(size_t);
+    one[m->P + r] = r * sizeof(size_t);
+  }
+  mrn_comm_alltoallv(m->cnt, one, one + m->P, m->rcnt, one, one + m->P);
+  free(one);
+  for (size_t r = 0; r < m->P; r++) {
+    m->sdispl[r] = m->sent;
+    m->rdispl[r] = m->got;
+    m->sent += m->cnt[r];
+    m->got += m->rcnt[r];
+  }
+  return MRN_OK;
+}
+
+/* the records of the leaving particles, by destination */
+static unsigned char *pack_moves(const mrn_particles *ps, const moves *m) {
+  unsigned char *out = malloc(m->sent + 1);
+  size_t *at = malloc(m->P * sizeof *at);
+  if (out && at) {
+    memcpy(at, m->sdispl, m->P * sizeof *at);
+    for (size_t p = 0; p < ps->n; p++)
+      if (!m->keep[p]) {
+        mrn_particles_pack(ps, p, out + at[m->dest[p]]);
+        at[m->dest[p]] += m->rec;
+      }
+  }
+  free(at);
+  if (!at) {
+    free(out);
+    return NULL;
+  }
+  return out;
+}
+
+/* Send every particle to the process owning its cell row; the arrivals
+ * are appended in the order of their senders' ranks. */
+static int move_particles(mrn_sim *sim) {
+  mrn_dist *d = sim->dist;
+  mrn_particles *ps = &sim->particles;
+  moves m = {0};
+  int rc = plan_moves(sim, &m);
+  unsigned char *out = rc == MRN_OK ? pack_moves(ps, &m) : NULL, *in = rc == MRN_OK ? malloc(m.got + 1) : NULL;
+  if (rc == MRN_OK && (!out || !in)) rc = mrn_error("parallel: out of memory moving particles");
+  if (rc == MRN_OK) {
+    mrn_comm_alltoallv(out, m.cnt, m.sdispl, in, m.rcnt, m.rdispl);
+    d->migrate_bytes += (double)m.sent;
+    d->migrated += (long)(m.sent / m.rec);
+    if (m.sent > 0) mrn_particles_compact(ps, m.keep);
+    for (size_t at = 0; at < m.got && rc == MRN_OK; at += m.rec)
+      if (mrn_particles_unpack(ps, in + at) < 0) rc = MRN_ERR;
+    /* a step without arrivals or departures keeps the binning's incremental update */
+    if (sim->blocks && (m.sent > 0 || m.got > 0)) mrn_blocks_forget(sim->blocks);
+  }
+  free(m.cnt);
+  free(m.dest);
+  free(m.keep);
+  free(out);
+  free(in);
+  return rc;
+}
+
+int mrn_dist_rebalance(mrn_sim *sim) {
+  if (!sim->dist) return MRN_OK;
+  int rc = cut_by_count(sim, sim->dist, 0);
+  if (rc == MRN_OK) sim->dist->rebalances++;
+  return mrn_dist_agree(sim, rc == MRN_OK ? move_particles(sim) : rc);
+}
+
+/* a re-cut is due every rebalance_every steps, when the largest particle
+ * count exceeds the mean by the imbalance factor */
+static int rebalance_due(mrn_sim *sim) {
+  const mrn_dist *d = sim->dist;
+  if (sim->rebalance_every <= 0 || sim->step % sim->rebalance_every != 0) return 0;
+  double v[2] = {(double)sim->particles.n, (double)sim->particles.n};
+  mrn_comm_allreduce(v, 1, MRN_COMM_SUM);
+  mrn_comm_allreduce(v + 1, 1, MRN_COMM_MAX);
+  return v[1] > sim->rebalance_imbalance * v[0] / d->size;
+}
+
+int mrn_dist_migrate(mrn_sim *sim, int rc) {
+  if (!sim->dist || (rc = mrn_dist_agree(sim, rc)) != MRN_OK) return rc;
+  if (rebalance_due(sim)) return mrn_dist_rebalance(sim);
+  return mrn_dist_agree(sim, move_particles(sim));
+}
+
+/* a record's id: the last field of mrn_particles_pack's layout */
+static int64_t record_id(const unsigned char *r, size_t rec) {
+  int64_t id;
+  memcpy(&id, r + rec - sizeof id, sizeof id);
+  return id;
+}
+
+static size_t gather_rec; /* record size for the comparison below (process 0, one gather at a time) */
+
+static int by_id(const void *a, const void *b) {
+  const int64_t x = record_id(*(const unsigned char *const *)a, gather_rec);
+  const int64_t y = record_id(*(const unsigned char *const *)b, gather_rec);
+  return (x > y) - (x < y);
+}
+
+/* on process 0: a particle set laid out as `like`, holding the `total`
+ * records of `all` in the order of their ids */
+static int assemble(mrn_particles *out, const mrn_particles *like, const unsigned char *all, size_t total,
+                    size_t rec) {
+  mrn_particles_init(out, like->dim);
+  out->user_stride = like->user_stride;
+  out->nuser = like->nuser;
+  memcpy(out->user_fields, like->user_fields, sizeof out->user_fields);
+  out->next_id = like->next_id;
+  const unsigned char **order = malloc((total + 1) * sizeof *order);
+  int rc = order && mrn_particles_set_state_stride(out, like->state_stride) == MRN_OK &&
+                   mrn_particles_reserve(out, total) == MRN_OK
+               ? MRN_OK
+               : mrn_error("parallel: out of memory gathering %zu particles", total);
+  for (size_t i = 0; rc == MRN_OK && i < total; i++) order[i] = all + i * rec;
+  gather_rec = rec;
+  if (rc == MRN_OK) qsort(order, total, sizeof *order, by_id);
+  for (size_t i = 0; rc == MRN_OK && i < total; i++)
+    if (mrn_particles_unpack(out, order[i]) < 0) rc = MRN_ERR;
+  free(order);
+  return rc;
+}
+
+/* the books of work kept per process (dist.h), summed on every process */
+enum { BOOKS = 5 };
+static void books_get(const mrn_sim *sim, double *b) {
+  b[0] = sim->work_friction;
+  b[1] = sim->work_damping;
+  b[2] = sim->energy_outflow;
+  b[3] = sim->outflow_mass;
+  b[4] = (double)sim->outflow_particles;
+}
+
+static void books_set(mrn_sim *sim, const double *b) {
+  sim->work_friction = b[0];
+  sim->work_damping = b[1];
+  sim->energy_outflow = b[2];
+  sim->outflow_mass = b[3];
+  sim->outflow_particles = (long)b[4];
+}
+
+void mrn_dist_books(const mrn_sim *sim, double *friction, double *damping, double *outflow) {
+  double b[BOOKS];
+  books_get(sim, b);
+  mrn_dist_reduce(sim, b, BOOKS, MRN_COMM_SUM);
+  *friction = b[0];
+  *damping = b[1];
+  *outflow = b[2];
+}
+
+/* The nodal values a checkpoint keeps (mass, V, force, the contact bits),
+ * each row from the process that owns it, on process 0 in place of its
+ * own (kept in d->held_grid) until mrn_dist_gather_end. */
+enum { GRID_VALUES = 8 }; /* per node: mass, V, force, contact */
+
+static int gather_grid(mrn_sim *sim, mrn_dist *d) {
+  mrn_grid *g = &sim->grid;
+  const size_t n = g->n;
+  double *all = calloc(GRID_VALUES * n, sizeof *all);
+  unsigned char *contact = d->rank == 0 ? malloc(n) : NULL;
+  int ok = all && (d->rank != 0 || contact);
+  for (size_t i = 0; ok && i < n; i++) {
+    if (!mrn_grid_owns(g, (long)i)) continue;
+    all[i] = g->mass[i];
+    for (int k = 0; k < 3; k++) {
+      all[n + 3 * i + k] = g->vel[3 * i + k];
+      all[4 * n + 3 * i + k] = g->force[3 * i + k];
+    }
+    all[7 * n + i] = g->contact[i];
+  }
+  if (ok) mrn_comm_reduce_sum(all, GRID_VALUES * n, 0);
+  if (ok && d->rank == 0) {
+    for (size_t i = 0; i < n; i++) contact[i] = (unsigned char)all[7 * n + i];
+    d->held_mass = g->mass;
+    d->held_vel = g->vel;
+    d->held_force = g->force;
+    g->mass = all;
+    g->vel = all + n;
+    g->force = all + 4 * n;
+    d->held_contact = g->contact;
+    g->contact = contact;
+    return MRN_OK;
+  }
+  free(all);
+  free(contact);
+  return ok ? MRN_OK : mrn_error("parallel: out of memory gathering the grid");
+}
+
+static void gather_grid_end(mrn_sim *sim, mrn_dist *d) {
+  mrn_grid *g = &sim->grid;
+  if (!d->held_contact) return;
+  free(g->mass); /* the block gather_grid made, from its start */
+  free(g->contact);
+  g->mass = d->held_mass;
+  g->vel = d->held_vel;
+  g->force = d->held_force;
+  g->contact = d->held_contact;
+  d->held_contact = NULL;
+}
+
+int mrn_dist_gather_begin(const mrn_sim *csim) {
+  /* the particles and books are exchanged for the whole set's, and given
+   * back by mrn_dist_gather_end: a writer sees a consistent simulation */
+  mrn_sim *sim = (mrn_sim *)csim;
+  mrn_dist *d = sim->dist;
+  if (!d) return MRN_OK;
+  const mrn_particles *ps = &sim->particles;
+  const size_t rec = mrn_particles_record_bytes(ps), P = (size_t)d->size;
+  size_t *cnt = calloc(2 * P, sizeof *cnt), *displ = cnt + P, total = 0;
+  unsigned char *mine = malloc(ps->n * rec + 1), *all = NULL;
+  int rc = cnt && mine ? MRN_OK : mrn_error("parallel: out of memory gathering the particles");
+  if (rc == MRN_OK) {
+    for (size_t p = 0; p < ps->n; p++) mrn_particles_pack(ps, p, mine + p * rec);
+    mrn_comm_allgather_size(ps->n * rec, cnt);
+    for (size_t r = 0; r < P; r++) {
+      displ[r] = total;
+      total += cnt[r];
+    }
+    all = d->rank == 0 ? malloc(total + 1) : NULL;
+    if (d->rank == 0 && !all) rc = mrn_error("parallel: out of memory gathering the particles");
+    mrn_comm_gatherv(mine, ps->n * rec, all, cnt, displ, 0);
+  }
+  mrn_particles whole;
+  if (rc == MRN_OK && d->rank == 0 && (rc = assemble(&whole, ps, all, total / rec, rec)) == MRN_OK) {
+    d->held = malloc(sizeof *d->held);
+    if (d->held) {
+      *d->held = sim->particles;
+      sim->particles = whole;
+    } else {
+      mrn_particles_free(&whole);
+      rc = mrn_error("parallel: out of memory gathering the particles");
+    }
+  }
+  if (rc == MRN_OK) rc = gather_grid(sim, d);
+  books_get(sim, d->held_books);
+  double b[BOOKS];
+  memcpy(b, d->held_books, sizeof b);
+  mrn_comm_allreduce(b, BOOKS, MRN_COMM_SUM);
+  if (d->rank == 0) books_set(sim, b);
+  free(cnt);
+  free(mine);
+  free(all);
+  return mrn_dist_agree(sim, rc);
+}
+
+void mrn_dist_gather_end(const mrn_sim *csim) {
+  mrn_sim *sim = (mrn_sim *)csim;
+  mrn_dist *d = sim->dist;
+  if (!d) return;
+  gather_grid_end(sim, d);
+  books_set(sim, d->held_books);
+  if (!d->held) return;
+  mrn_particles_free(&sim->particles);
+  sim->particles = *d->held;
+  free(d->held);
+  d->held = NULL;
+}
+
+int mrn_sim_set_rebalance(mrn_sim *sim, long every, double imbalance) {
+  if (every < 0) return mrn_error("parallel: rebalance_every must be >= 0, got %ld", every);
+  if (!(imbalance >= 1.0) || !isfinite(imbalance))
+    return mrn_error("parallel: imbalance must be a finite number >= 1, got %s", mrn_num(imbalance).s);
+  sim->rebalance_every = every;
+  sim->rebalance_imbalance = imbalance;
+  return MRN_OK;
+}
+
+int mrn_dist_refuse_late_affine(const mrn_sim *sim) {
+  mrn_comm_set_shared_error(1); /* every process holds the same settings */
+  return mrn_error("parallel: the initial affine field of particles given velocities after the first step (scheme "
+                   "%s) is found on one process only; give the velocities before the first run (doc/parallel.md)",
+                   sim->scheme.name);
+}

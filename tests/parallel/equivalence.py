@@ -1,0 +1,136 @@
+#!/usr/bin/env python3
+"""The same deck on 1, 2 and 3 processes gives the same run.
+
+Runs tests/parallel/equivalence.lua (or the deck given) with the case given
+on one process (no mpirun) and under `mpirun -np N` for each N, then
+compares with the one-process run:
+  - every column of the diagnostics CSV at every step, each relative to
+    the largest magnitude that column takes in the one-process run (a
+    momentum passing through zero has no relative error of its own), the
+    energies and works (E_*, W_*) relative to the largest of them all:
+    W_MPM is a difference of energies of that size, and carries their
+    round-off;
+  - every particle field of the final checkpoint (sim:save, particles in
+    the order of their ids), relative to the field's largest magnitude.
+The bound is 1e-12 (doc/parallel.md: the sums over processes add the same
+numbers in another order, so the runs agree to round-off, not bitwise).
+Usage: equivalence.py MORAINE DECK WORKDIR CASE STEPS NP... [--rebalance N] [--transfer NAME]
+"""
+import csv
+import os
+import subprocess
+import sys
+
+import h5py
+import numpy as np
+
+TOL = 1e-12
+FIELDS = ["x", "x0", "v", "mass", "vol0", "F", "affine", "stress", "strain", "e_elastic", "w_plastic", "state"]
+
+
+def mpirun(np_):
+    if np_ == 1:
+        return []
+    return ["mpirun", "--oversubscribe", "--allow-run-as-root", "-np", str(np_)]
+
+
+def run(moraine, deck, workdir, case, steps, np_, rebalance, transfer=None):
+    name = f"{case}_np{np_}" + (f"_rb{rebalance}" if rebalance else "")
+    out = os.path.join(workdir, name)
+    cmd = mpirun(np_) + [moraine, "-q", "--overwrite", "-o", out, "--set", f"case={case}", "--set", f"steps={steps}",
+                         "--set", f"name={name}", "--set", f"rebalance={rebalance}", deck]
+    if transfer:
+        cmd[-1:-1] = ["--set", f"transfer={transfer}"]
+    env = dict(os.environ, OMP_NUM_THREADS="1")
+    r = subprocess.run(cmd, capture_output=True, text=True, env=env, timeout=900)
+    if r.returncode != 0:
+        sys.exit(f"FAIL: {' '.join(cmd)} exited {r.returncode}\n{r.stdout}\n{r.stderr}")
+    return os.path.join(out, name + ".csv"), os.path.join(out, name + ".h5")
+
+
+def read_csv(path):
+    with open(path) as f:
+        rows = list(csv.reader(f))
+    head = rows[0]
+    data = np.array([[float(v) for v in r] for r in rows[1:]])
+    return head, data
+
+
+def compare_csv(ref, other, label):
+    head, a = read_csv(ref)
+    head_b, b = read_csv(other)
+    if head != head_b or a.shape != b.shape:
+        sys.exit(f"FAIL {label}: the diagnostics differ in shape: {a.shape} vs {b.shape}")
+    worst, where = 0.0, ""
+    energy = [j for j, col in enumerate(head) if col[:2] in ("E_", "W_")]
+    energy_scale = np.max(np.abs(a[:, energy]))
+    for j, col in enumerate(head):
+        # an energy or work, W_MPM above all (a small difference of large
+        # energies), against the run's energy scale; the others their own
+        scale = energy_scale if j in energy else np.max(np.abs(a[:, j]))
+        if scale == 0.0:
+            dev = np.max(np.abs(b[:, j]))
+            if dev != 0.0:
+                sys.exit(f"FAIL {label}: column {col} is 0 on one process and up to {dev:g} here")
+            continue
+        rel = np.max(np.abs(a[:, j] - b[:, j])) / scale
+        if rel > worst:
+            worst, where = rel, col
+    print(f"{label}: diagnostics, {a.shape[0]} rows x {a.shape[1]} columns: largest deviation {worst:.3g} ({where})")
+    if worst > TOL:
+        sys.exit(f"FAIL {label}: diagnostics deviate by {worst:.3g} > {TOL:g} in {where}")
+    return worst
+
+
+def compare_states(ref, other, label):
+    fa, fb = h5py.File(ref, "r"), h5py.File(other, "r")
+    ida, idb = fa["particles/id"][:], fb["particles/id"][:]
+    if not np.array_equal(ida, idb):
+        sys.exit(f"FAIL {label}: the checkpoints hold different particles ({len(ida)} vs {len(idb)})")
+    if not np.all(np.diff(ida) > 0):
+        sys.exit(f"FAIL {label}: the checkpoint's particles are not in the order of their ids")
+    worst, where = 0.0, ""
+    for name in FIELDS:
+        if "particles/" + name not in fa:
+            continue
+        a, b = fa["particles/" + name][:], fb["particles/" + name][:]
+        if a.size == 0:  # a model without history variables
+            continue
+        scale = np.max(np.abs(a))
+        rel = np.max(np.abs(a - b)) / scale if scale > 0 else np.max(np.abs(b))
+        if rel > worst:
+            worst, where = rel, name
+    print(f"{label}: {len(ida)} particles: largest deviation {worst:.3g} ({where})")
+    if worst > TOL:
+        sys.exit(f"FAIL {label}: particle states deviate by {worst:.3g} > {TOL:g} in {where}")
+    return worst
+
+
+def main():
+    args = sys.argv[1:]
+    rebalance, transfer = 0, None
+    if "--transfer" in args:
+        i = args.index("--transfer")
+        transfer = args[i + 1]
+        del args[i:i + 2]
+    if "--rebalance" in args:
+        i = args.index("--rebalance")
+        rebalance = int(args[i + 1])
+        del args[i:i + 2]
+    moraine, deck, workdir, case, steps = args[:5]
+    nps = [int(n) for n in args[5:]]
+    os.makedirs(workdir, exist_ok=True)
+    ref_csv, ref_h5 = run(moraine, deck, workdir, case, steps, 1, 0, transfer)
+    for np_ in nps:
+        for rb in ([0, rebalance] if rebalance else [0]):
+            if np_ == 1 and rb == 0:
+                continue
+            csv_, h5 = run(moraine, deck, workdir, case, steps, np_, rb, transfer)
+            label = (f"{transfer} " if transfer else "") + f"{case} on {np_} process{'es' if np_ > 1 else ''}" + (f", re-cut every {rb} steps" if rb else "")
+            compare_csv(ref_csv, csv_, label)
+            compare_states(ref_h5, h5, label)
+    print("PASS")
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,38 @@
+# Distributed runs under mpirun (scripts/mpirun: Open MPI, oversubscribed),
+# registered when the build has MPI (doc/parallel.md). Each runs one thread
+# per process; the label `mpi` selects them.
+set(MORAINE_PAR_DIR ${CMAKE_CURRENT_SOURCE_DIR}/parallel)
+set(MORAINE_PAR_DECK ${MORAINE_PAR_DIR}/equivalence.lua)
+
+# 1, 2 and 3 processes: the same diagnostics and particle states to 1e-12 after 1000 steps
+add_test(NAME mpi.equivalence_collapse2d
+         COMMAND ${Python3_EXECUTABLE} ${MORAINE_PAR_DIR}/equivalence.py $<TARGET_FILE:moraine> ${MORAINE_PAR_DECK}
+                 ${MORAINE_TEST_OUT}/mpi_equivalence collapse2d 1000 2 3)
+# the same in 3D, and with the slabs re-cut every 50 steps
+add_test(NAME mpi.equivalence_cube3d
+         COMMAND ${Python3_EXECUTABLE} ${MORAINE_PAR_DIR}/equivalence.py $<TARGET_FILE:moraine> ${MORAINE_PAR_DECK}
+                 ${MORAINE_TEST_OUT}/mpi_equivalence cube3d 1000 2 3 --rebalance 50)
+# XPIC(2): each smoothing pass with its own halo sum
+add_test(NAME mpi.equivalence_xpic
+         COMMAND ${Python3_EXECUTABLE} ${MORAINE_PAR_DIR}/equivalence.py $<TARGET_FILE:moraine> ${MORAINE_PAR_DECK}
+                 ${MORAINE_TEST_OUT}/mpi_equivalence_xpic collapse2d 500 2 3 --transfer XPIC2)
+# the VTK series of the 3-process collapse read by ParaView's reader: every particle once, as on one process
+add_test(NAME mpi.vtk_series
+         COMMAND ${Python3_EXECUTABLE} ${MORAINE_PAR_DIR}/check_vtk.py
+                 ${MORAINE_TEST_OUT}/mpi_equivalence/collapse2d_np1 collapse2d_np1
+                 ${MORAINE_TEST_OUT}/mpi_equivalence/collapse2d_np3 collapse2d_np3)
+set_tests_properties(mpi.vtk_series PROPERTIES DEPENDS mpi.equivalence_collapse2d)
+# saved on 3 processes, continued on 1 and on 2: the straight run's state
+foreach(case collapse2d cube3d)
+  add_test(NAME mpi.restart_${case}
+           COMMAND ${Python3_EXECUTABLE} ${MORAINE_PAR_DIR}/restart.py $<TARGET_FILE:moraine> ${MORAINE_PAR_DECK}
+                   ${MORAINE_TEST_OUT}/mpi_restart_${case} ${case} 500)
+endforeach()
+# crossing two slabs in a step, empty processes, a particle leaving (a stop; a deletion booked as
+# outflow), a Lua error on one process,
+# a grid too thin, SIGINT to mpirun
+add_test(NAME mpi.robust COMMAND ${MORAINE_PAR_DIR}/robust.sh $<TARGET_FILE:moraine> ${MORAINE_TEST_OUT}/mpi_robust)
+# the cases share the two equivalence directories' one-process runs: one at a time
+set_tests_properties(mpi.equivalence_collapse2d mpi.equivalence_cube3d mpi.equivalence_xpic mpi.vtk_series mpi.restart_collapse2d
+                     mpi.restart_cube3d mpi.robust
+                     PROPERTIES LABELS mpi RUN_SERIAL TRUE ENVIRONMENT "OMP_NUM_THREADS=1;OMP_WAIT_POLICY=PASSIVE")

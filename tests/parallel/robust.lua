@@ -1,0 +1,80 @@
+-- Distributed runs that go wrong, or nearly (tests/parallel/robust.sh):
+--   case=crossing    one block of particles, thin slabs: it starts on process 0 with
+--                    the others empty, and in one step crosses process 1's slab into
+--                    process 2's; mass, momentum and the free-flight position hold
+--   case=lua_error   a hook raises an error on the last process only, at step 20
+--   case=leave       the same block's second step carries it out of the grid: every
+--                    process stops with the diagnosis and one checkpoint is written
+--   case=outflow     as leave with on_leave = "delete": the block is deleted on the
+--                    process that holds it, and every process books its energy as outflow
+--   case=small_grid  8 cells along y for 3 processes (4 each at least)
+--   case=sigint      a long run that the driver interrupts (SIGINT to mpirun)
+local case = mpm.param("case", "crossing")
+local steel = mpm.material.linear_elastic{ density = 7800, E = 2e8, nu = 0.3 }
+local function check(ok, fmt, ...)
+  if not ok then error(string.format(fmt, ...), 2) end
+end
+
+if case == "crossing" or case == "leave" or case == "outflow" then
+  -- 12 cells of 0.1 m along y on 3 processes: slabs of 4 cells; no gravity, no
+  -- stress (a rigid translation), one step of 0.01 s at 100 m/s carries the
+  -- block 1 m = 10 cells up, from process 0's slab over process 1's into 2's
+  -- (ten cells a step: the watchdog, which would stop that, is off)
+  local sim = mpm.simulation{ dim = 2, grid = { size = { 0.4, 1.2 }, cell = 0.1 }, gravity = { 0, 0 },
+    scheme = { transfer = "PIC", stress_update = "USL" }, dt = { fixed = 0.01 }, thermo = 0, watchdog = false,
+    boundary = { all = "free" }, diagnostics = "crossing.csv", diagnostics_every = 1, name = case,
+    on_leave = case == "outflow" and "delete" or "stop" }
+  sim:add_particles(mpm.box{ min = { 0.1, 0.05 }, max = { 0.3, 0.15 } },
+                    { material = steel, per_axis = 2, velocity = { 0, 100 } })
+  local d0 = sim:diagnostics()
+  sim:run{ steps = case == "crossing" and 1 or 2 }
+  local d, par = sim:diagnostics(), sim:parallel()
+  if case == "outflow" then
+    check(d.particles == 0, "%d particles left after the block went out", d.particles)
+    check(math.abs(d.E_outflow - d0.E_kinetic) <= 1e-12 * d0.E_kinetic, "E_outflow %.17g, the block had E_k %.17g",
+          d.E_outflow, d0.E_kinetic)
+    check(math.abs(d.W_MPM) <= 1e-9 * d0.E_kinetic, "W_MPM %.3g after the outflow", d.W_MPM)
+    print(string.format("outflow: the block's %.6g J/m left as E_outflow %.6g J/m on %d processes", d0.E_kinetic,
+                        d.E_outflow, par.size))
+    return
+  end
+  print(string.format("process %d of %d holds %d particles; cuts %s", par.rank, par.size, par.particles,
+                      table.concat(par.cuts or {}, " ")))
+  check(d.particles == d0.particles, "particles %d after the step, %d before", d.particles, d0.particles)
+  check(math.abs(d.mass - d0.mass) <= 1e-12 * d0.mass, "mass %.17g, was %.17g", d.mass, d0.mass)
+  check(math.abs(d.momentum_y - d0.momentum_y) <= 1e-12 * d0.momentum_y, "momentum_y %.17g, was %.17g",
+        d.momentum_y, d0.momentum_y)
+  check(math.abs(d.com_y - (0.1 + 1.0)) < 1e-9, "centre of mass at y = %.12g, expected 1.1", d.com_y)
+  -- every particle sits on the process whose slab holds it
+  if par.size == 3 then
+    check(par.particles == (par.rank == 2 and d0.particles or 0), "process %d holds %d particles", par.rank,
+          par.particles)
+  end
+  sim:save("crossing.h5")
+elseif case == "lua_error" or case == "sigint" then
+  local sim = mpm.simulation{ dim = 2, grid = { size = { 1.0, 1.0 }, cell = 0.05 }, gravity = { 0, -9.81 },
+    scheme = { transfer = "FLIP", stress_update = "USF" }, dt = { cfl = 0.2 }, thermo = 0, name = case,
+    boundary = { bottom = "slip" } }
+  sim:add_particles(mpm.box{ min = { 0.2, 0 }, max = { 0.8, 0.9 } }, { material = steel, per_axis = 2 })
+  if case == "lua_error" then
+    sim:hook{ every_steps = 1, fn = function(s)
+      local par = s:parallel()
+      if s:step() == 20 and par.rank == par.size - 1 then error("the last process gives up at step 20") end
+    end }
+    sim:run{ steps = 100 }
+  else
+    sim:hook{ every_steps = 1, fn = function(s)
+      if s:step() == 5 and s:parallel().rank == 0 then
+        local f = assert(io.open(mpm.outdir .. "/started", "w"))
+        f:close()
+      end
+    end }
+    sim:run{ steps = 10000000 }
+  end
+elseif case == "small_grid" then
+  local sim = mpm.simulation{ dim = 2, grid = { size = { 1.0, 0.8 }, cell = 0.1 }, thermo = 0 }
+  sim:add_particles(mpm.box{ min = { 0.2, 0 }, max = { 0.8, 0.5 } }, { material = steel, per_axis = 2 })
+  sim:run{ steps = 5 }
+else
+  error("unknown case " .. tostring(case))
+end
