@@ -22,12 +22,14 @@
 --   moraine examples/prandtl_footing/deck.lua -o out/prandtl
 --   moraine examples/prandtl_footing/deck.lua -o out/prandtl_k10 --set k=10
 --   moraine examples/prandtl_footing/deck.lua -o out/prandtl_rough --set rough=true
+--   moraine examples/prandtl_footing/deck.lua -o out/prandtl_fbar --set volumetric=fbar
 --   python3 examples/prandtl_footing/plot.py out/prandtl out/prandtl/load_settlement.png
 --
 -- Parameters: k (5), travel (1e-3 m), rough (false), material (von_mises),
--- boundary (wls), nu (0.333), tag (footing: the names of the files
--- written), vtk (true), quick (false: k = 3, 0.4 mm, no VTK). Returns a
--- table of the results.
+-- boundary (wls), nu (0.333), volumetric (standard; fbar averages the
+-- divergence over the nodes against volumetric locking), tag (footing: the
+-- names of the files written), vtk (true), quick (false: k = 3, 0.4 mm, no
+-- VTK). Returns a table of the results.
 local quick = mpm.param("quick", false)
 local k = math.tointeger(mpm.param("k", quick and 3 or 5))
 local travel = tonumber(mpm.param("travel", quick and 4e-4 or 1e-3))
@@ -35,6 +37,7 @@ local rough = mpm.param("rough", false)
 local material = mpm.param("material", "von_mises")
 local tag = mpm.param("tag", "footing")
 local vtk = mpm.param("vtk", not quick)
+local volumetric = mpm.param("volumetric", "standard")
 local E, nu, rho, c = 1e9, tonumber(mpm.param("nu", 0.333)), 1000, 10e3
 local B, L = 1.0, 5.0
 local h = B / (2 * k + 1)
@@ -49,7 +52,7 @@ else
   soil = mpm.material.von_mises{ density = rho, E = E, nu = nu, yield = math.sqrt(3) * c }
 end
 local sim = mpm.simulation{ dim = 2, grid = { size = { L, L }, cell = h }, shape = "quadratic_bspline",
-  shape_boundary = mpm.param("boundary", "wls"), scheme = { transfer = "TPIC", stress_update = "USF" },
+  shape_boundary = mpm.param("boundary", "wls"), scheme = { transfer = "TPIC", stress_update = "USF", volumetric = volumetric },
   boundary = { left = "slip", right = "slip", bottom = "fixed", top = "free" }, dt = { cfl = 1.0 },
   thermo = 0, progress = false, diagnostics = tag .. "_diagnostics.csv", series = false,
   output = vtk and { vtk = tag, every = travel / V / 4, fields = { "displacement", "stress", "eps_D" } } or nil }

@@ -138,11 +138,15 @@ def prandtl_footing(case, run, records, runs, path):
     fig, ax = plt.subplots(figsize=(7, 4.5))
     for tag, label in (("smooth_k3", "smooth, h = B/7"), ("smooth_k5", "smooth, h = B/11"),
                        ("smooth_k10", "smooth, h = B/21"), ("rough_k5", "rough, h = B/11"),
-                       ("rough_k10", "rough, h = B/21"), ("mc_k5", "Mohr-Coulomb phi = 0, h = B/11")):
+                       ("rough_k10", "rough, h = B/21"), ("mc_k5", "Mohr-Coulomb phi = 0, h = B/11"),
+                       ("fbar_k3", "fbar, h = B/7"), ("fbar_k5", "fbar, h = B/11"), ("fbar_k10", "fbar, h = B/21"),
+                       ("fbar_k5_nu0", "fbar, h = B/11, nu = 0"), ("fbar_k5_nu0.45", "fbar, h = B/11, nu = 0.45")):
         f = os.path.join(run, tag + ".csv")
         if os.path.isfile(f):
             c = read_csv(f)
-            ax.plot(c["settlement_over_B"][:-1], c["q_over_c"][:-1], label=label)
+            # scheme volumetric = "fbar" dashed
+            ax.plot(c["settlement_over_B"][:-1], c["q_over_c"][:-1], "--" if tag.startswith("fbar") else "-",
+                    label=label)
     ax.axhline(2 + np.pi, color="k", ls="--", lw=1, label="Prandtl 2 + pi")
     finish(fig, ax, path, "Strip footing through a wall: load-settlement", "settlement / B", "q / c")
 

@@ -140,6 +140,9 @@ static void save_scheme(mrn_h5w *w, const mrn_scheme *s) {
   mrn_h5w_int32(w, g, "xpic_order", s->xpic_order);
   mrn_h5w_int32(w, g, "mls_gradient", s->mls_gradient);
   mrn_h5w_string(w, g, "stress_update", mrn_stress_update_names()[s->stress_update]);
+  /* only when asked for: a run without it writes the file it wrote before */
+  if (s->volumetric != MRN_VOLUMETRIC_STANDARD)
+    mrn_h5w_string(w, g, "volumetric", mrn_volumetric_names()[s->volumetric]);
   H5Gclose(g);
 }
 

@@ -223,6 +223,9 @@ static void read_scheme(mrn_h5r *r, ck_data *d) {
   read_int_in(r, g, "mls_gradient", 0, 1, &mls);
   s->xpic_order = (int)order;
   s->mls_gradient = (int)mls;
+  int vol = MRN_VOLUMETRIC_STANDARD; /* absent: standard */
+  if (mrn_h5r_has_attr(r, g, "volumetric")) mrn_h5r_choice(r, g, "volumetric", mrn_volumetric_names(), &vol);
+  s->volumetric = (mrn_volumetric_kind)vol;
   /* the three choices must also fit together */
   if (!r->failed && mrn_scheme_validate(s) != MRN_OK) fail_with_engine_message(r, g);
 }

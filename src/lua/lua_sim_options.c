@@ -19,6 +19,8 @@ static const mrn_spec scheme_specs[] = {
     {"flip_fraction", MRN_SPEC_NUMBER, 0, 1, 0, 1, 0, 0, "", "X of the blend X FLIP + (1 - X) PIC (000, Eq. 37)", NULL},
     {"xpic_order", MRN_SPEC_INTEGER, 0, 1, 1, 16, 0, 0, "", "m of XPIC(m) (000, Eqs. 39-41)", NULL},
     {"gradient", MRN_SPEC_STRING, 0, 0, 0, 0, 0, 0, NULL, "kernel gradient: standard or mls (002, Eq. 62)", gradient_choices},
+    {"volumetric", MRN_SPEC_STRING, 0, 0, 0, 0, 0, 0, NULL,
+     "volumetric part of the velocity gradient: standard or fbar (averaged over the nodes, against locking)", NULL},
 };
 
 static const mrn_spec boundary_specs[] = {
@@ -203,6 +205,8 @@ void mrn_lua_read_scheme(lua_State *L, int idx, const char *where, mrn_sim *sim)
       custom = 1;
     }
     if (custom) mrn_scheme_describe(&s);
+    /* not a transfer choice: the preset's name stays */
+    if ((k = read_knob(L, idx, where, "volumetric", mrn_volumetric_names())) >= 0) s.volumetric = k;
   } else {
     mrn_lua_error(L, where, "scheme must be a preset name or a table {transfer = ..., stress_update = ...}, got %s",
                   luaL_typename(L, idx));

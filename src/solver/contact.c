@@ -333,6 +333,9 @@ static int contact_check(mrn_sim *sim) {
   if (sim->scheme.velocity_update == MRN_VUPDATE_XPIC)
     return mrn_error("contact: XPIC is not available with contact between bodies (use PIC, FLIP, a blend or APIC)");
   if (sim->nsources) return mrn_error("contact: sources are not available with contact between bodies");
+  if (sim->scheme.volumetric != MRN_VOLUMETRIC_STANDARD)
+    return mrn_error("contact: scheme volumetric = '%s' is not available with contact between bodies (it would "
+                     "average the volume change across the bodies)", mrn_volumetric_names()[sim->scheme.volumetric]);
   if (mrn_particles_user_field(ps, MRN_POINT_FORCE_FIELD))
     return mrn_error("contact: point forces are not available with contact between bodies");
   unsigned used = 0;

@@ -110,6 +110,7 @@ void mrn_sim_free(mrn_sim *sim) {
   free(sim->constraints);
   free(sim->scratch);
   free(sim->domain);
+  free(sim->fbar);
   free(sim);
 }
 

@@ -102,6 +102,10 @@ typedef struct mrn_sim {
   /* CPDI: the particles' domains as the step froze them (transfer/cpdi.h) */
   double *domain;
   size_t domain_cap;
+  /* scheme volumetric = "fbar": the gradients and the averaging's scratch
+   * (solver/update.c) */
+  double *fbar;
+  size_t fbar_cap;
 } mrn_sim;
 
 typedef struct mrn_sim_config {

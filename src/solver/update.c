@@ -1,10 +1,14 @@
 /* moraine: the material-point update of the explicit step (see update.h). */
 #include "solver/update.h"
 
+#include <stdlib.h>
+#include <string.h>
+
 #include "core/error.h"
 #include "material/advance.h"
 #include "material/user.h"
 #include "transfer/kernels.h"
+#include "transfer/volumetric.h"
 
 typedef struct chunk_ctx {
   mrn_sim *sim;
@@ -60,14 +64,20 @@ int mrn_update_from_grid(mrn_sim *sim, mrn_transfer *tr, const double *gvel, dou
 }
 
 int mrn_update_from_gradients(mrn_sim *sim, const double *L, double dt) {
+  const double t0 = mrn_phase_begin();
   chunk_ctx c = {sim, dt};
-  long bad = -1;
-  for (size_t lo = 0; lo < sim->particles.n; lo += MRN_GRADIENT_CHUNK) {
-    const size_t hi = lo + MRN_GRADIENT_CHUNK < sim->particles.n ? lo + MRN_GRADIENT_CHUNK : sim->particles.n;
-    const long b = update_chunk(&c, lo, hi, L + 9 * lo);
-    if (bad < 0) bad = b;
+  const long n = (long)sim->particles.n, nchunks = (n + MRN_GRADIENT_CHUNK - 1) / MRN_GRADIENT_CHUNK;
+  long bad = n;
+  /* the chunks are independent (a user material's law serialises itself) and
+   * the lowest rejected index is the same for any thread count */
+#pragma omp parallel for schedule(static) if (n > MRN_OMP_MIN_ITEMS) reduction(min : bad)
+  for (long k = 0; k < nchunks; k++) {
+    const long lo = k * MRN_GRADIENT_CHUNK, hi = lo + MRN_GRADIENT_CHUNK < n ? lo + MRN_GRADIENT_CHUNK : n;
+    const long b = update_chunk(&c, (size_t)lo, (size_t)hi, L + 9 * lo);
+    if (b >= 0 && b < bad) bad = b;
   }
-  return pass_result(sim, bad, dt);
+  mrn_phase_end(MRN_PHASE_STRESS, t0);
+  return pass_result(sim, bad < n ? bad : -1, dt);
 }
 
 int mrn_update_then_force(mrn_sim *sim, mrn_transfer *tr, const double *gvel, double dt) {
@@ -90,8 +100,53 @@ int mrn_update_with_g2p(mrn_sim *sim, mrn_transfer *tr, double dt_move, double d
   return pass_result(sim, mrn_g2p_then(tr, dt_move, NULL, &sink, after, after_bad), dt_stress);
 }
 
+/* a gradient sink that keeps the gradients of every particle (9 each) */
+static long store_chunk(void *ctx, size_t lo, size_t hi, const double *L) {
+  memcpy((double *)ctx + 9 * lo, L, 9 * (hi - lo) * sizeof(double));
+  return -1;
+}
+
+/* 12 doubles per particle: the gradients, then the averaging's scratch */
+static double *fbar_buffer(mrn_sim *sim) {
+  const size_t need = 12 * sim->particles.n;
+  if (need > sim->fbar_cap) {
+    double *b = realloc(sim->fbar, need * sizeof(double));
+    if (!b) return NULL;
+    sim->fbar = b, sim->fbar_cap = need;
+  }
+  return sim->fbar;
+}
+
+/* The chains with the material update under scheme volumetric = "fbar":
+ * a particle's L~ needs the nodal sums of every particle's divergence
+ * (transfer/volumetric.h), so the stages become passes of their own:
+ * gradient from gvel (the particles where the last P2G saw them: before
+ * G2P moves them, as the fused G2P takes it), the average, the material
+ * update, then the internal force and G2P as the chain asks. */
+static int stages_fbar(mrn_sim *sim, mrn_transfer *tr, mrn_particle_stages *s) {
+  const unsigned st = s->stages;
+  const size_t n = sim->particles.n;
+  s->end_bad = -1;
+  double *L = fbar_buffer(sim);
+  if (!L && n) return mrn_error("step: out of memory for the volumetric averaging");
+  const mrn_gradient_sink keep = {store_chunk, L, MRN_PHASE_G2P};
+  mrn_gradient(tr, s->gvel, &keep);
+  const double t0 = mrn_phase_begin();
+  mrn_volumetric_average(tr, L, L + 9 * n);
+  mrn_phase_end(MRN_PHASE_G2P, t0);
+  const int rc = mrn_update_from_gradients(sim, L, s->material_dt);
+  if (rc) return rc;
+  if (st & MRN_STAGE_FORCE) {
+    mrn_blocks_reuse(tr->blocks); /* the particles have not moved since the first P2G */
+    mrn_p2g(tr, 0, 1);
+  }
+  if (st & MRN_STAGE_MOVE) mrn_g2p_then(tr, s->move_dt, s->dx, NULL, (st & MRN_STAGE_END) ? s->end : NULL, &s->end_bad);
+  return MRN_OK;
+}
+
 int mrn_particle_stages_run(mrn_sim *sim, mrn_transfer *tr, mrn_particle_stages *s) {
   const unsigned st = s->stages, update = MRN_STAGE_GRADIENT | MRN_STAGE_MATERIAL;
+  if ((st & update) == update && sim->scheme.volumetric == MRN_VOLUMETRIC_FBAR) return stages_fbar(sim, tr, s);
   const mrn_particle_pass *end = (st & MRN_STAGE_END) ? s->end : NULL;
   s->end_bad = -1;
   if (st & MRN_STAGE_MOVE) {

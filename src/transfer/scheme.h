@@ -22,6 +22,9 @@ typedef enum { MRN_VGRID_PLAIN = 0, MRN_VGRID_AFFINE, MRN_VGRID_TAYLOR } mrn_gri
 typedef enum { MRN_VUPDATE_PIC = 0, MRN_VUPDATE_FLIP, MRN_VUPDATE_BLEND, MRN_VUPDATE_XPIC } mrn_velocity_update_kind;
 typedef enum { MRN_XUPDATE_GRID = 0, MRN_XUPDATE_PARTICLE, MRN_XUPDATE_XPIC } mrn_position_update_kind;
 typedef enum { MRN_STRESS_USF = 0, MRN_STRESS_USL, MRN_STRESS_MUSL, MRN_STRESS_USAVG } mrn_stress_update_kind;
+/* the volumetric part of the velocity gradient the material update takes:
+ * each particle's own, or averaged over the nodes (F-bar, solver/update.c) */
+typedef enum { MRN_VOLUMETRIC_STANDARD = 0, MRN_VOLUMETRIC_FBAR } mrn_volumetric_kind;
 
 #define MRN_XPIC_MAX_ORDER 16
 
@@ -33,6 +36,7 @@ typedef struct mrn_scheme {
   int xpic_order;       /* m of 000, Eqs. 39-41 */
   int mls_gradient;     /* 1: MLS kernel gradient (002, Eq. 62 everywhere) */
   mrn_stress_update_kind stress_update;
+  mrn_volumetric_kind volumetric; /* kept by a preset, as the stress update */
   char name[32];        /* the preset name, or a description of the three choices */
 } mrn_scheme;
 
@@ -52,6 +56,7 @@ int mrn_stress_update_from_name(const char *name, mrn_stress_update_kind *out);
 const char *const *mrn_velocity_update_names(void);
 const char *const *mrn_position_update_names(void);
 const char *const *mrn_grid_velocity_names(void);
+const char *const *mrn_volumetric_names(void);
 /* index of name in a NULL-terminated list, or -1 */
 int mrn_name_index(const char *const *names, const char *name);
 

@@ -16,7 +16,8 @@ local c = math.sqrt(E / rho)
 local mat = mpm.material.linear_elastic{ density = rho, E = E, nu = 0 }
 local sim = mpm.simulation{
   dim = 2, grid = { size = { 2 * L, h }, cell = h }, gravity = { 0, 0 }, shape = mpm.param("shape", "linear"),
-  scheme = { transfer = mpm.param("transfer", "FLIP"), stress_update = "USF" },
+  scheme = { transfer = mpm.param("transfer", "FLIP"), stress_update = mpm.param("stress_update", "USF"),
+             volumetric = mpm.param("volumetric", "standard") },
   dt = { fixed = 0.1 * h / c },
   boundary = { left = "fixed", right = "free", bottom = "slip", top = "slip" },
   thermo = 0, diagnostics = "bar.csv",

@@ -7,7 +7,9 @@
 -- (NAME.h5, sim:save: every particle, in the order of their ids); the 2D
 -- case also a VTK series every 250 steps (NAME.pvd), for ParaView's reader.
 -- --set transfer=NAME replaces the case's strategy (XPIC(2): the smoothing's
--- extra passes, each with its halo sum); --set rebalance=N re-cuts the slabs every N steps; --set load=FILE
+-- extra passes, each with its halo sum); --set volumetric=fbar averages the
+-- divergence over the nodes (its scatter with its halo sum); --set
+-- rebalance=N re-cuts the slabs every N steps; --set load=FILE
 -- continues from a checkpoint of either case instead (tests/parallel/restart.py).
 local case = mpm.param("case", "collapse2d")
 local steps = mpm.param("steps", 1000)
@@ -15,13 +17,14 @@ local name = mpm.param("name", case)
 local rebalance = mpm.param("rebalance", 0)
 local load = mpm.param("load", "")
 local transfer = mpm.param("transfer", case == "cube3d" and "APIC" or "FLIP")
+local volumetric = mpm.param("volumetric", "standard")
 local sim
 if load ~= "" then
   sim = mpm.load(load, { thermo = 0, diagnostics = name .. ".csv" })
 elseif case == "collapse2d" then
   local sand = mpm.material.mohr_coulomb{ density = 1748, E = 12.84e6, nu = 0.16, phi = 33.75, psi = 0, cohesion = 1 }
   sim = mpm.simulation{ dim = 2, grid = { size = { 3.0, 1.0 }, cell = 0.025 }, shape = "quadratic_bspline",
-    scheme = { transfer = transfer, stress_update = "USF" }, gravity = { 0, -9.81 },
+    scheme = { transfer = transfer, stress_update = "USF", volumetric = volumetric }, gravity = { 0, -9.81 },
     boundary = { left = "slip", right = "slip", bottom = { "friction", mu = 0.3 }, top = "free" },
     dt = { cfl = 0.5 }, thermo = 0, diagnostics = name .. ".csv", diagnostics_every = 1,
     output = { vtk = name, every_steps = 250, fields = { "velocity", "stress", "id" } } }
@@ -29,7 +32,7 @@ elseif case == "collapse2d" then
 elseif case == "cube3d" then
   local rubber = mpm.material.linear_elastic{ density = 1000, E = 1e6, nu = 0.3 }
   sim = mpm.simulation{ dim = 3, grid = { size = { 0.6, 0.6, 0.8 }, cell = 0.05 }, shape = "quadratic_bspline",
-    scheme = { transfer = transfer, stress_update = "USL" }, gravity = { 0, 0, -9.81 }, damping = { viscous = 0.5 },
+    scheme = { transfer = transfer, stress_update = "USL", volumetric = volumetric }, gravity = { 0, 0, -9.81 }, damping = { viscous = 0.5 },
     boundary = { left = "slip", right = "slip", front = "slip", back = "slip", bottom = "slip", top = "free" },
     dt = { cfl = 0.4 }, thermo = 0, diagnostics = name .. ".csv", diagnostics_every = 1 }
   sim:add_particles(mpm.box{ min = { 0.15, 0.15, 0.3 }, max = { 0.45, 0.45, 0.6 } },
