@@ -3,6 +3,7 @@
 
 #include <math.h>
 #include <stdint.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -107,13 +108,13 @@ int mrn_dist_start(mrn_sim *sim) {
   if (nc < MRN_DIST_MIN_CELLS * mrn_comm_size())
     return mrn_error("parallel: %d processes need at least %d cells along %c (%d per process); the grid has %d",
                      mrn_comm_size(), MRN_DIST_MIN_CELLS * mrn_comm_size(), "xyz"[axis], MRN_DIST_MIN_CELLS, nc);
+  mrn_comm_set_shared_error(0);
   mrn_dist *d = calloc(1, sizeof *d);
   if (d) d->cut = calloc((size_t)mrn_comm_size() + 1, sizeof *d->cut);
   if (!d || !d->cut) {
     mrn_dist_free(d);
     return mrn_error("parallel: out of memory");
   }
-  mrn_comm_set_shared_error(0);
   d->rank = mrn_comm_rank();
   d->size = mrn_comm_size();
   d->axis = axis;
