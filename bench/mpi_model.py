@@ -18,11 +18,11 @@ communicating:
                                 exchanges per step and cut (2: mass and
                                 momentum, then force; 3 with friction faces)
   t_reduce  = C alpha ceil(log2 P)
-                                C = 12 agreements and sums of a few numbers
+                                C = 14 agreements and sums of a few numbers
                                 per step (halo sums, migration, watchdog,
                                 hooks, the time step), latency-bound trees
   t_alltoall= 2 alpha (P - 1)   the migration's all-to-all of counts and of
-                                particles (Open MPI's pairwise exchange)
+                                particles, one message to and from every process
   t_move    = M / beta          M: bytes of particles sent per step (measured)
   efficiency(P) = t_compute / (t_compute + t_halo + t_reduce + t_alltoall + t_move)
 alpha and beta: this machine's (measured by bench/mpi_pingpong.py, shared
@@ -38,7 +38,7 @@ import re
 import statistics
 import sys
 
-ALPHA_REDUCE_COUNT = 12
+ALPHA_REDUCE_COUNT = 14
 NETWORKS = [("InfiniBand HDR (assumed)", 1e-6, 24e9), ("10 Gb Ethernet (assumed)", 20e-6, 1.2e9)]
 CELLS_ALONG_CUT = {"c32": 36, "collapse3d": 44, "a160k": 104}
 EXCHANGES = {"collapse3d": 3}
