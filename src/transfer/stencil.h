@@ -180,11 +180,15 @@ static inline __attribute__((always_inline, unused)) int mrn_gimp_axis(double xi
   const mrn_axis_v4 sgn = MRN_AXIS_PICK(r < 0.0, zero - 1.0, zero + 1.0);
   const mrn_axis_v4 t = 1.0 + lp - a;
   const mrn_axis_m4 inner = a < lp, middle = a < 1.0 - lp, outer = a < 1.0 + lp;
-  const mrn_axis_v4 w_in = 1.0 - (r * r + lp * lp) / (2.0 * lp), w_mid = 1.0 - a, w_out = t * t / (4.0 * lp);
-  const mrn_axis_v4 d_in = -r / lp, d_mid = -sgn, d_out = -sgn * t / (2.0 * lp);
-  *(mrn_axis_v4 *)w = MRN_AXIS_PICK(inner, w_in, MRN_AXIS_PICK(middle, w_mid, MRN_AXIS_PICK(outer, w_out, zero)));
+  /* the inner and outer branches' quotients share one division for w and
+   * one for dw: each lane divides its own branch's operands */
+  const mrn_axis_v4 qw = MRN_AXIS_PICK(inner, r * r + lp * lp, t * t) /
+                         MRN_AXIS_PICK(inner, zero + 2.0 * lp, zero + 4.0 * lp);
+  const mrn_axis_v4 qd = MRN_AXIS_PICK(inner, -r, -sgn * t) / MRN_AXIS_PICK(inner, zero + lp, zero + 2.0 * lp);
+  const mrn_axis_v4 w_in = 1.0 - qw, w_mid = 1.0 - a, d_mid = -sgn;
+  *(mrn_axis_v4 *)w = MRN_AXIS_PICK(inner, w_in, MRN_AXIS_PICK(middle, w_mid, MRN_AXIS_PICK(outer, qw, zero)));
   *(mrn_axis_v4 *)dw =
-      MRN_AXIS_PICK(inner, d_in, MRN_AXIS_PICK(middle, d_mid, MRN_AXIS_PICK(outer, d_out, zero))) * inv_cell;
+      MRN_AXIS_PICK(inner, qd, MRN_AXIS_PICK(middle, d_mid, MRN_AXIS_PICK(outer, qd, zero))) * inv_cell;
   *(mrn_axis_v4 *)off = origin + node * cell - x;
   return (int)fl;
 }
@@ -219,6 +223,7 @@ typedef struct KNAME(axes) {
 #ifndef MRN_AXIS_V2
 #define MRN_AXIS_V2
 typedef double mrn_axis_v2 __attribute__((vector_size(16)));
+typedef long long mrn_axis_m2 __attribute__((vector_size(16)));
 #endif
 /* The quadratic B-spline's axes of a 2D particle, both axes at once as the
  * lanes of 2-wide vectors: the same operations as the loop of axes_build
@@ -269,28 +274,26 @@ static inline __attribute__((always_inline)) int KNAME(axes_quadratic_2d)(const 
 static inline __attribute__((always_inline)) int KNAME(axes_linear_2d)(const mrn_grid *g,
                                                                        const mrn_kernel_boundary mode,
                                                                        const double *x, KNAME(axes) *a) {
+  /* the grid's values in locals before the stores into `a`, which could
+   * alias them */
   const double inv_cell = g->inv_cell, cell = g->cell;
+  const mrn_axis_v2 nc = {(double)g->ncell[0], (double)g->ncell[1]};
+  const size_t pad = (size_t)g->pad, st0 = (size_t)g->stride[0], st1 = (size_t)g->stride[1];
   const mrn_axis_v2 xd = {x[0], x[1]}, origin = {g->origin[0], g->origin[1]};
-  const mrn_axis_v2 xi = (xd - origin) * inv_cell;
+  const mrn_axis_v2 xi = (xd - origin) * inv_cell, one = {1.0, 1.0};
   mrn_axis_v2 b0 = {floor(xi[0]), floor(xi[1])};
-  if (b0[0] == (double)g->ncell[0]) b0[0] -= 1.0;
-  if (b0[1] == (double)g->ncell[1]) b0[1] -= 1.0;
-  const int base[2] = {(int)b0[0], (int)b0[1]};
+  /* on the upper face: the last cell (b0 - 1 exactly where b0 == ncell) */
+  b0 -= (mrn_axis_v2)((mrn_axis_m2)(b0 == nc) & (mrn_axis_m2)one);
   const mrn_axis_v2 t = xi - b0, w0 = 1.0 - t;
   const mrn_axis_v2 o0 = origin + b0 * cell - xd, o1 = origin + (b0 + 1.0) * cell - xd;
   for (int d = 0; d < 2; d++) {
-    a->w[d][0] = w0[d];
-    a->w[d][1] = t[d];
-    a->dw[d][0] = -inv_cell;
-    a->dw[d][1] = inv_cell;
-    a->off[d][0] = o0[d];
-    a->off[d][1] = o1[d];
-    for (int k = 2; k < 4; k++) a->w[d][k] = a->dw[d][k] = a->off[d][k] = 0.0;
+    *(mrn_axis_v4 *)a->w[d] = (mrn_axis_v4){w0[d], t[d], 0.0, 0.0};
+    *(mrn_axis_v4 *)a->dw[d] = (mrn_axis_v4){-inv_cell, inv_cell, 0.0, 0.0};
+    *(mrn_axis_v4 *)a->off[d] = (mrn_axis_v4){o0[d], o1[d], 0.0, 0.0};
   }
-  if (mode != MRN_KERNEL_EXTENDED &&
-      ((base[0] < 0) | (base[1] < 0) | (base[0] + 1 > g->ncell[0]) | (base[1] + 1 > g->ncell[1])))
-    return 0;
-  a->node0 = (size_t)(base[0] + g->pad) * (size_t)g->stride[0] + (size_t)(base[1] + g->pad) * (size_t)g->stride[1];
+  const mrn_axis_m2 out = (b0 < 0.0) | (b0 + 1.0 > nc);
+  if (mode != MRN_KERNEL_EXTENDED && (out[0] | out[1])) return 0;
+  a->node0 = ((size_t)(long)b0[0] + pad) * st0 + ((size_t)(long)b0[1] + pad) * st1;
   return 1;
 }
 #endif
