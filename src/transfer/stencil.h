@@ -160,39 +160,47 @@ static __attribute__((noinline, unused)) int mrn_bspline_cubic_axis(double xi, d
   return (int)fl - 1;
 }
 
-/* uGIMP along one axis for the 3 nodes from floor(xi - lp) (lp: the
- * particle's half-width in cells, at most 1/2), as 4-wide vectors: each of
- * mrn_shape_gimp_1d's branches formed on every lane with its operations and
- * the lane's branch picked by masks, so the same values without a branch
- * per node (the fourth lane, 2 + lp cells or more away, gets zero). Stores
- * and returns as mrn_bspline_cubic_axis. Inlined (a call per axis cost a
- * fifth of the uGIMP step): test_blocks holds the kernels that build the
- * same particle's stencil to the same bits. */
+/* uGIMP's weights W and derivatives DW (d/dxi times inv_cell) on every lane
+ * of the vectors of type V (masks of type M), given r = xi - node (node
+ * distances in cells) and lp (the particle's half-width in cells, at most
+ * 1/2): each of mrn_shape_gimp_1d's branches formed on every lane with its
+ * operations and the lane's branch picked by masks, so the same values
+ * without a branch per node (lanes 1 + lp cells or more away get zero). The
+ * inner and outer branches' quotients share one division for W and one for
+ * DW, each lane dividing its own branch's operands. */
+#define MRN_PICK(V, M, m, a, b) ((V)(((M)(a) & (m)) | ((M)(b) & ~(m))))
+#define MRN_GIMP_LANES(V, M, r, lp, inv_cell, W, DW)                                                            \
+  do {                                                                                                          \
+    const V zero_ = {0};                                                                                        \
+    const V a_ = MRN_PICK(V, M, (r) < 0.0, -(r), (r)); /* fabs */                                              \
+    const V sgn_ = MRN_PICK(V, M, (r) < 0.0, zero_ - 1.0, zero_ + 1.0);                                        \
+    const V t_ = 1.0 + (lp)-a_;                                                                                 \
+    const M inner_ = a_ < (lp), middle_ = a_ < 1.0 - (lp), outer_ = a_ < 1.0 + (lp);                           \
+    const V qw_ = MRN_PICK(V, M, inner_, (r) * (r) + (lp) * (lp), t_ * t_) /                                    \
+                  MRN_PICK(V, M, inner_, zero_ + 2.0 * (lp), zero_ + 4.0 * (lp));                               \
+    const V qd_ = MRN_PICK(V, M, inner_, -(r), -sgn_ * t_) / MRN_PICK(V, M, inner_, zero_ + (lp), zero_ + 2.0 * (lp)); \
+    const V w_in_ = 1.0 - qw_, w_mid_ = 1.0 - a_, d_mid_ = -sgn_;                                               \
+    W = MRN_PICK(V, M, inner_, w_in_, MRN_PICK(V, M, middle_, w_mid_, MRN_PICK(V, M, outer_, qw_, zero_)));      \
+    DW = MRN_PICK(V, M, inner_, qd_, MRN_PICK(V, M, middle_, d_mid_, MRN_PICK(V, M, outer_, qd_, zero_))) *      \
+         (inv_cell);                                                                                            \
+  } while (0)
+
+/* uGIMP along one axis for the 3 nodes from floor(xi - lp), as 4-wide
+ * vectors (MRN_GIMP_LANES; the fourth lane, 2 + lp cells or more away, gets
+ * zero). Stores and returns as mrn_bspline_cubic_axis. Inlined (a call per
+ * axis cost a fifth of the uGIMP step): test_blocks holds the kernels that
+ * build the same particle's stencil to the same bits. */
 typedef long long mrn_axis_m4 __attribute__((vector_size(32), aligned(8), may_alias));
-#define MRN_AXIS_PICK(m, a, b) ((mrn_axis_v4)(((mrn_axis_m4)(a) & (m)) | ((mrn_axis_m4)(b) & ~(m))))
 static inline __attribute__((always_inline, unused)) int mrn_gimp_axis(double xi, double lp, double inv_cell,
                                                                         double origin, double cell, double x,
                                                                         double *w, double *dw, double *off) {
   const double fl = floor(xi - lp);
-  const mrn_axis_v4 k = {0.0, 1.0, 2.0, 3.0}, zero = {0.0, 0.0, 0.0, 0.0};
+  const mrn_axis_v4 k = {0.0, 1.0, 2.0, 3.0};
   const mrn_axis_v4 node = fl + k, r = xi - node;
-  const mrn_axis_v4 a = MRN_AXIS_PICK(r < 0.0, -r, r); /* fabs */
-  const mrn_axis_v4 sgn = MRN_AXIS_PICK(r < 0.0, zero - 1.0, zero + 1.0);
-  const mrn_axis_v4 t = 1.0 + lp - a;
-  const mrn_axis_m4 inner = a < lp, middle = a < 1.0 - lp, outer = a < 1.0 + lp;
-  /* the inner and outer branches' quotients share one division for w and
-   * one for dw: each lane divides its own branch's operands */
-  const mrn_axis_v4 qw = MRN_AXIS_PICK(inner, r * r + lp * lp, t * t) /
-                         MRN_AXIS_PICK(inner, zero + 2.0 * lp, zero + 4.0 * lp);
-  const mrn_axis_v4 qd = MRN_AXIS_PICK(inner, -r, -sgn * t) / MRN_AXIS_PICK(inner, zero + lp, zero + 2.0 * lp);
-  const mrn_axis_v4 w_in = 1.0 - qw, w_mid = 1.0 - a, d_mid = -sgn;
-  *(mrn_axis_v4 *)w = MRN_AXIS_PICK(inner, w_in, MRN_AXIS_PICK(middle, w_mid, MRN_AXIS_PICK(outer, qw, zero)));
-  *(mrn_axis_v4 *)dw =
-      MRN_AXIS_PICK(inner, qd, MRN_AXIS_PICK(middle, d_mid, MRN_AXIS_PICK(outer, qd, zero))) * inv_cell;
+  MRN_GIMP_LANES(mrn_axis_v4, mrn_axis_m4, r, lp, inv_cell, *(mrn_axis_v4 *)w, *(mrn_axis_v4 *)dw);
   *(mrn_axis_v4 *)off = origin + node * cell - x;
   return (int)fl;
 }
-#undef MRN_AXIS_PICK
 #endif
 
 /* The shapes with a fast stencil, by the code the kernels are specialised
@@ -216,6 +224,13 @@ typedef struct KNAME(axes) {
   double dw[DIM][4];
   double off[DIM][4];
 } KNAME(axes);
+
+/* uGIMP's particle half-width in cells, from its initial volume vol0, as
+ * stencil_build forms it */
+static inline double KNAME(gimp_half_width)(const mrn_grid *g, double vol0) {
+  const double lp = 0.5 * (DIM == 2 ? sqrt(vol0) : cbrt(vol0)) * g->inv_cell;
+  return lp > 0.5 ? 0.5 : lp;
+}
 
 /* Returns 0 when the particle needs the general stencil: its support crosses
  * a face and the kernel is adjusted there. `sup` is a constant at every call. */
@@ -296,14 +311,34 @@ static inline __attribute__((always_inline)) int KNAME(axes_linear_2d)(const mrn
   a->node0 = ((size_t)(long)b0[0] + pad) * st0 + ((size_t)(long)b0[1] + pad) * st1;
   return 1;
 }
+
+/* uGIMP's axes of a 2D particle, both axes at once as the two halves of
+ * 8-wide vectors (one AVX-512 register): the operations of mrn_gimp_axis
+ * on each half, so the same bits. */
+typedef double mrn_axis_v8 __attribute__((vector_size(64), aligned(8), may_alias));
+typedef long long mrn_axis_m8 __attribute__((vector_size(64), aligned(8), may_alias));
+static inline __attribute__((always_inline)) int KNAME(axes_gimp_2d)(const mrn_grid *g, const mrn_kernel_boundary mode,
+                                                                     const double *x, double vol0, KNAME(axes) *a) {
+  const double lp = KNAME(gimp_half_width)(g, vol0);
+  const double inv_cell = g->inv_cell, cell = g->cell;
+  const int nc0 = g->ncell[0], nc1 = g->ncell[1];
+  const size_t pad = (size_t)g->pad, st0 = (size_t)g->stride[0], st1 = (size_t)g->stride[1];
+  const double o0 = g->origin[0], o1 = g->origin[1], x0 = x[0], x1 = x[1];
+  const double xi0 = (x0 - o0) * inv_cell, xi1 = (x1 - o1) * inv_cell;
+  const double f0 = floor(xi0 - lp), f1 = floor(xi1 - lp);
+  const mrn_axis_v8 k = {0.0, 1.0, 2.0, 3.0, 0.0, 1.0, 2.0, 3.0};
+  const mrn_axis_v8 fl = {f0, f0, f0, f0, f1, f1, f1, f1}, xi = {xi0, xi0, xi0, xi0, xi1, xi1, xi1, xi1};
+  const mrn_axis_v8 org = {o0, o0, o0, o0, o1, o1, o1, o1}, xv = {x0, x0, x0, x0, x1, x1, x1, x1};
+  const mrn_axis_v8 node = fl + k, r = xi - node;
+  MRN_GIMP_LANES(mrn_axis_v8, mrn_axis_m8, r, lp, inv_cell, *(mrn_axis_v8 *)a->w, *(mrn_axis_v8 *)a->dw);
+  *(mrn_axis_v8 *)a->off = org + node * cell - xv;
+  const int b0 = (int)f0, b1 = (int)f1;
+  if (mode != MRN_KERNEL_EXTENDED && ((b0 < 0) | (b1 < 0) | (b0 + 2 > nc0) | (b1 + 2 > nc1))) return 0;
+  a->node0 = ((size_t)b0 + pad) * st0 + ((size_t)b1 + pad) * st1;
+  return 1;
+}
 #endif
 
-/* uGIMP's particle half-width in cells, from its initial volume vol0, as
- * stencil_build forms it */
-static inline double KNAME(gimp_half_width)(const mrn_grid *g, double vol0) {
-  const double lp = 0.5 * (DIM == 2 ? sqrt(vol0) : cbrt(vol0)) * g->inv_cell;
-  return lp > 0.5 ? 0.5 : lp;
-}
 
 static inline __attribute__((always_inline)) int KNAME(axes_build)(const mrn_grid *g, const int kind,
                                                                    const mrn_kernel_boundary mode, const double *x,
@@ -311,6 +346,7 @@ static inline __attribute__((always_inline)) int KNAME(axes_build)(const mrn_gri
 #if DIM == 2
   if (kind == MRN_FAST_QUADRATIC) return KNAME(axes_quadratic_2d)(g, mode, x, a);
   if (kind == MRN_FAST_LINEAR) return KNAME(axes_linear_2d)(g, mode, x, a);
+  if (kind == MRN_FAST_GIMP) return KNAME(axes_gimp_2d)(g, mode, x, vol0, a);
 #endif
   const int sup = MRN_FAST_SUPPORT(kind);
   const double lp = kind == MRN_FAST_GIMP ? KNAME(gimp_half_width)(g, vol0) : 0.0;
