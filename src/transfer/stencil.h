@@ -9,6 +9,9 @@
 #error "stencil.h needs DIM"
 #endif
 
+#include <stdint.h>
+#include <string.h>
+
 #include "grid/grid.h"
 #include "shape/shape.h"
 #include "transfer/wls.h"
@@ -226,10 +229,21 @@ typedef struct KNAME(axes) {
 } KNAME(axes);
 
 /* uGIMP's particle half-width in cells, from its initial volume vol0, as
- * stencil_build forms it */
+ * stencil_build forms it. The last value is kept per thread, keyed by the
+ * bits of vol0 and of the grid's 1/cell: the particles that follow one
+ * another mostly share vol0, and the root (in 3D a library call) costs
+ * more than the rest of the axes. */
 static inline double KNAME(gimp_half_width)(const mrn_grid *g, double vol0) {
-  const double lp = 0.5 * (DIM == 2 ? sqrt(vol0) : cbrt(vol0)) * g->inv_cell;
-  return lp > 0.5 ? 0.5 : lp;
+  static _Thread_local uint64_t memo_vol0 = UINT64_MAX, memo_inv = 0;
+  static _Thread_local double memo_lp = 0.0;
+  uint64_t bv, bi;
+  memcpy(&bv, &vol0, sizeof bv);
+  memcpy(&bi, &g->inv_cell, sizeof bi);
+  if (bv == memo_vol0 && bi == memo_inv) return memo_lp;
+  double lp = 0.5 * (DIM == 2 ? sqrt(vol0) : cbrt(vol0)) * g->inv_cell;
+  lp = lp > 0.5 ? 0.5 : lp;
+  memo_vol0 = bv, memo_inv = bi, memo_lp = lp;
+  return lp;
 }
 
 /* Returns 0 when the particle needs the general stencil: its support crosses
@@ -314,7 +328,10 @@ static inline __attribute__((always_inline)) int KNAME(axes_linear_2d)(const mrn
 
 /* uGIMP's axes of a 2D particle, both axes at once as the two halves of
  * 8-wide vectors (one AVX-512 register): the operations of mrn_gimp_axis
- * on each half, so the same bits. */
+ * on each half, so the same bits. Only with AVX-512: without it GCC splits
+ * the 8-wide operations into far more pieces than two axis passes take. */
+#ifdef __AVX512F__
+#define MRN_GIMP_AXES_2D 1
 typedef double mrn_axis_v8 __attribute__((vector_size(64), aligned(8), may_alias));
 typedef long long mrn_axis_m8 __attribute__((vector_size(64), aligned(8), may_alias));
 static inline __attribute__((always_inline)) int KNAME(axes_gimp_2d)(const mrn_grid *g, const mrn_kernel_boundary mode,
@@ -338,6 +355,7 @@ static inline __attribute__((always_inline)) int KNAME(axes_gimp_2d)(const mrn_g
   return 1;
 }
 #endif
+#endif
 
 
 static inline __attribute__((always_inline)) int KNAME(axes_build)(const mrn_grid *g, const int kind,
@@ -346,7 +364,9 @@ static inline __attribute__((always_inline)) int KNAME(axes_build)(const mrn_gri
 #if DIM == 2
   if (kind == MRN_FAST_QUADRATIC) return KNAME(axes_quadratic_2d)(g, mode, x, a);
   if (kind == MRN_FAST_LINEAR) return KNAME(axes_linear_2d)(g, mode, x, a);
+#ifdef MRN_GIMP_AXES_2D
   if (kind == MRN_FAST_GIMP) return KNAME(axes_gimp_2d)(g, mode, x, vol0, a);
+#endif
 #endif
   const int sup = MRN_FAST_SUPPORT(kind);
   const double lp = kind == MRN_FAST_GIMP ? KNAME(gimp_half_width)(g, vol0) : 0.0;
