@@ -229,20 +229,25 @@ typedef struct KNAME(axes) {
 } KNAME(axes);
 
 /* uGIMP's particle half-width in cells, from its initial volume vol0, as
- * stencil_build forms it. The last value is kept per thread, keyed by the
- * bits of vol0 and of the grid's 1/cell: the particles that follow one
- * another mostly share vol0, and the root (in 3D a library call) costs
- * more than the rest of the axes. */
+ * stencil_build forms it. In 3D the last value is kept per thread, keyed by
+ * the bits of vol0 and of the grid's 1/cell: the particles that follow one
+ * another mostly share vol0, and the cube root is a library call that
+ * costs more than the rest of the axes (in 2D the square root is one
+ * instruction, cheaper than the look-up). */
 static inline double KNAME(gimp_half_width)(const mrn_grid *g, double vol0) {
-  static _Thread_local uint64_t memo_vol0 = UINT64_MAX, memo_inv = 0;
+#if DIM == 3
+  static _Thread_local uint64_t memo_vol0 = 0, memo_inv = 0; /* 1/cell is never +0: no hit at first */
   static _Thread_local double memo_lp = 0.0;
   uint64_t bv, bi;
   memcpy(&bv, &vol0, sizeof bv);
   memcpy(&bi, &g->inv_cell, sizeof bi);
   if (bv == memo_vol0 && bi == memo_inv) return memo_lp;
+#endif
   double lp = 0.5 * (DIM == 2 ? sqrt(vol0) : cbrt(vol0)) * g->inv_cell;
   lp = lp > 0.5 ? 0.5 : lp;
+#if DIM == 3
   memo_vol0 = bv, memo_inv = bi, memo_lp = lp;
+#endif
   return lp;
 }
 
