@@ -168,9 +168,7 @@ static __attribute__((noinline, unused)) int mrn_bspline_cubic_axis(double xi, d
  * distances in cells) and lp (the particle's half-width in cells, at most
  * 1/2): each of mrn_shape_gimp_1d's branches formed on every lane with its
  * operations and the lane's branch picked by masks, so the same values
- * without a branch per node (lanes 1 + lp cells or more away get zero). The
- * inner and outer branches' quotients share one division for W and one for
- * DW, each lane dividing its own branch's operands. */
+ * without a branch per node (lanes 1 + lp cells or more away get zero). */
 #define MRN_PICK(V, M, m, a, b) ((V)(((M)(a) & (m)) | ((M)(b) & ~(m))))
 #define MRN_GIMP_LANES(V, M, r, lp, inv_cell, W, DW)                                                            \
   do {                                                                                                          \
@@ -179,12 +177,11 @@ static __attribute__((noinline, unused)) int mrn_bspline_cubic_axis(double xi, d
     const V sgn_ = MRN_PICK(V, M, (r) < 0.0, zero_ - 1.0, zero_ + 1.0);                                        \
     const V t_ = 1.0 + (lp)-a_;                                                                                 \
     const M inner_ = a_ < (lp), middle_ = a_ < 1.0 - (lp), outer_ = a_ < 1.0 + (lp);                           \
-    const V qw_ = MRN_PICK(V, M, inner_, (r) * (r) + (lp) * (lp), t_ * t_) /                                    \
-                  MRN_PICK(V, M, inner_, zero_ + 2.0 * (lp), zero_ + 4.0 * (lp));                               \
-    const V qd_ = MRN_PICK(V, M, inner_, -(r), -sgn_ * t_) / MRN_PICK(V, M, inner_, zero_ + (lp), zero_ + 2.0 * (lp)); \
-    const V w_in_ = 1.0 - qw_, w_mid_ = 1.0 - a_, d_mid_ = -sgn_;                                               \
-    W = MRN_PICK(V, M, inner_, w_in_, MRN_PICK(V, M, middle_, w_mid_, MRN_PICK(V, M, outer_, qw_, zero_)));      \
-    DW = MRN_PICK(V, M, inner_, qd_, MRN_PICK(V, M, middle_, d_mid_, MRN_PICK(V, M, outer_, qd_, zero_))) *      \
+    const V w_in_ = 1.0 - ((r) * (r) + (lp) * (lp)) / (2.0 * (lp)), w_mid_ = 1.0 - a_,                          \
+            w_out_ = t_ * t_ / (4.0 * (lp));                                                                    \
+    const V d_in_ = -(r) / (lp), d_mid_ = -sgn_, d_out_ = -sgn_ * t_ / (2.0 * (lp));                            \
+    W = MRN_PICK(V, M, inner_, w_in_, MRN_PICK(V, M, middle_, w_mid_, MRN_PICK(V, M, outer_, w_out_, zero_)));   \
+    DW = MRN_PICK(V, M, inner_, d_in_, MRN_PICK(V, M, middle_, d_mid_, MRN_PICK(V, M, outer_, d_out_, zero_))) * \
          (inv_cell);                                                                                            \
   } while (0)
 
