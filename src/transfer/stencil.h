@@ -9,6 +9,9 @@
 #error "stencil.h needs DIM"
 #endif
 
+#include <stdint.h>
+#include <string.h>
+
 #include "grid/grid.h"
 #include "shape/shape.h"
 #include "transfer/wls.h"
@@ -160,35 +163,44 @@ static __attribute__((noinline, unused)) int mrn_bspline_cubic_axis(double xi, d
   return (int)fl - 1;
 }
 
-/* uGIMP along one axis for the 3 nodes from floor(xi - lp) (lp: the
- * particle's half-width in cells, at most 1/2), as 4-wide vectors: each of
- * mrn_shape_gimp_1d's branches formed on every lane with its operations and
- * the lane's branch picked by masks, so the same values without a branch
- * per node (the fourth lane, 2 + lp cells or more away, gets zero). Stores
- * and returns as mrn_bspline_cubic_axis. Inlined (a call per axis cost a
- * fifth of the uGIMP step): test_blocks holds the kernels that build the
- * same particle's stencil to the same bits. */
+/* uGIMP's weights W and derivatives DW (d/dxi times inv_cell) on every lane
+ * of the vectors of type V (masks of type M), given r = xi - node (node
+ * distances in cells) and lp (the particle's half-width in cells, at most
+ * 1/2): each of mrn_shape_gimp_1d's branches formed on every lane with its
+ * operations and the lane's branch picked by masks, so the same values
+ * without a branch per node (lanes 1 + lp cells or more away get zero). */
+#define MRN_PICK(V, M, m, a, b) ((V)(((M)(a) & (m)) | ((M)(b) & ~(m))))
+#define MRN_GIMP_LANES(V, M, r, lp, inv_cell, W, DW)                                                            \
+  do {                                                                                                          \
+    const V zero_ = {0};                                                                                        \
+    const V a_ = MRN_PICK(V, M, (r) < 0.0, -(r), (r)); /* fabs */                                              \
+    const V sgn_ = MRN_PICK(V, M, (r) < 0.0, zero_ - 1.0, zero_ + 1.0);                                        \
+    const V t_ = 1.0 + (lp)-a_;                                                                                 \
+    const M inner_ = a_ < (lp), middle_ = a_ < 1.0 - (lp), outer_ = a_ < 1.0 + (lp);                           \
+    const V w_in_ = 1.0 - ((r) * (r) + (lp) * (lp)) / (2.0 * (lp)), w_mid_ = 1.0 - a_,                          \
+            w_out_ = t_ * t_ / (4.0 * (lp));                                                                    \
+    const V d_in_ = -(r) / (lp), d_mid_ = -sgn_, d_out_ = -sgn_ * t_ / (2.0 * (lp));                            \
+    W = MRN_PICK(V, M, inner_, w_in_, MRN_PICK(V, M, middle_, w_mid_, MRN_PICK(V, M, outer_, w_out_, zero_)));   \
+    DW = MRN_PICK(V, M, inner_, d_in_, MRN_PICK(V, M, middle_, d_mid_, MRN_PICK(V, M, outer_, d_out_, zero_))) * \
+         (inv_cell);                                                                                            \
+  } while (0)
+
+/* uGIMP along one axis for the 3 nodes from floor(xi - lp), as 4-wide
+ * vectors (MRN_GIMP_LANES; the fourth lane, 2 + lp cells or more away, gets
+ * zero). Stores and returns as mrn_bspline_cubic_axis. Inlined (a call per
+ * axis cost a fifth of the uGIMP step): test_blocks holds the kernels that
+ * build the same particle's stencil to the same bits. */
 typedef long long mrn_axis_m4 __attribute__((vector_size(32), aligned(8), may_alias));
-#define MRN_AXIS_PICK(m, a, b) ((mrn_axis_v4)(((mrn_axis_m4)(a) & (m)) | ((mrn_axis_m4)(b) & ~(m))))
 static inline __attribute__((always_inline, unused)) int mrn_gimp_axis(double xi, double lp, double inv_cell,
                                                                         double origin, double cell, double x,
                                                                         double *w, double *dw, double *off) {
   const double fl = floor(xi - lp);
-  const mrn_axis_v4 k = {0.0, 1.0, 2.0, 3.0}, zero = {0.0, 0.0, 0.0, 0.0};
+  const mrn_axis_v4 k = {0.0, 1.0, 2.0, 3.0};
   const mrn_axis_v4 node = fl + k, r = xi - node;
-  const mrn_axis_v4 a = MRN_AXIS_PICK(r < 0.0, -r, r); /* fabs */
-  const mrn_axis_v4 sgn = MRN_AXIS_PICK(r < 0.0, zero - 1.0, zero + 1.0);
-  const mrn_axis_v4 t = 1.0 + lp - a;
-  const mrn_axis_m4 inner = a < lp, middle = a < 1.0 - lp, outer = a < 1.0 + lp;
-  const mrn_axis_v4 w_in = 1.0 - (r * r + lp * lp) / (2.0 * lp), w_mid = 1.0 - a, w_out = t * t / (4.0 * lp);
-  const mrn_axis_v4 d_in = -r / lp, d_mid = -sgn, d_out = -sgn * t / (2.0 * lp);
-  *(mrn_axis_v4 *)w = MRN_AXIS_PICK(inner, w_in, MRN_AXIS_PICK(middle, w_mid, MRN_AXIS_PICK(outer, w_out, zero)));
-  *(mrn_axis_v4 *)dw =
-      MRN_AXIS_PICK(inner, d_in, MRN_AXIS_PICK(middle, d_mid, MRN_AXIS_PICK(outer, d_out, zero))) * inv_cell;
+  MRN_GIMP_LANES(mrn_axis_v4, mrn_axis_m4, r, lp, inv_cell, *(mrn_axis_v4 *)w, *(mrn_axis_v4 *)dw);
   *(mrn_axis_v4 *)off = origin + node * cell - x;
   return (int)fl;
 }
-#undef MRN_AXIS_PICK
 #endif
 
 /* The shapes with a fast stencil, by the code the kernels are specialised
@@ -213,12 +225,36 @@ typedef struct KNAME(axes) {
   double off[DIM][4];
 } KNAME(axes);
 
+/* uGIMP's particle half-width in cells, from its initial volume vol0, as
+ * stencil_build forms it. In 3D the last value is kept per thread, keyed by
+ * the bits of vol0 and of the grid's 1/cell: the particles that follow one
+ * another mostly share vol0, and the cube root is a library call that
+ * costs more than the rest of the axes (in 2D the square root is one
+ * instruction, cheaper than the look-up). */
+static inline double KNAME(gimp_half_width)(const mrn_grid *g, double vol0) {
+#if DIM == 3
+  static _Thread_local uint64_t memo_vol0 = 0, memo_inv = 0; /* 1/cell is never +0: no hit at first */
+  static _Thread_local double memo_lp = 0.0;
+  uint64_t bv, bi;
+  memcpy(&bv, &vol0, sizeof bv);
+  memcpy(&bi, &g->inv_cell, sizeof bi);
+  if (bv == memo_vol0 && bi == memo_inv) return memo_lp;
+#endif
+  double lp = 0.5 * (DIM == 2 ? sqrt(vol0) : cbrt(vol0)) * g->inv_cell;
+  lp = lp > 0.5 ? 0.5 : lp;
+#if DIM == 3
+  memo_vol0 = bv, memo_inv = bi, memo_lp = lp;
+#endif
+  return lp;
+}
+
 /* Returns 0 when the particle needs the general stencil: its support crosses
  * a face and the kernel is adjusted there. `sup` is a constant at every call. */
 #if DIM == 2
 #ifndef MRN_AXIS_V2
 #define MRN_AXIS_V2
 typedef double mrn_axis_v2 __attribute__((vector_size(16)));
+typedef long long mrn_axis_m2 __attribute__((vector_size(16)));
 #endif
 /* The quadratic B-spline's axes of a 2D particle, both axes at once as the
  * lanes of 2-wide vectors: the same operations as the loop of axes_build
@@ -269,38 +305,60 @@ static inline __attribute__((always_inline)) int KNAME(axes_quadratic_2d)(const 
 static inline __attribute__((always_inline)) int KNAME(axes_linear_2d)(const mrn_grid *g,
                                                                        const mrn_kernel_boundary mode,
                                                                        const double *x, KNAME(axes) *a) {
+  /* the grid's values in locals before the stores into `a`, which could
+   * alias them */
   const double inv_cell = g->inv_cell, cell = g->cell;
+  const mrn_axis_v2 nc = {(double)g->ncell[0], (double)g->ncell[1]};
+  const size_t pad = (size_t)g->pad, st0 = (size_t)g->stride[0], st1 = (size_t)g->stride[1];
   const mrn_axis_v2 xd = {x[0], x[1]}, origin = {g->origin[0], g->origin[1]};
-  const mrn_axis_v2 xi = (xd - origin) * inv_cell;
+  const mrn_axis_v2 xi = (xd - origin) * inv_cell, one = {1.0, 1.0};
   mrn_axis_v2 b0 = {floor(xi[0]), floor(xi[1])};
-  if (b0[0] == (double)g->ncell[0]) b0[0] -= 1.0;
-  if (b0[1] == (double)g->ncell[1]) b0[1] -= 1.0;
-  const int base[2] = {(int)b0[0], (int)b0[1]};
+  /* on the upper face: the last cell (b0 - 1 exactly where b0 == ncell) */
+  b0 -= (mrn_axis_v2)((mrn_axis_m2)(b0 == nc) & (mrn_axis_m2)one);
   const mrn_axis_v2 t = xi - b0, w0 = 1.0 - t;
   const mrn_axis_v2 o0 = origin + b0 * cell - xd, o1 = origin + (b0 + 1.0) * cell - xd;
   for (int d = 0; d < 2; d++) {
-    a->w[d][0] = w0[d];
-    a->w[d][1] = t[d];
-    a->dw[d][0] = -inv_cell;
-    a->dw[d][1] = inv_cell;
-    a->off[d][0] = o0[d];
-    a->off[d][1] = o1[d];
-    for (int k = 2; k < 4; k++) a->w[d][k] = a->dw[d][k] = a->off[d][k] = 0.0;
+    *(mrn_axis_v4 *)a->w[d] = (mrn_axis_v4){w0[d], t[d], 0.0, 0.0};
+    *(mrn_axis_v4 *)a->dw[d] = (mrn_axis_v4){-inv_cell, inv_cell, 0.0, 0.0};
+    *(mrn_axis_v4 *)a->off[d] = (mrn_axis_v4){o0[d], o1[d], 0.0, 0.0};
   }
-  if (mode != MRN_KERNEL_EXTENDED &&
-      ((base[0] < 0) | (base[1] < 0) | (base[0] + 1 > g->ncell[0]) | (base[1] + 1 > g->ncell[1])))
-    return 0;
-  a->node0 = (size_t)(base[0] + g->pad) * (size_t)g->stride[0] + (size_t)(base[1] + g->pad) * (size_t)g->stride[1];
+  const mrn_axis_m2 out = (b0 < 0.0) | (b0 + 1.0 > nc);
+  if (mode != MRN_KERNEL_EXTENDED && (out[0] | out[1])) return 0;
+  a->node0 = ((size_t)(long)b0[0] + pad) * st0 + ((size_t)(long)b0[1] + pad) * st1;
+  return 1;
+}
+
+/* uGIMP's axes of a 2D particle, both axes at once as the two halves of
+ * 8-wide vectors (one AVX-512 register): the operations of mrn_gimp_axis
+ * on each half, so the same bits. Only with AVX-512: without it GCC splits
+ * the 8-wide operations into far more pieces than two axis passes take. */
+#ifdef __AVX512F__
+#define MRN_GIMP_AXES_2D 1
+typedef double mrn_axis_v8 __attribute__((vector_size(64), aligned(8), may_alias));
+typedef long long mrn_axis_m8 __attribute__((vector_size(64), aligned(8), may_alias));
+static inline __attribute__((always_inline)) int KNAME(axes_gimp_2d)(const mrn_grid *g, const mrn_kernel_boundary mode,
+                                                                     const double *x, double vol0, KNAME(axes) *a) {
+  const double lp = KNAME(gimp_half_width)(g, vol0);
+  const double inv_cell = g->inv_cell, cell = g->cell;
+  const int nc0 = g->ncell[0], nc1 = g->ncell[1];
+  const size_t pad = (size_t)g->pad, st0 = (size_t)g->stride[0], st1 = (size_t)g->stride[1];
+  const double o0 = g->origin[0], o1 = g->origin[1], x0 = x[0], x1 = x[1];
+  const double xi0 = (x0 - o0) * inv_cell, xi1 = (x1 - o1) * inv_cell;
+  const double f0 = floor(xi0 - lp), f1 = floor(xi1 - lp);
+  const mrn_axis_v8 k = {0.0, 1.0, 2.0, 3.0, 0.0, 1.0, 2.0, 3.0};
+  const mrn_axis_v8 fl = {f0, f0, f0, f0, f1, f1, f1, f1}, xi = {xi0, xi0, xi0, xi0, xi1, xi1, xi1, xi1};
+  const mrn_axis_v8 org = {o0, o0, o0, o0, o1, o1, o1, o1}, xv = {x0, x0, x0, x0, x1, x1, x1, x1};
+  const mrn_axis_v8 node = fl + k, r = xi - node;
+  MRN_GIMP_LANES(mrn_axis_v8, mrn_axis_m8, r, lp, inv_cell, *(mrn_axis_v8 *)a->w, *(mrn_axis_v8 *)a->dw);
+  *(mrn_axis_v8 *)a->off = org + node * cell - xv;
+  const int b0 = (int)f0, b1 = (int)f1;
+  if (mode != MRN_KERNEL_EXTENDED && ((b0 < 0) | (b1 < 0) | (b0 + 2 > nc0) | (b1 + 2 > nc1))) return 0;
+  a->node0 = ((size_t)b0 + pad) * st0 + ((size_t)b1 + pad) * st1;
   return 1;
 }
 #endif
+#endif
 
-/* uGIMP's particle half-width in cells, from its initial volume vol0, as
- * stencil_build forms it */
-static inline double KNAME(gimp_half_width)(const mrn_grid *g, double vol0) {
-  const double lp = 0.5 * (DIM == 2 ? sqrt(vol0) : cbrt(vol0)) * g->inv_cell;
-  return lp > 0.5 ? 0.5 : lp;
-}
 
 static inline __attribute__((always_inline)) int KNAME(axes_build)(const mrn_grid *g, const int kind,
                                                                    const mrn_kernel_boundary mode, const double *x,
@@ -308,6 +366,9 @@ static inline __attribute__((always_inline)) int KNAME(axes_build)(const mrn_gri
 #if DIM == 2
   if (kind == MRN_FAST_QUADRATIC) return KNAME(axes_quadratic_2d)(g, mode, x, a);
   if (kind == MRN_FAST_LINEAR) return KNAME(axes_linear_2d)(g, mode, x, a);
+#ifdef MRN_GIMP_AXES_2D
+  if (kind == MRN_FAST_GIMP) return KNAME(axes_gimp_2d)(g, mode, x, vol0, a);
+#endif
 #endif
   const int sup = MRN_FAST_SUPPORT(kind);
   const double lp = kind == MRN_FAST_GIMP ? KNAME(gimp_half_width)(g, vol0) : 0.0;
