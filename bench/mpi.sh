@@ -20,7 +20,7 @@ done
 out=$(mktemp -d)
 trap 'rm -rf "$out"' EXIT
 log="$out/lines.txt"
-steps_of() { case $1 in a160k) echo 60 ;; c32) echo 10 ;; *) echo 40 ;; esac; }
+steps_of() { case $1 in a160k) echo 200 ;; c32) echo 30 ;; *) echo 40 ;; esac; }
 for r in $(seq 1 "$rounds"); do
   for p in ${problems//,/ }; do
     s=$(steps_of "$p")
