@@ -16,6 +16,7 @@
 #include "io/particle_fields.h"
 #include "lua/lua_check.h"
 #include "lua/lua_internal.h"
+#include "solver/dist.h"
 #include "solver/point_force.h"
 #include "solver/simulation.h"
 #include "transfer/probe.h"
@@ -247,6 +248,12 @@ static int l_sim_probe(lua_State *L) {
     /* not stored: (V~ - V) / dt of the last step, interpolated */
     mrn_probe_grid(&tr, g->vel, ncomp, x, before);
     for (int d = 0; d < 3; d++) v[d] = sim->dt > 0.0 ? (v[d] - before[d]) / sim->dt : 0.0;
+  }
+  /* in a distributed run the process whose slab holds the point answers for all */
+  if (sim->dist) {
+    if (!mrn_dist_owns_point(sim, x))
+      for (int d = 0; d < ncomp; d++) v[d] = 0.0;
+    mrn_dist_reduce(sim, v, ncomp, MRN_COMM_SUM);
   }
   if (ncomp == 1) {
     lua_pushnumber(L, v[0]);

@@ -8,6 +8,7 @@
 #include "io/particle_fields.h"
 #include "lua/lua_check.h"
 #include "lua/lua_sim.h"
+#include "solver/dist.h"
 
 static const char *const reduce_ops[] = {"min", "max", "sum", "mean", "count", NULL};
 static const mrn_spec reduce_specs[] = {
@@ -158,6 +159,13 @@ int l_sim_reduce(lua_State *L) {
     sum += value;
     count++;
   }
+  /* over every process of a distributed run (solver/dist.h; collective there) */
+  double total[2] = {sum, (double)count};
+  mrn_dist_reduce(b->sim, &lo, 1, MRN_COMM_MIN);
+  mrn_dist_reduce(b->sim, &hi, 1, MRN_COMM_MAX);
+  mrn_dist_reduce(b->sim, total, 2, MRN_COMM_SUM);
+  sum = total[0];
+  count = (long)total[1];
   if (!strcmp(op, "count")) lua_pushinteger(L, count);
   else if (count == 0) lua_pushnil(L); /* min, max, mean of nothing */
   else if (!strcmp(op, "min")) lua_pushnumber(L, lo);

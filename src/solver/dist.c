@@ -135,6 +135,11 @@ void mrn_dist_free(mrn_dist *d) {
   free(d);
 }
 
+int mrn_dist_owns_point(const mrn_sim *sim, const double x[3]) {
+  const mrn_dist *d = sim->dist;
+  return !d || owner_of(d, row_of(&sim->grid, d->axis, x)) == d->rank;
+}
+
 void mrn_dist_reduce(const mrn_sim *sim, double *v, int n, mrn_comm_op op) {
   if (sim->dist) mrn_comm_allreduce(v, n, op);
 }

@@ -98,6 +98,9 @@ int mrn_dist_refuse_late_affine(const struct mrn_sim *sim);
  * particle count exceeds the mean by `imbalance` (>= 1); 0 or an error */
 int mrn_sim_set_rebalance(struct mrn_sim *sim, long every, double imbalance);
 
+/* 1 when this process's slab holds the cell of x (always, undistributed) */
+int mrn_dist_owns_point(const struct mrn_sim *sim, const double x[3]);
+
 /* v[0 .. n) summed (or min, max) over the processes of a distributed
  * simulation; nothing when it is not (yet) distributed */
 void mrn_dist_reduce(const struct mrn_sim *sim, double *v, int n, mrn_comm_op op);

@@ -19,7 +19,9 @@ if case == "crossing" or case == "leave" or case == "outflow" then
   -- 12 cells of 0.1 m along y on 3 processes: slabs of 4 cells; no gravity, no
   -- stress (a rigid translation), one step of 0.01 s at 100 m/s carries the
   -- block 1 m = 10 cells up, from process 0's slab over process 1's into 2's
-  -- (ten cells a step: the watchdog, which would stop that, is off)
+  -- (ten cells a step: the watchdog, which would stop that, is off, and so is
+  -- the warning that dt is above the CFL estimate)
+  mpm.warnings{ ignore = { "dt_above_cfl" } }
   local sim = mpm.simulation{ dim = 2, grid = { size = { 0.4, 1.2 }, cell = 0.1 }, gravity = { 0, 0 },
     scheme = { transfer = "PIC", stress_update = "USL" }, dt = { fixed = 0.01 }, thermo = 0, watchdog = false,
     boundary = { all = "free" }, diagnostics = "crossing.csv", diagnostics_every = 1, name = case,
@@ -45,6 +47,15 @@ if case == "crossing" or case == "leave" or case == "outflow" then
   check(math.abs(d.momentum_y - d0.momentum_y) <= 1e-12 * d0.momentum_y, "momentum_y %.17g, was %.17g",
         d.momentum_y, d0.momentum_y)
   check(math.abs(d.com_y - (0.1 + 1.0)) < 1e-9, "centre of mass at y = %.12g, expected 1.1", d.com_y)
+  -- sim:reduce and sim:probe answer for every process: the block's mass, and
+  -- the grid velocity of the step where it started, in process 0's slab
+  -- (which holds no particle any more)
+  local m = sim:reduce("sum", "mass")
+  check(math.abs(m - d.mass) <= 1e-12 * d.mass and sim:reduce("count", "mass") == d.particles,
+        "reduce: mass %.17g over %d particles, the diagnostics %.17g over %d", m, sim:reduce("count", "mass"),
+        d.mass, d.particles)
+  local vy = sim:probe{ field = "velocity_new", x = 0.2, y = 0.1 }[2]
+  check(math.abs(vy - 100) < 1e-9, "probe: velocity_new y at (0.2, 0.1) is %.12g, expected 100", vy)
   -- every particle sits on the process whose slab holds it
   if par.size == 3 then
     check(par.particles == (par.rank == 2 and d0.particles or 0), "process %d holds %d particles", par.rank,
