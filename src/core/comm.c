@@ -43,7 +43,6 @@ void mrn_comm_finalize(void) {
 
 int mrn_comm_rank(void) { return rank; }
 int mrn_comm_size(void) { return size; }
-int mrn_comm_built(void) { return 1; }
 
 void mrn_comm_abort(int code) {
   fflush(stdout);
@@ -128,17 +127,12 @@ void mrn_comm_allgather_size(size_t mine, size_t *all) {
   free(a);
 }
 
-void mrn_comm_barrier(void) {
-  if (size > 1) MPI_Barrier(MPI_COMM_WORLD);
-}
-
 #else /* one process */
 
 int mrn_comm_init(int *argc, char ***argv) { return MRN_OK; }
 void mrn_comm_finalize(void) {}
 int mrn_comm_rank(void) { return 0; }
 int mrn_comm_size(void) { return 1; }
-int mrn_comm_built(void) { return 0; }
 void mrn_comm_abort(int code) {}
 void mrn_comm_allreduce(double *v, int n, mrn_comm_op op) {}
 void mrn_comm_allreduce_long(long *v, int n, mrn_comm_op op) {}
@@ -156,6 +150,5 @@ void mrn_comm_gatherv(const void *sbuf, size_t bytes, void *rbuf, const size_t *
   memcpy((char *)rbuf + rdispl[0], sbuf, bytes);
 }
 void mrn_comm_allgather_size(size_t mine, size_t *all) { all[0] = mine; }
-void mrn_comm_barrier(void) {}
 
 #endif

@@ -21,8 +21,6 @@ int mrn_comm_init(int *argc, char ***argv);
 void mrn_comm_finalize(void);
 int mrn_comm_rank(void);
 int mrn_comm_size(void);
-/* 1 when the build has MPI */
-int mrn_comm_built(void);
 /* stop every process of the run (after a message was printed) */
 void mrn_comm_abort(int code);
 
@@ -51,7 +49,5 @@ void mrn_comm_set_shared_error(int shared);
 int mrn_comm_shared_error(void);
 /* 1 on the process that writes files and prints (process 0) */
 static inline int mrn_comm_writes(void) { return mrn_comm_rank() == 0; }
-/* wait until every process is here */
-void mrn_comm_barrier(void);
 
 #endif

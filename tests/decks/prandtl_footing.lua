@@ -28,20 +28,11 @@
 -- 1e-3 B after 4e-4 B (held to 2 %); at B/11, nu = 0, 0.333, 0.45 give
 -- 0.966, 0.971, 0.980 (the spread held to 2 % of q_u). Quick: B/11 only.
 local T = dofile(mpm.deck_dir .. "/testlib.lua")
-local example = mpm.deck_dir .. "/../../examples/prandtl_footing/deck.lua"
 local full = mpm.param("full", false)
-local param = mpm.param
 
 local function footing(set)
-  mpm.param = function(name, default)
-    if set[name] ~= nil then return set[name] end
-    if name == "vtk" then return false end
-    return param(name, default)
-  end
-  local ok, r = pcall(dofile, example)
-  mpm.param = param
-  if not ok then error(r, 0) end
-  return r
+  if set.vtk == nil then set.vtk = false end
+  return T.run_example("../../examples/prandtl_footing/deck.lua", set)
 end
 
 -- the reaction against the section and the quasi-static loading

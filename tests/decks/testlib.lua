@@ -61,6 +61,21 @@ function T.nearest(sim, x)
   return index
 end
 
+--- run the example deck at `path` (relative to tests/decks) as if given
+--- --set NAME=VALUE for each entry of `set`; returns what the deck returns.
+--- mpm.param is restored, and the deck's error raised, as it was.
+function T.run_example(path, set)
+  local param = mpm.param
+  mpm.param = function(name, default)
+    if set[name] ~= nil then return set[name] end
+    return param(name, default)
+  end
+  local ok, r = pcall(dofile, mpm.deck_dir .. "/" .. path)
+  mpm.param = param
+  if not ok then error(r, 0) end
+  return r
+end
+
 function T.done(name)
   print(string.format("%s: %d checks passed", name or "deck", T.checks))
 end

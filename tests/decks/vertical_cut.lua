@@ -6,19 +6,7 @@
 -- 5 % of H, largest displacement above 10 % of H).
 -- Cells of H / 10 (the example's default).
 local T = dofile(mpm.deck_dir .. "/testlib.lua")
-local example = mpm.deck_dir .. "/../../examples/vertical_cut/deck.lua"
-local param = mpm.param
-local function cut(N)
-  mpm.param = function(name, default)
-    if name == "N" then return N end
-    if name == "quick" then return true end
-    return param(name, default)
-  end
-  local ok, r = pcall(dofile, example)
-  mpm.param = param
-  if not ok then error(r, 0) end
-  return r
-end
+local function cut(N) return T.run_example("../../examples/vertical_cut/deck.lua", { N = N, quick = true }) end
 local stands, falls = cut(2.5), cut(5)
 T.expect{ id = "vertical_cut.stands", what = "crest settlement / H at N = 2.5 (below the lower bound 2.83)",
           value = stands.settlement / stands.H, max = 0.01 }
