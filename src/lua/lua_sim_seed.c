@@ -7,6 +7,7 @@
 #include "lua/lua_check.h"
 #include "lua/lua_sim.h"
 #include "solver/contact.h"
+#include "solver/dist.h"
 #include "solver/suspicious.h"
 
 static const char *const placement_choices[] = {"gauss", "regular", NULL};
@@ -121,8 +122,11 @@ int l_sim_add_particles(lua_State *L) {
   int seeded = mrn_sim_seed(b->sim, region, mat_index, per_axis, pl, &first, &count);
   b->busy = outer;
   if (seeded != MRN_OK) mrn_lua_engine_error(L, where);
-  if (count == 0) mrn_lua_error(L, where, "the region seeds no particle on this grid (is it inside the domain?)");
-  mrn_suspicious_seed(b->sim, per_axis, count);
+  /* a spread simulation keeps this process's share: judge the whole seeding */
+  double total = (double)count;
+  mrn_dist_reduce(b->sim, &total, 1, MRN_COMM_SUM);
+  if (total == 0) mrn_lua_error(L, where, "the region seeds no particle on this grid (is it inside the domain?)");
+  mrn_suspicious_seed(b->sim, per_axis, (long)total);
   mrn_sim_set_body(b->sim, first, (size_t)count, body);
 
   /* the initial fields call deck functions that may fail: on any error the

@@ -13,6 +13,8 @@
 #include "solver/point_force.h"
 #include "solver/simulation.h"
 
+static void books_set(mrn_sim *sim, const double *b);
+
 /* what the distributed step does not do yet, by the option that asks for it */
 static int refuse(const mrn_sim *sim) {
   const char *what = NULL;
@@ -122,8 +124,8 @@ int mrn_dist_start(mrn_sim *sim) {
   if ((rc = cut_by_count(sim, d, 1)) || (rc = mrn_dist_adopt(sim, 0))) return rc;
   /* the books of work done so far are process 0's; the others start at 0 */
   if (d->rank != 0) {
-    sim->work_friction = sim->work_damping = sim->energy_outflow = sim->outflow_mass = 0.0;
-    sim->outflow_particles = 0;
+    const double zero[MRN_BOOKS] = {0};
+    books_set(sim, zero);
   }
   return MRN_OK;
 }
@@ -453,30 +455,31 @@ static int assemble(mrn_particles *out, const mrn_particles *like, const unsigne
 }
 
 /* the books of work kept per process (dist.h), summed on every process */
-enum { BOOKS = 5 };
 static void books_get(const mrn_sim *sim, double *b) {
-  b[0] = sim->work_friction;
-  b[1] = sim->work_damping;
-  b[2] = sim->energy_outflow;
-  b[3] = sim->outflow_mass;
-  b[4] = (double)sim->outflow_particles;
+  b[MRN_BOOK_FRICTION] = sim->work_friction;
+  b[MRN_BOOK_DAMPING] = sim->work_damping;
+  b[MRN_BOOK_OUTFLOW] = sim->energy_outflow;
+  b[MRN_BOOK_OUTFLOW_MASS] = sim->outflow_mass;
+  b[MRN_BOOK_OUTFLOW_PARTICLES] = (double)sim->outflow_particles;
+  b[MRN_BOOK_INFLOW] = sim->energy_inflow;
+  b[MRN_BOOK_INFLOW_MASS] = sim->inflow_mass;
+  b[MRN_BOOK_INFLOW_PARTICLES] = (double)sim->inflow_particles;
 }
 
 static void books_set(mrn_sim *sim, const double *b) {
-  sim->work_friction = b[0];
-  sim->work_damping = b[1];
-  sim->energy_outflow = b[2];
-  sim->outflow_mass = b[3];
-  sim->outflow_particles = (long)b[4];
+  sim->work_friction = b[MRN_BOOK_FRICTION];
+  sim->work_damping = b[MRN_BOOK_DAMPING];
+  sim->energy_outflow = b[MRN_BOOK_OUTFLOW];
+  sim->outflow_mass = b[MRN_BOOK_OUTFLOW_MASS];
+  sim->outflow_particles = (long)b[MRN_BOOK_OUTFLOW_PARTICLES];
+  sim->energy_inflow = b[MRN_BOOK_INFLOW];
+  sim->inflow_mass = b[MRN_BOOK_INFLOW_MASS];
+  sim->inflow_particles = (long)b[MRN_BOOK_INFLOW_PARTICLES];
 }
 
-void mrn_dist_books(const mrn_sim *sim, double *friction, double *damping, double *outflow) {
-  double b[BOOKS];
+void mrn_dist_books(const mrn_sim *sim, double b[MRN_BOOKS]) {
   books_get(sim, b);
-  mrn_dist_reduce(sim, b, BOOKS, MRN_COMM_SUM);
-  *friction = b[0];
-  *damping = b[1];
-  *outflow = b[2];
+  mrn_dist_reduce(sim, b, MRN_BOOKS, MRN_COMM_SUM);
 }
 
 /* The nodal values a checkpoint keeps (mass, V, force, the contact bits),
@@ -564,9 +567,9 @@ int mrn_dist_gather_begin(const mrn_sim *csim) {
   }
   if (rc == MRN_OK) rc = gather_grid(sim, d);
   books_get(sim, d->held_books);
-  double b[BOOKS];
+  double b[MRN_BOOKS];
   memcpy(b, d->held_books, sizeof b);
-  mrn_comm_allreduce(b, BOOKS, MRN_COMM_SUM);
+  mrn_comm_allreduce(b, MRN_BOOKS, MRN_COMM_SUM);
   if (d->rank == 0) books_set(sim, b);
   free(cnt);
   free(mine);
@@ -596,9 +599,4 @@ int mrn_sim_set_rebalance(mrn_sim *sim, long every, double imbalance) {
   return MRN_OK;
 }
 
-int mrn_dist_refuse_late_affine(const mrn_sim *sim) {
-  mrn_comm_set_shared_error(1); /* every process holds the same settings */
-  return mrn_error("parallel: the initial affine field of particles given velocities after the first step (scheme "
-                   "%s) is found on one process only; give the velocities before the first run (doc/parallel.md)",
-                   sim->scheme.name);
-}
+void mrn_dist_max_over(void *ctx, double *values, int n) { mrn_dist_reduce(ctx, values, n, MRN_COMM_MAX); }

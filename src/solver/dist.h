@@ -43,6 +43,15 @@ struct mrn_particles;
 #define MRN_DIST_REBALANCE_EVERY 100
 #define MRN_DIST_IMBALANCE 1.2
 
+/* the books each process keeps of its own nodes and particles: the work
+ * of friction and damping, what left through free faces and what came in */
+enum {
+  MRN_BOOK_FRICTION, MRN_BOOK_DAMPING,
+  MRN_BOOK_OUTFLOW, MRN_BOOK_OUTFLOW_MASS, MRN_BOOK_OUTFLOW_PARTICLES,
+  MRN_BOOK_INFLOW, MRN_BOOK_INFLOW_MASS, MRN_BOOK_INFLOW_PARTICLES,
+  MRN_BOOKS
+};
+
 typedef struct mrn_dist {
   int rank, size;
   int axis;          /* the cut axis: the grid's last */
@@ -56,7 +65,7 @@ typedef struct mrn_dist {
   /* while gathered (mrn_dist_gather_begin): process 0's own particles, and
    * this process's books of work */
   struct mrn_particles *held;
-  double held_books[5];
+  double held_books[MRN_BOOKS];
   double *held_mass, *held_vel, *held_force; /* process 0's nodal arrays */
   unsigned char *held_contact;
 } mrn_dist;
@@ -90,9 +99,9 @@ int mrn_dist_migrate(struct mrn_sim *sim, int rc);
 /* re-cut the grid by particle count now and move the particles */
 int mrn_dist_rebalance(struct mrn_sim *sim);
 
-/* the error for particles given velocities (APIC's, TPIC's initial affine
- * field) after the run was spread over the processes */
-int mrn_dist_refuse_late_affine(const struct mrn_sim *sim);
+/* n values replaced by their maxima over the processes (mrn_transfer.max_over);
+ * ctx is the simulation */
+void mrn_dist_max_over(void *ctx, double *values, int n);
 
 /* the re-cut policy: every `every` steps (0: never) when the largest
  * particle count exceeds the mean by `imbalance` (>= 1); 0 or an error */
@@ -105,9 +114,8 @@ int mrn_dist_owns_point(const struct mrn_sim *sim, const double x[3]);
  * simulation; nothing when it is not (yet) distributed */
 void mrn_dist_reduce(const struct mrn_sim *sim, double *v, int n, mrn_comm_op op);
 
-/* the books of work kept per process (friction, damping, the energy that
- * left), summed over the processes */
-void mrn_dist_books(const struct mrn_sim *sim, double *friction, double *damping, double *outflow);
+/* the books summed over the processes (this process's alone, undistributed) */
+void mrn_dist_books(const struct mrn_sim *sim, double b[MRN_BOOKS]);
 
 /* Process 0 takes every particle, in the order of their ids, in place of
  * its own until mrn_dist_gather_end, so that a writer sees the whole set;

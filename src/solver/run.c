@@ -270,10 +270,8 @@ static void schedule_hooks(const mrn_sim *sim, mrn_run_options *opt, double t_st
 static int start_run(mrn_sim *sim, mrn_run_options *opt, run_clock *clk) {
   /* the affine matrices belong to the explicit transfers; found while every
    * process still holds every particle, as on one (solver/dist.h) */
-  if (!sim->integrator.step && sim->affine_pending && sim->scheme.grid_velocity != MRN_VGRID_PLAIN) {
-    if (sim->dist) return mrn_dist_refuse_late_affine(sim);
+  if (!sim->integrator.step && sim->affine_pending && sim->scheme.grid_velocity != MRN_VGRID_PLAIN)
     mrn_sim_init_affine(sim);
-  }
   int rc = mrn_dist_start(sim); /* each process keeps its own particles from here on */
   if (rc != MRN_OK) return rc;
   schedule_hooks(sim, opt, clk->t_start);

@@ -76,6 +76,7 @@ mrn_transfer mrn_sim_transfer(mrn_sim *sim) {
                      .blocks = sim->blocks,
                      .sort_now = sort_due(sim),
                      .sum_nodal = sim->dist ? mrn_dist_sum_nodal : NULL,
+                     .max_over = sim->dist ? mrn_dist_max_over : NULL,
                      .sum_ctx = sim};
   return tr;
 }
@@ -172,8 +173,10 @@ void mrn_sim_energies(const mrn_sim *sim, mrn_diagnostics *out) {
   }
   add_pieces(part, DIAG_SUMS, t);
   mrn_dist_reduce(sim, t, DIAG_SUMS, MRN_COMM_SUM); /* over the processes of a distributed run */
-  double work_friction, work_damping, energy_outflow;
-  mrn_dist_books(sim, &work_friction, &work_damping, &energy_outflow);
+  double books[MRN_BOOKS];
+  mrn_dist_books(sim, books);
+  const double work_friction = books[MRN_BOOK_FRICTION], work_damping = books[MRN_BOOK_DAMPING];
+  const double energy_outflow = books[MRN_BOOK_OUTFLOW], energy_inflow = books[MRN_BOOK_INFLOW];
   const double ek = t[S_EK], eg = t[S_EG], eel = t[S_EEL], wpl = t[S_WPL], mass = t[S_MASS];
   memset(out, 0, sizeof *out);
   out->kinetic = ek;
@@ -187,7 +190,7 @@ void mrn_sim_energies(const mrn_sim *sim, mrn_diagnostics *out) {
   mrn_walls_body_energy(sim->boundary.walls, &out->bodies, &out->bodies_work);
   out->contact = sim->work_contact;
   out->total = ek + eg + eel;
-  out->inflow = sim->energy_inflow;
+  out->inflow = energy_inflow;
   out->inflow_work = sim->work_inflow;
   out->outflow = energy_outflow;
   /* (000, Eq. 68) summed over the steps since the balance started, with what
@@ -195,9 +198,13 @@ void mrn_sim_energies(const mrn_sim *sim, mrn_diagnostics *out) {
   out->mpm_error = sim->energy_ref_set
                        ? out->total + out->bodies - sim->energy_ref - wpl - work_friction - work_damping -
                              sim->work_external - sim->work_walls - out->bodies_work - sim->work_contact +
-                             energy_outflow - sim->energy_inflow - sim->work_inflow
+                             energy_outflow - energy_inflow - sim->work_inflow
                        : 0.0;
   out->mass = mass;
+  out->outflow_mass = books[MRN_BOOK_OUTFLOW_MASS];
+  out->outflow_particles = (long)books[MRN_BOOK_OUTFLOW_PARTICLES];
+  out->inflow_mass = books[MRN_BOOK_INFLOW_MASS];
+  out->inflow_particles = (long)books[MRN_BOOK_INFLOW_PARTICLES];
   for (int d = 0; d < 3; d++) {
     out->momentum[d] = t[S_MOM + d];
     out->angular[d] = t[S_ANG + d];
@@ -396,8 +403,8 @@ void mrn_sim_energy_balance_start(mrn_sim *sim) {
   mrn_diagnostics d;
   sim->energy_ref_set = 0;
   mrn_sim_diagnostics(sim, &d);
-  sim->energy_ref = d.total + d.bodies - d.bodies_work - d.plastic - d.friction - d.damping + sim->energy_outflow -
-                    sim->energy_inflow - sim->work_inflow;
+  sim->energy_ref = d.total + d.bodies - d.bodies_work - d.plastic - d.friction - d.damping + d.outflow - d.inflow -
+                    sim->work_inflow;
   sim->energy_ref_set = 1;
 }
 

@@ -52,12 +52,21 @@ int mrn_transfer_init_affine(mrn_transfer *tr) {
   int it;
   for (it = 1; it <= MAX_ITERATIONS; it++) {
     mrn_p2g(&t, 1, 0); /* (000, Eq. 19) with the current grad v */
+    if (t.sum_nodal) {
+      t.sum_nodal(t.sum_ctx, g->mass, 1);
+      t.sum_nodal(t.sum_ctx, g->mom, 3);
+    }
     for (size_t i = 0; i < g->n; i++)
       for (int d = 0; d < 3; d++)
         g->vel[3 * i + d] = g->mass[i] > tr->mass_floor ? g->mom[3 * i + d] / g->mass[i] : 0.0;
     taylor_ctx c = {ps->affine, tr->dim, 0.0, 0.0};
     const mrn_gradient_sink sink = {take_gradient, &c, MRN_PHASE_G2P};
     mrn_gradient(&t, g->vel, &sink); /* (000, Eq. 22) */
+    if (t.max_over) { /* every process iterates as long as the slowest */
+      double m[2] = {c.change, c.scale};
+      t.max_over(t.sum_ctx, m, 2);
+      c.change = m[0], c.scale = m[1];
+    }
     if (c.change <= 1e-15 * c.scale || c.scale == 0.0) break;
   }
   tr->sort_now = t.sort_now; /* a sort done here is not done again */

@@ -33,7 +33,10 @@ typedef struct mrn_transfer {
    * passes), its owner may complete the sums: a distributed run adds its
    * neighbours' part (solver/dist.h). NULL: nothing to add */
   void (*sum_nodal)(void *ctx, double *values, int ncomp);
-  void *sum_ctx;
+  /* the largest of n values over the same processes, in place (a
+   * convergence test that every process must end alike). NULL: nothing */
+  void (*max_over)(void *ctx, double *values, int n);
+  void *sum_ctx; /* of both */
 } mrn_transfer;
 
 #endif

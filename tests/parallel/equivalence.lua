@@ -9,7 +9,9 @@
 -- --set transfer=NAME replaces the case's strategy (XPIC(2): the smoothing's
 -- extra passes, each with its halo sum); --set volumetric=fbar averages the
 -- divergence over the nodes (its scatter with its halo sum); --set
--- rebalance=N re-cuts the slabs every N steps; --set load=FILE
+-- rebalance=N re-cuts the slabs every N steps; --set late=N runs N steps,
+-- then drops a second, moving block into the cube3d case (its initial affine
+-- field found over every process's particles); --set load=FILE
 -- continues from a checkpoint of either case instead (tests/parallel/restart.py).
 local case = mpm.param("case", "collapse2d")
 local steps = mpm.param("steps", 1000)
@@ -18,6 +20,7 @@ local rebalance = mpm.param("rebalance", 0)
 local load = mpm.param("load", "")
 local transfer = mpm.param("transfer", case == "cube3d" and "APIC" or "FLIP")
 local volumetric = mpm.param("volumetric", "standard")
+local late = mpm.param("late", 0)
 local sim
 if load ~= "" then
   sim = mpm.load(load, { thermo = 0, diagnostics = name .. ".csv" })
@@ -44,7 +47,16 @@ else
   error("case must be collapse2d or cube3d, got " .. tostring(case))
 end
 if rebalance > 0 then sim:set_parallel{ rebalance_every = rebalance, imbalance = 1.0 } end
-sim:run{ steps = steps }
+if late > 0 then
+  if case ~= "cube3d" then error("late applies to case=cube3d") end
+  sim:run{ steps = late }
+  local rubber = mpm.material.linear_elastic{ density = 1000, E = 1e6, nu = 0.3 }
+  sim:add_particles(mpm.box{ min = { 0.2, 0.2, 0.64 }, max = { 0.4, 0.4, 0.74 } },
+                    { material = rubber, per_axis = 2, velocity = function(x, y, z)
+                      return 0.5 * (z - 0.69), -0.5, -1.5 + 3 * (x - 0.3)
+                    end })
+end
+sim:run{ steps = steps - late }
 sim:save(name .. ".h5")
 local d = sim:diagnostics()
 print(string.format("%s: %d steps, %d particles, E_total %.12g, W_MPM %.6g", name, sim:step(), d.particles, d.E_total,

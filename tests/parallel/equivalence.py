@@ -15,6 +15,7 @@ compares with the one-process run:
 The bound is 1e-12 (doc/parallel.md: the sums over processes add the same
 numbers in another order, so the runs agree to round-off, not bitwise).
 Usage: equivalence.py MORAINE DECK WORKDIR CASE STEPS NP... [--rebalance N] [--transfer NAME] [--volumetric NAME]
+       [--set KEY=VALUE]... (passed on to the deck)
 """
 import csv
 import os
@@ -34,7 +35,7 @@ def mpirun(np_):
     return ["mpirun", "--oversubscribe", "--allow-run-as-root", "-np", str(np_)]
 
 
-def run(moraine, deck, workdir, case, steps, np_, rebalance, transfer=None, volumetric=None):
+def run(moraine, deck, workdir, case, steps, np_, rebalance, transfer=None, volumetric=None, sets=()):
     name = f"{case}_np{np_}" + (f"_rb{rebalance}" if rebalance else "")
     out = os.path.join(workdir, name)
     cmd = mpirun(np_) + [moraine, "-q", "--overwrite", "-o", out, "--set", f"case={case}", "--set", f"steps={steps}",
@@ -43,6 +44,8 @@ def run(moraine, deck, workdir, case, steps, np_, rebalance, transfer=None, volu
         cmd[-1:-1] = ["--set", f"transfer={transfer}"]
     if volumetric:
         cmd[-1:-1] = ["--set", f"volumetric={volumetric}"]
+    for s in sets:
+        cmd[-1:-1] = ["--set", s]
     env = dict(os.environ, OMP_NUM_THREADS="1")
     r = subprocess.run(cmd, capture_output=True, text=True, env=env, timeout=900)
     if r.returncode != 0:
@@ -110,7 +113,11 @@ def compare_states(ref, other, label):
 
 def main():
     args = sys.argv[1:]
-    rebalance, transfer, volumetric = 0, None, None
+    rebalance, transfer, volumetric, sets = 0, None, None, []
+    while "--set" in args:
+        i = args.index("--set")
+        sets.append(args[i + 1])
+        del args[i:i + 2]
     if "--transfer" in args:
         i = args.index("--transfer")
         transfer = args[i + 1]
@@ -126,13 +133,13 @@ def main():
     moraine, deck, workdir, case, steps = args[:5]
     nps = [int(n) for n in args[5:]]
     os.makedirs(workdir, exist_ok=True)
-    ref_csv, ref_h5 = run(moraine, deck, workdir, case, steps, 1, 0, transfer, volumetric)
+    ref_csv, ref_h5 = run(moraine, deck, workdir, case, steps, 1, 0, transfer, volumetric, sets)
     for np_ in nps:
         for rb in ([0, rebalance] if rebalance else [0]):
             if np_ == 1 and rb == 0:
                 continue
-            csv_, h5 = run(moraine, deck, workdir, case, steps, np_, rb, transfer, volumetric)
-            label = (f"{transfer} " if transfer else "") + (f"{volumetric} " if volumetric else "") + f"{case} on {np_} process{'es' if np_ > 1 else ''}" + (f", re-cut every {rb} steps" if rb else "")
+            csv_, h5 = run(moraine, deck, workdir, case, steps, np_, rb, transfer, volumetric, sets)
+            label = "".join(s + " " for s in sets) + (f"{transfer} " if transfer else "") + (f"{volumetric} " if volumetric else "") + f"{case} on {np_} process{'es' if np_ > 1 else ''}" + (f", re-cut every {rb} steps" if rb else "")
             compare_csv(ref_csv, csv_, label)
             compare_states(ref_h5, h5, label)
     print("PASS")

@@ -23,6 +23,10 @@ add_test(NAME mpi.equivalence_fbar
 add_test(NAME mpi.equivalence_fbar3d
          COMMAND ${Python3_EXECUTABLE} ${MORAINE_PAR_DIR}/equivalence.py $<TARGET_FILE:moraine> ${MORAINE_PAR_DECK}
                  ${MORAINE_TEST_OUT}/mpi_equivalence_fbar3d cube3d 300 3 --volumetric fbar)
+# APIC's initial affine field of a block added after 100 steps, found over every process's particles
+add_test(NAME mpi.equivalence_late_affine
+         COMMAND ${Python3_EXECUTABLE} ${MORAINE_PAR_DIR}/equivalence.py $<TARGET_FILE:moraine> ${MORAINE_PAR_DECK}
+                 ${MORAINE_TEST_OUT}/mpi_equivalence_late cube3d 300 2 3 --set late=100)
 # the VTK series of the 3-process collapse read by ParaView's reader: every particle once, as on one process
 add_test(NAME mpi.vtk_series
          COMMAND ${Python3_EXECUTABLE} ${MORAINE_PAR_DIR}/check_vtk.py
@@ -41,6 +45,6 @@ endforeach()
 add_test(NAME mpi.robust COMMAND ${MORAINE_PAR_DIR}/robust.sh $<TARGET_FILE:moraine> ${MORAINE_TEST_OUT}/mpi_robust)
 # the cases share the two equivalence directories' one-process runs: one at a time
 set_tests_properties(mpi.equivalence_collapse2d mpi.equivalence_cube3d mpi.equivalence_xpic mpi.equivalence_fbar
-                     mpi.equivalence_fbar3d mpi.vtk_series mpi.restart_collapse2d
+                     mpi.equivalence_fbar3d mpi.equivalence_late_affine mpi.vtk_series mpi.restart_collapse2d
                      mpi.restart_cube3d mpi.robust
                      PROPERTIES LABELS mpi RUN_SERIAL TRUE ENVIRONMENT "OMP_NUM_THREADS=1;OMP_WAIT_POLICY=PASSIVE")

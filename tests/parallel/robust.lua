@@ -36,6 +36,11 @@ if case == "crossing" or case == "leave" or case == "outflow" then
     check(math.abs(d.E_outflow - d0.E_kinetic) <= 1e-12 * d0.E_kinetic, "E_outflow %.17g, the block had E_k %.17g",
           d.E_outflow, d0.E_kinetic)
     check(math.abs(d.W_MPM) <= 1e-9 * d0.E_kinetic, "W_MPM %.3g after the outflow", d.W_MPM)
+    -- the counts are the whole run's, whichever process deleted the particles
+    check(d.outflow_particles == d0.particles, "outflow_particles %d, the block had %d", d.outflow_particles,
+          d0.particles)
+    check(math.abs(d.outflow_mass - d0.mass) <= 1e-12 * d0.mass, "outflow_mass %.17g, the block had %.17g",
+          d.outflow_mass, d0.mass)
     print(string.format("outflow: the block's %.6g J/m left as E_outflow %.6g J/m on %d processes", d0.E_kinetic,
                         d.E_outflow, par.size))
     return
