@@ -10,7 +10,7 @@
  * threads, same repetitions) and prints moraine's speed as a ratio to them.
  *
  *   moraine-bench [--anchors DIR] [--threads 1,2] [--reps 3] [--json FILE]
- *                 [--only a,w,b,c,l,u,q,m,d,det|NAME,...] [--det-steps 1000]
+ *                 [--only a,w,b,c,l,u,q,m,k,d,det|NAME,...] [--det-steps 1000]
  *                 [--sort-every N] [--shuffle] [--steps-scale X] [--warmup N]
  *
  * Problems:
@@ -33,6 +33,9 @@
  *   u160k, u32     the same with uGIMP (particle half-width from its volume)
  *   q160k, q32     the same with the quadratic B-spline: the rate linear and
  *                  uGIMP are measured against, on the same particles and scheme
+ *   k160k          a160k cut at mid-height into two bodies in frictional
+ *                  contact (mu 0.3, the mass-gradient normal): a160k / k160k
+ *                  is the cost of the per-body fields (solver/contact.h)
  *   d1m            one .vtp snapshot of 1e6 particles with every default field
  *   det            threads change nothing: a 40,000-particle column run for
  *                  --det-steps steps on 1 and on 2 threads (APIC/USL elastic
@@ -60,6 +63,7 @@
 #include "io/output.h"
 #include "particles/region.h"
 #include "particles/sort.h"
+#include "solver/contact.h"
 #include "solver/simulation.h"
 #include "grid/active.h"
 #include "transfer/blocks.h"
@@ -86,47 +90,50 @@ typedef struct problem {
   int steps;
   const char *anchor; /* "ref2d 600 4 20" or NULL */
   const char *note;
+  int contact; /* 1: the upper half is a second body in contact with the lower */
 } problem;
 
 #define H1 0.01
 #define H2 0.0025
 static const problem problems[] = {
     {"a160k", "a", KIND_STEP, 2, H1, 4, {6, 1.04, 0}, {1, 1, 0}, {0, 0, 0}, "APIC", MRN_STRESS_USL,
-     MRN_SHAPE_QUADRATIC_BSPLINE, 0, 20, "ref2d 600 4 20", "2D elastic, APIC, quadratic, USL"},
+     MRN_SHAPE_QUADRATIC_BSPLINE, 0, 20, "ref2d 600 4 20", "2D elastic, APIC, quadratic, USL", 0},
     {"a640k", "a", KIND_STEP, 2, H2, 2, {6, 1.04, 0}, {1, 1, 0}, {0, 0, 0}, "APIC", MRN_STRESS_USL,
-     MRN_SHAPE_QUADRATIC_BSPLINE, 0, 10, "ref2d 2400 2 10", "2D elastic, APIC, quadratic, USL"},
+     MRN_SHAPE_QUADRATIC_BSPLINE, 0, 10, "ref2d 2400 2 10", "2D elastic, APIC, quadratic, USL", 0},
     {"w160k", "w", KIND_STEP, 2, H1, 4, {1.04, 1.04, 0}, {1, 1, 0}, {0, 0, 0}, "APIC", MRN_STRESS_USL,
-     MRN_SHAPE_QUADRATIC_BSPLINE, 0, 20, NULL, "a160k on a narrow 1.04 m grid"},
+     MRN_SHAPE_QUADRATIC_BSPLINE, 0, 20, NULL, "a160k on a narrow 1.04 m grid", 0},
     {"w640k", "w", KIND_STEP, 2, H2, 2, {1.04, 1.04, 0}, {1, 1, 0}, {0, 0, 0}, "APIC", MRN_STRESS_USL,
-     MRN_SHAPE_QUADRATIC_BSPLINE, 0, 10, NULL, "a640k on a narrow 1.04 m grid"},
+     MRN_SHAPE_QUADRATIC_BSPLINE, 0, 10, NULL, "a640k on a narrow 1.04 m grid", 0},
     {"b160k", "b", KIND_STEP, 2, H1, 4, {6, 1.04, 0}, {1, 1, 0}, {0, 0, 0}, "FLIP", MRN_STRESS_USF,
-     MRN_SHAPE_CUBIC_BSPLINE, 1, 20, "ref2d 600 4 20", "2D Mohr-Coulomb, FLIP, cubic, USF"},
+     MRN_SHAPE_CUBIC_BSPLINE, 1, 20, "ref2d 600 4 20", "2D Mohr-Coulomb, FLIP, cubic, USF", 0},
     {"b640k", "b", KIND_STEP, 2, H2, 2, {6, 1.04, 0}, {1, 1, 0}, {0, 0, 0}, "FLIP", MRN_STRESS_USF,
-     MRN_SHAPE_CUBIC_BSPLINE, 1, 10, "ref2d 2400 2 10", "2D Mohr-Coulomb, FLIP, cubic, USF"},
+     MRN_SHAPE_CUBIC_BSPLINE, 1, 10, "ref2d 2400 2 10", "2D Mohr-Coulomb, FLIP, cubic, USF", 0},
     {"c32", "c", KIND_STEP, 3, 0.1, 2, {3.6, 3.6, 3.6}, {3.2, 3.2, 3.2}, {0.2, 0, 0.2}, "APIC", MRN_STRESS_USL,
-     MRN_SHAPE_QUADRATIC_BSPLINE, 0, 20, "ref3d 32 2 20", "3D elastic, APIC, quadratic, USL"},
+     MRN_SHAPE_QUADRATIC_BSPLINE, 0, 20, "ref3d 32 2 20", "3D elastic, APIC, quadratic, USL", 0},
     {"l160k", "l", KIND_STEP, 2, H1, 4, {6, 1.04, 0}, {1, 1, 0}, {0, 0, 0}, "FLIP", MRN_STRESS_USF,
-     MRN_SHAPE_LINEAR, 0, 20, NULL, "2D elastic, FLIP, linear, USF"},
+     MRN_SHAPE_LINEAR, 0, 20, NULL, "2D elastic, FLIP, linear, USF", 0},
     {"u160k", "u", KIND_STEP, 2, H1, 4, {6, 1.04, 0}, {1, 1, 0}, {0, 0, 0}, "FLIP", MRN_STRESS_USF,
-     MRN_SHAPE_GIMP, 0, 20, NULL, "2D elastic, FLIP, uGIMP, USF"},
+     MRN_SHAPE_GIMP, 0, 20, NULL, "2D elastic, FLIP, uGIMP, USF", 0},
     {"q160k", "q", KIND_STEP, 2, H1, 4, {6, 1.04, 0}, {1, 1, 0}, {0, 0, 0}, "FLIP", MRN_STRESS_USF,
-     MRN_SHAPE_QUADRATIC_BSPLINE, 0, 20, NULL, "2D elastic, FLIP, quadratic, USF"},
+     MRN_SHAPE_QUADRATIC_BSPLINE, 0, 20, NULL, "2D elastic, FLIP, quadratic, USF", 0},
     {"l32", "l", KIND_STEP, 3, 0.1, 2, {3.6, 3.6, 3.6}, {3.2, 3.2, 3.2}, {0.2, 0, 0.2}, "FLIP", MRN_STRESS_USF,
-     MRN_SHAPE_LINEAR, 0, 20, NULL, "3D elastic, FLIP, linear, USF"},
+     MRN_SHAPE_LINEAR, 0, 20, NULL, "3D elastic, FLIP, linear, USF", 0},
     {"u32", "u", KIND_STEP, 3, 0.1, 2, {3.6, 3.6, 3.6}, {3.2, 3.2, 3.2}, {0.2, 0, 0.2}, "FLIP", MRN_STRESS_USF,
-     MRN_SHAPE_GIMP, 0, 20, NULL, "3D elastic, FLIP, uGIMP, USF"},
+     MRN_SHAPE_GIMP, 0, 20, NULL, "3D elastic, FLIP, uGIMP, USF", 0},
     {"q32", "q", KIND_STEP, 3, 0.1, 2, {3.6, 3.6, 3.6}, {3.2, 3.2, 3.2}, {0.2, 0, 0.2}, "FLIP", MRN_STRESS_USF,
-     MRN_SHAPE_QUADRATIC_BSPLINE, 0, 20, NULL, "3D elastic, FLIP, quadratic, USF"},
+     MRN_SHAPE_QUADRATIC_BSPLINE, 0, 20, NULL, "3D elastic, FLIP, quadratic, USF", 0},
     {"c50", "c", KIND_STEP, 3, 0.1, 2, {5.4, 5.4, 5.4}, {5.0, 5.0, 5.0}, {0.2, 0, 0.2}, "APIC", MRN_STRESS_USL,
-     MRN_SHAPE_QUADRATIC_BSPLINE, 0, 6, "ref3d 50 2 6", "3D elastic, APIC, quadratic, USL"},
+     MRN_SHAPE_QUADRATIC_BSPLINE, 0, 6, "ref3d 50 2 6", "3D elastic, APIC, quadratic, USL", 0},
     {"c50mc", "m", KIND_STEP, 3, 0.1, 2, {5.4, 5.4, 5.4}, {5.0, 5.0, 5.0}, {0.2, 0, 0.2}, "APIC", MRN_STRESS_USL,
-     MRN_SHAPE_QUADRATIC_BSPLINE, 1, 3, NULL, "c50 with Mohr-Coulomb history (memory)"},
+     MRN_SHAPE_QUADRATIC_BSPLINE, 1, 3, NULL, "c50 with Mohr-Coulomb history (memory)", 0},
+    {"k160k", "k", KIND_STEP, 2, H1, 4, {6, 1.04, 0}, {1, 1, 0}, {0, 0, 0}, "APIC", MRN_STRESS_USL,
+     MRN_SHAPE_QUADRATIC_BSPLINE, 0, 20, NULL, "a160k as two bodies in contact", 1},
     {"d1m", "d", KIND_OUTPUT, 3, 0.1, 2, {5.4, 5.4, 5.4}, {5.0, 5.0, 5.0}, {0.2, 0, 0.2}, "APIC", MRN_STRESS_USL,
-     MRN_SHAPE_QUADRATIC_BSPLINE, 0, 1, NULL, "one .vtp of 1e6 particles, default fields"},
+     MRN_SHAPE_QUADRATIC_BSPLINE, 0, 1, NULL, "one .vtp of 1e6 particles, default fields", 0},
     {"det-apic", "det", KIND_DET, 2, 0.01, 2, {6, 1.04, 0}, {1, 1, 0}, {0, 0, 0}, "APIC", MRN_STRESS_USL,
-     MRN_SHAPE_QUADRATIC_BSPLINE, 0, 1000, NULL, "1 vs 2 threads, APIC/USL elastic"},
+     MRN_SHAPE_QUADRATIC_BSPLINE, 0, 1000, NULL, "1 vs 2 threads, APIC/USL elastic", 0},
     {"det-flip", "det", KIND_DET, 2, 0.01, 2, {6, 1.04, 0}, {1, 1, 0}, {0, 0, 0}, "FLIP", MRN_STRESS_USF,
-     MRN_SHAPE_CUBIC_BSPLINE, 1, 1000, NULL, "1 vs 2 threads, FLIP/cubic/USF Mohr-Coulomb"},
+     MRN_SHAPE_CUBIC_BSPLINE, 1, 1000, NULL, "1 vs 2 threads, FLIP/cubic/USF Mohr-Coulomb", 0},
 };
 enum { NPROBLEMS = sizeof problems / sizeof problems[0] };
 
@@ -205,6 +212,18 @@ static mrn_material *make_material(const problem *p, char *label, size_t len) {
   return m;
 }
 
+/* the particles above half the block's height become the body "top", in
+ * frictional contact with the rest */
+static int split_bodies(mrn_sim *sim, const problem *p) {
+  const int top = mrn_sim_body(sim, "top");
+  if (top < 0) return -1;
+  const mrn_particles *ps = &sim->particles;
+  const double half = p->offset[1] + 0.5 * p->body[1];
+  for (size_t i = 0; i < ps->n; i++)
+    if (ps->x[3 * i + 1] > half) mrn_sim_set_body(sim, i, 1, top);
+  return mrn_sim_add_contact(sim, "default", "top", MRN_CONTACT_FRICTION, 0.3, NULL);
+}
+
 static mrn_sim *make_sim(const problem *p, char *label, size_t len) {
   mrn_sim_config cfg = {.dim = p->dim, .cell = p->cell, .shape = p->shape, .kernel_boundary = MRN_KERNEL_EXTENDED};
   for (int d = 0; d < p->dim; d++) cfg.size[d] = p->grid[d];
@@ -237,7 +256,7 @@ static mrn_sim *make_sim(const problem *p, char *label, size_t len) {
   size_t first;
   int rc = mrn_sim_seed(sim, r, mi, p->per_axis, MRN_SEED_REGULAR, &first, &count);
   mrn_region_unref(r);
-  if (rc) goto fail;
+  if (rc || (p->contact && split_bodies(sim, p))) goto fail;
   if (opt.shuffle) {
     /* a random order, as after a long flow has mixed the particles */
     const size_t n = sim->particles.n;
@@ -650,7 +669,7 @@ static void write_json(const row *rows, int nrows, const char *path, char derive
 static void usage(void) {
   fprintf(stderr,
           "usage: moraine-bench [--anchors DIR] [--threads 1,2] [--reps N] [--json FILE]\n"
-          "                     [--only a,w,b,c,l,u,q,m,d,det|NAME,...] [--det-steps N] [--sort-every N]\n"
+          "                     [--only a,w,b,c,l,u,q,m,k,d,det|NAME,...] [--det-steps N] [--sort-every N]\n"
           "                     [--steps-scale X] [--warmup N] [--shuffle]\n");
 }
 
@@ -681,7 +700,7 @@ int main(int argc, char **argv) {
   if (opt.reps < 1) opt.reps = 1;
   if (opt.reps > 32) opt.reps = 32;
   if (opt.anchors && build_anchors()) return 1;
-  if (!opt.only[0]) snprintf(opt.only, sizeof opt.only, "a,w,b,c,l,u,q,m,d,det");
+  if (!opt.only[0]) snprintf(opt.only, sizeof opt.only, "a,w,b,c,l,u,q,m,k,d,det");
 
   printf("moraine bench: %ld CPUs online, threads", sysconf(_SC_NPROCESSORS_ONLN));
   for (int t = 0; t < opt.nthreads; t++) printf(" %d", opt.threads[t]);
@@ -776,6 +795,15 @@ int main(int argc, char **argv) {
                  r->threads, 100 * (w->rate / r->rate - 1));
           snprintf(derived[nd++], 160, "\"%s_wide_grid_overhead_%dt\": %.4g", r->p->name, r->threads,
                    w->rate / r->rate - 1);
+        }
+      }
+    if (r->p->name[0] == 'a')
+      for (int j = 0; j < nrows; j++) {
+        const row *k = &rows[j];
+        if (k->ok && k->p->contact && !strcmp(k->p->name + 1, r->p->name + 1) && k->threads == r->threads) {
+          printf("%-7s %d thread(s): two bodies in contact cost %.2fx the single field's time\n", r->p->name,
+                 r->threads, r->rate / k->rate);
+          snprintf(derived[nd++], 160, "\"%s_contact_cost_%dt\": %.4g", r->p->name, r->threads, r->rate / k->rate);
         }
       }
     if (isfinite(r->anchor_rate))
