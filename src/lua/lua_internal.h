@@ -76,6 +76,10 @@ void mrn_lua_add_contact_methods(lua_State *L, int methods);
 /* print(), io.write() and the write method of the terminal's files through
  * the run log, in a state whose standard libraries are open (lua_print.c) */
 void mrn_lua_log_prints(lua_State *L);
+/* the deck's file writes once, on process 0, in a distributed run
+ * (lua_parallel_io.c); mpm.parallel_io */
+void mrn_lua_parallel_io_open(lua_State *L);
+int mrn_lua_l_parallel_io(lua_State *L);
 /* set_watchdog, watchdog (lua_watchdog.c) into the methods table at idx */
 void mrn_lua_add_watchdog_methods(lua_State *L, int methods);
 /* simulation{ watchdog = {...} | false } and set_watchdog{}: the table or boolean at idx */

@@ -155,6 +155,8 @@ int luaopen_moraine(lua_State *L) {
   lua_setfield(L, module, "param");
   lua_pushcfunction(L, l_wall_time);
   lua_setfield(L, module, "wall_time");
+  lua_pushcfunction(L, mrn_lua_l_parallel_io);
+  lua_setfield(L, module, "parallel_io");
   lua_getfield(L, LUA_REGISTRYINDEX, "moraine.args");
   lua_setfield(L, module, "args");
   lua_getfield(L, LUA_REGISTRYINDEX, "moraine.outdir");
@@ -215,6 +217,7 @@ static int open_protected(lua_State *L) {
   const mrn_deck_options *opt = lua_touserdata(L, 1);
   mrn_lua_open(L, opt);
   mrn_lua_log_prints(L);
+  mrn_lua_parallel_io_open(L); /* before --safe's checks, which then judge the deck's own paths */
   if (opt && opt->safe) mrn_lua_safe_open(L, opt->outdir ? opt->outdir : "out");
   if (opt && opt->restart) mrn_lua_restart_open(L, opt->restart);
   return 0;

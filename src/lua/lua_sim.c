@@ -194,7 +194,7 @@ static const mrn_spec_group *const groups[] = {
     &mrn_lua_run_group,        &mrn_lua_thermo_group, &mrn_lua_checkpoint_group, &mrn_lua_hook_group,
     &mrn_lua_particle_group,   &mrn_lua_load_group,
     &mrn_lua_constrain_group,  &mrn_lua_reduce_group, &mrn_lua_import_group, &mrn_lua_wall_group,
-    &mrn_lua_contact_group,    &mrn_lua_parallel_group,
+    &mrn_lua_contact_group,    &mrn_lua_parallel_group,   &mrn_lua_field_group,
 };
 
 void mrn_lua_open_simulation(lua_State *L, int module) {

@@ -162,6 +162,7 @@ int l_sim_set_parallel(lua_State *L);
 int l_sim_parallel(lua_State *L);
 int l_sim_rebalance(lua_State *L);
 extern const mrn_spec_group mrn_lua_parallel_group;
+extern const mrn_spec_group mrn_lua_field_group; /* field */
 int l_sim_split(lua_State *L);
 int l_sim_output(lua_State *L);
 int l_sim_constrain(lua_State *L);

@@ -2,12 +2,14 @@
  * diagnostics, fields, one particle, settings — and write one snapshot or
  * one series value on request. */
 #include <stdint.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include "core/error.h"
 #include "io/particle_fields.h"
 #include "lua/lua_check.h"
 #include "lua/lua_sim.h"
+#include "solver/dist.h"
 #include "solver/timestep.h"
 
 /* the critical steps the CFL policies use, without their Courant number */
@@ -95,22 +97,61 @@ int l_sim_diagnostics(lua_State *L) {
 }
 
 /* sim:field(name) -> flat array of n * ncomp values */
+static const mrn_spec field_specs[] = {
+    {"gather", MRN_SPEC_BOOLEAN, 0, 0, 0, 0, 0, 0, NULL,
+     "every particle of a distributed run, in the order of their ids, on every process (collective)", NULL},
+};
+
+const mrn_spec_group mrn_lua_field_group = {"field()", field_specs, MRN_COUNT(field_specs)};
+
+/* the values of buf (count values of the field's type) as a new Lua array */
+static void push_values(lua_State *L, const mrn_field_ref *f, const void *buf, size_t count) {
+  lua_createtable(L, (int)count, 0);
+  for (size_t i = 0; i < count; i++) {
+    if (f->type == MRN_VTK_FLOAT64) lua_pushnumber(L, ((const double *)buf)[i]);
+    else if (f->type == MRN_VTK_INT32) lua_pushinteger(L, ((const int32_t *)buf)[i]);
+    else lua_pushinteger(L, ((const int64_t *)buf)[i]);
+    lua_rawseti(L, -2, (lua_Integer)i + 1);
+  }
+}
+
+/* the field of every process's particles in id order: records of the
+ * particle's values then its id, gathered (solver/dist.h), then the values
+ * alone; leaves the array on the stack */
+static void push_gathered(lua_State *L, sim_box *b, const mrn_field_ref *f, const unsigned char *buf) {
+  const mrn_particles *ps = &b->sim->particles;
+  const size_t vals = (size_t)f->ncomp * (f->type == MRN_VTK_INT32 ? 4 : 8), rec = vals + sizeof(int64_t);
+  unsigned char *mine = lua_newuserdatauv(L, ps->n * rec + 1, 0);
+  for (size_t p = 0; p < ps->n; p++) {
+    memcpy(mine + p * rec, buf + p * vals, vals);
+    memcpy(mine + p * rec + vals, ps->id + p, sizeof(int64_t));
+  }
+  unsigned char *all = NULL;
+  size_t total = 0;
+  mrn_lua_active = L;
+  if (mrn_dist_gather_by_id(b->sim, mine, ps->n, rec, &all, &total) != MRN_OK) mrn_lua_engine_error(L, "field()");
+  for (size_t p = 0; p < total; p++) memmove(all + p * vals, all + p * rec, vals);
+  lua_pop(L, 1);
+  push_values(L, f, all, total * (size_t)f->ncomp);
+  free(all);
+}
+
 int l_sim_field(lua_State *L) {
   sim_box *b = mrn_lua_sim_check(L, 1);
   const char *name = luaL_checkstring(L, 2);
+  int gather = 0;
+  if (!lua_isnoneornil(L, 3)) {
+    mrn_lua_check_table(L, 3, "field()", field_specs, MRN_COUNT(field_specs));
+    gather = mrn_lua_get_boolean(L, 3, "field()", field_specs, MRN_COUNT(field_specs), "gather", 0);
+  }
   mrn_field_ref f;
   if (!mrn_field_lookup(b->sim, name, &f)) mrn_lua_check_choice(L, "field()", "name", name, mrn_output_field_names());
   size_t n = b->sim->particles.n;
   size_t total = n * f.ncomp;
   void *buf = lua_newuserdatauv(L, (total ? total : 1) * 8, 0);
   mrn_field_fill(b->sim, &f, buf);
-  lua_createtable(L, (int)total, 0);
-  for (size_t i = 0; i < total; i++) {
-    if (f.type == MRN_VTK_FLOAT64) lua_pushnumber(L, ((double *)buf)[i]);
-    else if (f.type == MRN_VTK_INT32) lua_pushinteger(L, ((int32_t *)buf)[i]);
-    else lua_pushinteger(L, ((int64_t *)buf)[i]);
-    lua_rawseti(L, -2, (lua_Integer)i + 1);
-  }
+  if (gather) push_gathered(L, b, &f, buf);
+  else push_values(L, &f, buf, total);
   lua_pushinteger(L, f.ncomp);
   return 2;
 }

@@ -423,7 +423,7 @@ static int64_t record_id(const unsigned char *r, size_t rec) {
   return id;
 }
 
-static size_t gather_rec; /* record size for the comparison below (process 0, one gather at a time) */
+static size_t gather_rec; /* record size for the comparison below (one sort at a time) */
 
 static int by_id(const void *a, const void *b) {
   const int64_t x = record_id(*(const unsigned char *const *)a, gather_rec);
@@ -600,3 +600,54 @@ int mrn_sim_set_rebalance(mrn_sim *sim, long every, double imbalance) {
 }
 
 void mrn_dist_max_over(void *ctx, double *values, int n) { mrn_dist_reduce(ctx, values, n, MRN_COMM_MAX); }
+
+/* the records [0, total) of buf, each ending with its int64 id, put in the
+ * order of their ids */
+static int sort_records(unsigned char *buf, size_t total, size_t rec) {
+  const unsigned char **order = malloc((total + 1) * sizeof *order);
+  unsigned char *sorted = malloc(total * rec + 1);
+  if (!order || !sorted) {
+    free(order);
+    free(sorted);
+    return mrn_error("parallel: out of memory sorting %zu records", total);
+  }
+  for (size_t i = 0; i < total; i++) order[i] = buf + i * rec;
+  gather_rec = rec;
+  qsort(order, total, sizeof *order, by_id);
+  for (size_t i = 0; i < total; i++) memcpy(sorted + i * rec, order[i], rec);
+  memcpy(buf, sorted, total * rec);
+  free(order);
+  free(sorted);
+  return MRN_OK;
+}
+
+int mrn_dist_gather_by_id(const mrn_sim *sim, const unsigned char *mine, size_t n, size_t rec, unsigned char **all,
+                          size_t *total) {
+  const mrn_dist *d = sim->dist;
+  const int np = d ? d->size : 1;
+  size_t *count = calloc((size_t)np, sizeof *count), *displ = calloc((size_t)np, sizeof *displ);
+  int rc = count && displ ? MRN_OK : mrn_error("parallel: out of memory");
+  if (rc == MRN_OK && d) mrn_comm_allgather_size(n * rec, count);
+  else if (rc == MRN_OK) count[0] = n * rec;
+  size_t bytes = 0;
+  for (int r = 0; rc == MRN_OK && r < np; r++) displ[r] = bytes, bytes += count[r];
+  unsigned char *buf = rc == MRN_OK ? malloc(bytes + 1) : NULL;
+  if (rc == MRN_OK && !buf) rc = mrn_error("parallel: out of memory gathering %zu bytes", bytes);
+  rc = mrn_dist_agree(sim, rc);
+  if (rc == MRN_OK && d) {
+    mrn_comm_gatherv(mine, n * rec, buf, count, displ, 0);
+    mrn_comm_bcast(buf, bytes, 0);
+  } else if (rc == MRN_OK && n) {
+    memcpy(buf, mine, n * rec);
+  }
+  if (rc == MRN_OK) rc = sort_records(buf, bytes / rec, rec);
+  free(count);
+  free(displ);
+  if (rc != MRN_OK) {
+    free(buf);
+    return rc;
+  }
+  *all = buf;
+  *total = bytes / rec;
+  return MRN_OK;
+}

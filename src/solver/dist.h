@@ -123,4 +123,11 @@ void mrn_dist_books(const struct mrn_sim *sim, double b[MRN_BOOKS]);
 int mrn_dist_gather_begin(const struct mrn_sim *sim);
 void mrn_dist_gather_end(const struct mrn_sim *sim);
 
+/* Every process's n records of rec bytes (`mine`), each ending with the
+ * int64 id of its particle, on every process in the order of the ids:
+ * *all (to free) holds *total records. Undistributed, this process's alone,
+ * sorted. Collective. 0 or an error code. */
+int mrn_dist_gather_by_id(const struct mrn_sim *sim, const unsigned char *mine, size_t n, size_t rec,
+                          unsigned char **all, size_t *total);
+
 #endif

@@ -72,6 +72,35 @@ for _, dim in ipairs{ 2, 3 } do
   if dim == 2 then refused("z is only for a 3D simulation", sim.probe, sim, { field = "mass", x = 0.5, y = 0.5, z = 0 })
   else refused("z is required in 3D", sim.probe, sim, { field = "mass", x = 0.5, y = 0.5 }) end
 
+  -- field(name, {gather = true}): every particle's values in the order of the ids
+  -- (in a run on one process, this process's particles sorted by id), after a
+  -- reordering by block (sort_every) has put them out of id order
+  local sorted = mpm.simulation{ dim = dim, grid = { size = dim == 2 and { 1, 1 } or { 1, 1, 1 }, cell = 0.1 },
+                                 thermo = 0, diagnostics = false, sort_every = 1 }
+  local left_hi, right_lo = { table.unpack(hi) }, { table.unpack(lo) }
+  left_hi[1], right_lo[1] = 0.45, 0.55
+  sorted:add_particles(mpm.box{ min = right_lo, max = hi }, { material = mat, velocity = v })
+  sorted:add_particles(mpm.box{ min = lo, max = left_hi }, { material = mat, velocity = v })
+  sorted:run{ steps = 2 }
+  local ids, vel = sorted:field("id"), sorted:field("velocity")
+  local gids = sorted:field("id", { gather = true })
+  local gvel, gnc = sorted:field("velocity", { gather = true })
+  n = sorted:particle_count()
+  T.check(#gids == n and gnc == 3 and #gvel == 3 * n, "gather: %d ids, %d values", #gids, #gvel)
+  local at = {}
+  for i = 1, n do at[ids[i]] = i end
+  local moved = 0
+  for k = 1, n do
+    T.check(k == 1 or gids[k] > gids[k - 1], "gather: ids out of order at %d", k)
+    local i = at[gids[k]]
+    if i ~= k then moved = moved + 1 end
+    for c = 1, 3 do T.check(gvel[3 * (k - 1) + c] == vel[3 * (i - 1) + c], "gather: velocity of id %d", gids[k]) end
+  end
+  T.check(moved > 0, "the sort did not reorder the particles, so the gather's order is not tested")
+  refused("gathr", sorted.field, sorted, "mass", { gathr = true })
+  sorted:free()
+  n = sim:particle_count()
+
   -- a checkpoint holds the registered fields; mpm.load brings them back
   sim:save("fields" .. dim .. ".h5")
   local loaded = mpm.load("fields" .. dim .. ".h5", { thermo = 0, diagnostics = false })

@@ -61,6 +61,13 @@ if case == "crossing" or case == "leave" or case == "outflow" then
         d.mass, d.particles)
   local vy = sim:probe{ field = "velocity_new", x = 0.2, y = 0.1 }[2]
   check(math.abs(vy - 100) < 1e-9, "probe: velocity_new y at (0.2, 0.1) is %.12g, expected 100", vy)
+  -- sim:field{gather = true}: every particle in the order of the ids, on every process
+  local ids = sim:field("id", { gather = true })
+  local vel, nc = sim:field("velocity", { gather = true })
+  check(#ids == d.particles and nc == 3 and #vel == 3 * d.particles, "gather: %d ids, %d velocities for %d particles",
+        #ids, #vel // 3, d.particles)
+  for i = 2, #ids do check(ids[i] > ids[i - 1], "gather: ids out of order at %d", i) end
+  for i = 1, #ids do check(math.abs(vel[3 * i - 1] - 100) < 1e-9, "gather: v_y %.17g of id %d", vel[3 * i - 1], ids[i]) end
   -- every particle sits on the process whose slab holds it
   if par.size == 3 then
     check(par.particles == (par.rank == 2 and d0.particles or 0), "process %d holds %d particles", par.rank,
@@ -87,6 +94,29 @@ elseif case == "lua_error" or case == "sigint" then
     end }
     sim:run{ steps = 10000000 }
   end
+elseif case == "files" then
+  -- the deck's own files: written once (process 0) unless mpm.parallel_io("every")
+  local sim = mpm.simulation{ dim = 2, grid = { size = { 1.0, 1.2 }, cell = 0.1 }, thermo = 0 }
+  local rank, dir = sim:parallel().rank, mpm.outdir .. "/"
+  local f = assert(io.open(dir .. "once.txt", "w"))
+  f:write("rank ", rank, "\n")
+  f:close()
+  f = assert(io.open(dir .. "once.txt", "a"))
+  f:write("again rank ", rank, "\n")
+  f:close()
+  assert(io.open(dir .. "gone.txt", "w")):close()
+  assert(os.remove(dir .. "gone.txt"))
+  io.output(dir .. "output.txt")
+  io.write("io.output rank ", rank, "\n")
+  io.close()
+  io.output(io.stdout)
+  check(mpm.parallel_io("every") == "once", "the default is not once")
+  f = assert(io.open(dir .. "every_" .. rank .. ".txt", "w"))
+  f:write("rank ", rank, "\n")
+  f:close()
+  check(mpm.parallel_io("once") == "every", "the mode did not change")
+  check(not pcall(mpm.parallel_io, "twice"), "parallel_io accepted 'twice'")
+  print("files: written")
 elseif case == "small_grid" then
   local sim = mpm.simulation{ dim = 2, grid = { size = { 1.0, 0.8 }, cell = 0.1 }, thermo = 0 }
   sim:add_particles(mpm.box{ min = { 0.2, 0 }, max = { 0.8, 0.5 } }, { material = steel, per_axis = 2 })

@@ -3,7 +3,8 @@
 # (tests/parallel/robust.lua): a block crossing two slabs in one step with
 # two processes empty, a particle leaving the grid (stopping the run, or
 # deleted with its energy booked as outflow), a Lua error on one
-# process, a grid too thin for the processes, and SIGINT to mpirun. Each
+# process, the deck's own files, a grid too thin for the processes, and
+# SIGINT to mpirun. Each
 # must end (no hang: every run has a time limit) with its message once and,
 # where the state is kept, one checkpoint.
 # usage: robust.sh MORAINE OUTDIR
@@ -50,6 +51,16 @@ n=$(grep -c "the last process gives up at step 20" "$out/lua_error.out")
 [ -s "$out/lua_error/lua_error_failed.h5" ] || bad "lua_error: no checkpoint lua_error_failed.h5"
 say "lua_error: exit $s; $(grep -o 'the last process gives up[^;]*; the state at step [0-9]*' "$out/lua_error.out")"
 
+# files: the deck's own writes happen once (process 0), and on every process when asked
+run3 files; s=$?
+[ $s -eq 0 ] || { bad "files exited $s"; cat "$out/files.out"; }
+[ "$(cat "$out/files/once.txt" 2>/dev/null)" = "$(printf 'rank 0\nagain rank 0')" ] ||
+  { bad "files: once.txt holds:"; cat "$out/files/once.txt"; }
+[ "$(cat "$out/files/output.txt" 2>/dev/null)" = "io.output rank 0" ] || bad "files: output.txt is not process 0's alone"
+[ ! -e "$out/files/gone.txt" ] || bad "files: os.remove left gone.txt"
+for r in 0 1 2; do [ "$(cat "$out/files/every_$r.txt" 2>/dev/null)" = "rank $r" ] || bad "files: every_$r.txt"; done
+say "files: exit $s; once.txt, output.txt from process 0 alone, every_0..2.txt from each"
+
 # small_grid: refused with the numbers, once
 run3 small_grid; s=$?
 [ $s -ne 0 ] || bad "small_grid exited 0"
@@ -76,5 +87,5 @@ n=$(grep -c "interrupted by signal" "$out/sigint.out")
 [ -z "$(find "$out" -name '.*.tmp.*')" ] || bad "temporary files left"
 say "sigint: exit $s; $(grep -o 'interrupted by signal [0-9]* after step [0-9]*' "$out/sigint.out")"
 
-if [ $fail -eq 0 ]; then echo "6 passed, 0 failed"; else echo "some failed"; fi
+if [ $fail -eq 0 ]; then echo "7 passed, 0 failed"; else echo "some failed"; fi
 exit $fail
