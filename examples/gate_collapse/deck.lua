@@ -75,11 +75,12 @@ local function collapse(v)
   series:close()
   local final = assert(io.open(mpm.outdir .. "/" .. name .. "_final.csv", "w"))
   final:write("x,y\n")
+  -- every particle of the run, on any number of processes
+  local pos = sim:field("position", { gather = true })
   local xs = {}
-  for i = 1, sim:particle_count() do
-    local p = sim:particle(i)
-    final:write(string.format("%.6g,%.6g\n", p.x[1], p.x[2]))
-    xs[i] = p.x[1]
+  for i = 1, #pos // 3 do
+    final:write(string.format("%.6g,%.6g\n", pos[3 * i - 2], pos[3 * i - 1]))
+    xs[i] = pos[3 * i - 2]
   end
   final:close()
   -- the bulk front: 95 % of the particles (of equal mass) lie behind it

@@ -79,9 +79,11 @@ local function roll(mu)
   f:close()
   local out = assert(io.open(mpm.outdir .. "/" .. name .. "_final.csv", "w"))
   out:write("x,y,speed\n")
-  for i = 1, sim:particle_count() do
-    local p = sim:particle(i)
-    out:write(string.format("%.6g,%.6g,%.6g\n", p.x[1], p.x[2], math.sqrt(p.v[1] ^ 2 + p.v[2] ^ 2)))
+  -- every particle of the run, on any number of processes
+  local pos, vel = sim:field("position", { gather = true }), sim:field("velocity", { gather = true })
+  for i = 1, #pos // 3 do
+    out:write(string.format("%.6g,%.6g,%.6g\n", pos[3 * i - 2], pos[3 * i - 1],
+                            math.sqrt(vel[3 * i - 2] ^ 2 + vel[3 * i - 1] ^ 2)))
   end
   out:close()
   local W_MPM = sim:diagnostics().W_MPM

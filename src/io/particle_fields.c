@@ -18,6 +18,7 @@ static void copy_field(const double *src, int ncomp, size_t first, size_t count,
 
 #define FIELD_FN(name) static void name(const mrn_sim *sim, size_t first, size_t count, void *out)
 
+FIELD_FN(f_position) { copy_field(sim->particles.x, 3, first, count, out); }
 FIELD_FN(f_velocity) { copy_field(sim->particles.v, 3, first, count, out); }
 FIELD_FN(f_mass) { copy_field(sim->particles.mass, 1, first, count, out); }
 FIELD_FN(f_stress) { copy_field(sim->particles.stress, 6, first, count, out); }
@@ -122,12 +123,14 @@ static const mrn_output_field fields[] = {
     {"velocity_gradient", 9, MRN_VTK_FLOAT64, "1/s", "grid velocity gradient L at the particle, row-major",
      f_velocity_gradient, 0, 1},
     {"vorticity", 3, MRN_VTK_FLOAT64, "1/s", "curl of the grid velocity; 2D: dv/dx - du/dy alone", f_vorticity, 1, 1},
+    {"position", 3, MRN_VTK_FLOAT64, "m", "particle position (a file's points hold it already)", f_position, 0, 1},
 };
 enum { FIELD_COUNT = sizeof fields / sizeof fields[0] };
 
 static const char *const names[] = {"velocity", "displacement", "mass", "volume", "density", "stress",
                                     "strain", "pressure", "von_mises", "eps_D", "elastic_energy",
-                                    "deformation_gradient", "material", "id", "velocity_gradient", "vorticity", NULL};
+                                    "deformation_gradient", "material", "id", "velocity_gradient", "vorticity",
+                                    "position", NULL};
 
 int mrn_output_field_count(void) { return FIELD_COUNT; }
 const mrn_output_field *mrn_output_field_at(int i) { return &fields[i]; }
