@@ -8,6 +8,7 @@
 #include "io/particle_fields.h"
 #include "lua/lua_check.h"
 #include "lua/lua_sim.h"
+#include "solver/dist.h"
 #include "solver/timestep.h"
 
 /* the critical steps the CFL policies use, without their Courant number */
@@ -85,11 +86,13 @@ int l_sim_diagnostics(lua_State *L) {
   lua_pushnumber(L, b->sim->time); lua_setfield(L, -2, "time");
   lua_pushinteger(L, b->sim->step); lua_setfield(L, -2, "step");
   lua_pushnumber(L, b->sim->dt); lua_setfield(L, -2, "dt");
-  lua_pushinteger(L, b->sim->outflow_particles); lua_setfield(L, -2, "outflow_particles");
-  lua_pushnumber(L, b->sim->outflow_mass); lua_setfield(L, -2, "outflow_mass");
-  lua_pushnumber(L, b->sim->energy_outflow); lua_setfield(L, -2, "energy_outflow");
-  lua_pushinteger(L, b->sim->inflow_particles); lua_setfield(L, -2, "inflow_particles");
-  lua_pushnumber(L, b->sim->inflow_mass); lua_setfield(L, -2, "inflow_mass");
+  mrn_books books; /* summed over the processes (solver/dist.h) */
+  mrn_dist_books(b->sim, &books);
+  lua_pushinteger(L, (lua_Integer)books.outflow_particles); lua_setfield(L, -2, "outflow_particles");
+  lua_pushnumber(L, books.outflow_mass); lua_setfield(L, -2, "outflow_mass");
+  lua_pushnumber(L, books.outflow); lua_setfield(L, -2, "energy_outflow");
+  lua_pushinteger(L, (lua_Integer)books.inflow_particles); lua_setfield(L, -2, "inflow_particles");
+  lua_pushnumber(L, books.inflow_mass); lua_setfield(L, -2, "inflow_mass");
   lua_pushnumber(L, b->sim->mass_scaling); lua_setfield(L, -2, "mass_scaling");
   return 1;
 }

@@ -98,6 +98,8 @@ int mrn_dist_adopt(mrn_sim *sim, size_t first) {
   return MRN_OK;
 }
 
+static void books_set(mrn_sim *sim, const mrn_books *b);
+
 int mrn_dist_start(mrn_sim *sim) {
   if (sim->dist || mrn_comm_size() < 2) return MRN_OK;
   /* what is refused is refused by every process alike: process 0 says it */
@@ -120,11 +122,8 @@ int mrn_dist_start(mrn_sim *sim) {
   d->axis = axis;
   sim->dist = d;
   if ((rc = cut_by_count(sim, d, 1)) || (rc = mrn_dist_adopt(sim, 0))) return rc;
-  /* the books of work done so far are process 0's; the others start at 0 */
-  if (d->rank != 0) {
-    sim->work_friction = sim->work_damping = sim->energy_outflow = sim->outflow_mass = 0.0;
-    sim->outflow_particles = 0;
-  }
+  /* the books kept so far are process 0's; the others start at 0 */
+  if (d->rank != 0) books_set(sim, &(mrn_books){0});
   return MRN_OK;
 }
 
@@ -452,31 +451,31 @@ static int assemble(mrn_particles *out, const mrn_particles *like, const unsigne
   return rc;
 }
 
-/* the books of work kept per process (dist.h), summed on every process */
-enum { BOOKS = 5 };
-static void books_get(const mrn_sim *sim, double *b) {
-  b[0] = sim->work_friction;
-  b[1] = sim->work_damping;
-  b[2] = sim->energy_outflow;
-  b[3] = sim->outflow_mass;
-  b[4] = (double)sim->outflow_particles;
+/* the books kept per process (dist.h) */
+static mrn_books books_get(const mrn_sim *sim) {
+  return (mrn_books){sim->work_friction, sim->work_damping, sim->work_external, sim->energy_inflow,
+                     sim->work_inflow, sim->inflow_mass, (double)sim->inflow_particles, sim->energy_outflow,
+                     sim->outflow_mass, (double)sim->outflow_particles};
 }
 
-static void books_set(mrn_sim *sim, const double *b) {
-  sim->work_friction = b[0];
-  sim->work_damping = b[1];
-  sim->energy_outflow = b[2];
-  sim->outflow_mass = b[3];
-  sim->outflow_particles = (long)b[4];
+static void books_set(mrn_sim *sim, const mrn_books *b) {
+  sim->work_friction = b->friction;
+  sim->work_damping = b->damping;
+  sim->work_external = b->external;
+  sim->energy_inflow = b->inflow;
+  sim->work_inflow = b->inflow_work;
+  sim->inflow_mass = b->inflow_mass;
+  sim->inflow_particles = (long)b->inflow_particles;
+  sim->energy_outflow = b->outflow;
+  sim->outflow_mass = b->outflow_mass;
+  sim->outflow_particles = (long)b->outflow_particles;
 }
 
-void mrn_dist_books(const mrn_sim *sim, double *friction, double *damping, double *outflow) {
-  double b[BOOKS];
-  books_get(sim, b);
-  mrn_dist_reduce(sim, b, BOOKS, MRN_COMM_SUM);
-  *friction = b[0];
-  *damping = b[1];
-  *outflow = b[2];
+enum { BOOKS = sizeof(mrn_books) / sizeof(double) };
+
+void mrn_dist_books(const mrn_sim *sim, mrn_books *b) {
+  *b = books_get(sim);
+  mrn_dist_reduce(sim, (double *)b, BOOKS, MRN_COMM_SUM);
 }
 
 /* The nodal values a checkpoint keeps (mass, V, force, the contact bits),
@@ -563,11 +562,10 @@ int mrn_dist_gather_begin(const mrn_sim *csim) {
     }
   }
   if (rc == MRN_OK) rc = gather_grid(sim, d);
-  books_get(sim, d->held_books);
-  double b[BOOKS];
-  memcpy(b, d->held_books, sizeof b);
-  mrn_comm_allreduce(b, BOOKS, MRN_COMM_SUM);
-  if (d->rank == 0) books_set(sim, b);
+  d->held_books = books_get(sim);
+  mrn_books b = d->held_books;
+  mrn_comm_allreduce((double *)&b, BOOKS, MRN_COMM_SUM);
+  if (d->rank == 0) books_set(sim, &b);
   free(cnt);
   free(mine);
   free(all);
@@ -579,7 +577,7 @@ void mrn_dist_gather_end(const mrn_sim *csim) {
   mrn_dist *d = sim->dist;
   if (!d) return;
   gather_grid_end(sim, d);
-  books_set(sim, d->held_books);
+  books_set(sim, &d->held_books);
   if (!d->held) return;
   mrn_particles_free(&sim->particles);
   sim->particles = *d->held;

@@ -26,8 +26,9 @@
  * Until the first step or run, every process holds every particle (the
  * deck builds them the same on each); mrn_dist_start then keeps each
  * process's own. The particle sums (diagnostics, energies, the time step)
- * are then summed over processes. Files are written by process 0, with the
- * particles gathered there in the order of their ids. */
+ * are then summed over processes, and so are the books each keeps
+ * (mrn_books). Files are written by process 0, with the particles gathered
+ * there in the order of their ids. */
 #ifndef MRN_SOLVER_DIST_H
 #define MRN_SOLVER_DIST_H
 
@@ -43,6 +44,16 @@ struct mrn_particles;
 #define MRN_DIST_REBALANCE_EVERY 100
 #define MRN_DIST_IMBALANCE 1.2
 
+/* The books kept per process: the work done on the nodes of its rows
+ * (friction, damping, the sources' inlets), that of the point forces on
+ * its particles, and what its particles brought in (sources, particles
+ * added during a run) and took out (deleted on leaving). All doubles: the
+ * counts too, so that the struct is summed as one array. */
+typedef struct mrn_books {
+  double friction, damping, external, inflow, inflow_work, inflow_mass, inflow_particles, outflow, outflow_mass,
+      outflow_particles;
+} mrn_books;
+
 typedef struct mrn_dist {
   int rank, size;
   int axis;          /* the cut axis: the grid's last */
@@ -56,7 +67,7 @@ typedef struct mrn_dist {
   /* while gathered (mrn_dist_gather_begin): process 0's own particles, and
    * this process's books of work */
   struct mrn_particles *held;
-  double held_books[5];
+  mrn_books held_books;
   double *held_mass, *held_vel, *held_force; /* process 0's nodal arrays */
   unsigned char *held_contact;
 } mrn_dist;
@@ -105,9 +116,9 @@ int mrn_dist_owns_point(const struct mrn_sim *sim, const double x[3]);
  * simulation; nothing when it is not (yet) distributed */
 void mrn_dist_reduce(const struct mrn_sim *sim, double *v, int n, mrn_comm_op op);
 
-/* the books of work kept per process (friction, damping, the energy that
- * left), summed over the processes */
-void mrn_dist_books(const struct mrn_sim *sim, double *friction, double *damping, double *outflow);
+/* the books (mrn_books) summed over the processes: the same on each */
+void mrn_dist_books(const struct mrn_sim *sim, mrn_books *b);
+
 
 /* Process 0 takes every particle, in the order of their ids, in place of
  * its own until mrn_dist_gather_end, so that a writer sees the whole set;
