@@ -585,6 +585,60 @@ void mrn_dist_gather_end(const mrn_sim *csim) {
   d->held = NULL;
 }
 
+static int by_key(const void *a, const void *b) {
+  const int64_t x = *(const int64_t *)a, y = *(const int64_t *)b;
+  return (x > y) - (x < y);
+}
+
+/* every process's keys, on every process, in the order of rank; *rc
+ * agreed before each exchange */
+static int64_t *all_keys(const mrn_sim *sim, const int64_t *keys, size_t n, int64_t *total, int *rc) {
+  const size_t P = (size_t)sim->dist->size;
+  /* bytes from each process and where they go; bytes to each and where
+   * they come from: the same keys to each, from the start */
+  size_t *cnt = calloc(4 * P, sizeof *cnt), *displ = cnt + P, *scnt = cnt + 2 * P, *sdispl = cnt + 3 * P;
+  if (!cnt) *rc = mrn_error("parallel: out of memory");
+  int64_t *all = NULL;
+  if ((*rc = mrn_dist_agree(sim, *rc)) == MRN_OK) {
+    mrn_comm_allgather_size(n * sizeof *keys, cnt);
+    size_t bytes = 0;
+    for (size_t r = 0; r < P; r++) {
+      displ[r] = bytes;
+      bytes += cnt[r];
+      scnt[r] = n * sizeof *keys;
+    }
+    *total = (int64_t)(bytes / sizeof *keys);
+    if (bytes && !(all = malloc(bytes))) *rc = mrn_error("parallel: out of memory for %lld keys", (long long)*total);
+    if (bytes && (*rc = mrn_dist_agree(sim, *rc)) == MRN_OK) mrn_comm_alltoallv(keys, scnt, sdispl, all, cnt, displ);
+  }
+  free(cnt);
+  return all;
+}
+
+int mrn_dist_key_places(const mrn_sim *sim, const int64_t *keys, size_t n, int64_t *place, int64_t *total, int rc) {
+  if (!sim->dist) {
+    for (size_t k = 0; k < n; k++) place[k] = (int64_t)k;
+    *total = (int64_t)n;
+    return rc;
+  }
+  int64_t *all = all_keys(sim, keys, n, total, &rc);
+  if (rc == MRN_OK && *total > 0) {
+    qsort(all, (size_t)*total, sizeof *all, by_key);
+    /* a key's place: the keys below it, found by bisection */
+    for (size_t k = 0; k < n; k++) {
+      size_t lo = 0, hi = (size_t)*total;
+      while (lo < hi) {
+        const size_t mid = lo + (hi - lo) / 2;
+        if (all[mid] < keys[k]) lo = mid + 1;
+        else hi = mid;
+      }
+      place[k] = (int64_t)lo;
+    }
+  }
+  free(all);
+  return rc;
+}
+
 int mrn_sim_set_rebalance(mrn_sim *sim, long every, double imbalance) {
   if (every < 0) return mrn_error("parallel: rebalance_every must be >= 0, got %ld", every);
   if (!(imbalance >= 1.0) || !isfinite(imbalance))

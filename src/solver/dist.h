@@ -33,6 +33,7 @@
 #define MRN_SOLVER_DIST_H
 
 #include <stddef.h>
+#include <stdint.h>
 
 #include "core/comm.h"
 
@@ -119,6 +120,12 @@ void mrn_dist_reduce(const struct mrn_sim *sim, double *v, int n, mrn_comm_op op
 /* the books (mrn_books) summed over the processes: the same on each */
 void mrn_dist_books(const struct mrn_sim *sim, mrn_books *b);
 
+/* Keys increasing on each process and distinct over all of them: the
+ * place of each among every process's keys, place[k] (k on one process),
+ * and their number, *total. Agrees on rc first (the outcome so far);
+ * collective. 0 or an error code. */
+int mrn_dist_key_places(const struct mrn_sim *sim, const int64_t *keys, size_t n, int64_t *place, int64_t *total,
+                        int rc);
 
 /* Process 0 takes every particle, in the order of their ids, in place of
  * its own until mrn_dist_gather_end, so that a writer sees the whole set;
