@@ -10,7 +10,6 @@
 #include "core/error.h"
 #include "grid/active.h"
 #include "solver/contact.h"
-#include "solver/point_force.h"
 #include "solver/simulation.h"
 
 /* what the distributed step does not do yet, by the option that asks for it */
@@ -20,10 +19,7 @@ static int refuse(const mrn_sim *sim) {
   if (sim->integrator.step) what = "the implicit integrator (simulation{integrator})";
   else if (sim->contact && sim->contact->npairs) what = "contact between bodies (sim:add_contact)";
   else if (sim->boundary.walls) what = "walls and rigid bodies (sim:add_wall)";
-  else if (sim->nsources) what = "inflow sources (sim:add_source)";
-  else if (sim->split_stretch > 0.0) what = "particle splitting (simulation{split})";
   else if (sim->shape == MRN_SHAPE_CPDI) what = "CPDI (shape = \"cpdi\")";
-  else if (mrn_particles_user_field(&sim->particles, MRN_POINT_FORCE_FIELD)) what = "point forces (sim:set_point_force)";
   else if (mrn_boundary_periodic(&sim->boundary, axis)) what = "a periodic face along the last axis (faces)";
   for (int f = 0; !what && f < 2 * sim->dim; f++)
     if (sim->boundary.face[f].gap_check) what = "gap_check on a friction face (faces)";

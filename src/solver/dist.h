@@ -28,7 +28,15 @@
  * process's own. The particle sums (diagnostics, energies, the time step)
  * are then summed over processes, and so are the books each keeps
  * (mrn_books). Files are written by process 0, with the particles gathered
- * there in the order of their ids. */
+ * there in the order of their ids.
+ *
+ * Ids stay those of a run on one process: next_id is the same on every
+ * process. Particles made during a run alike on every process (an inflow
+ * source's layers, add_particles) are adopted (mrn_dist_adopt) by the
+ * process whose slab holds them; the children of split particles take ids
+ * in the order of their parents' ids over every process
+ * (mrn_dist_key_places). Point forces are spread to the nodes before the
+ * internal force's halo sum. */
 #ifndef MRN_SOLVER_DIST_H
 #define MRN_SOLVER_DIST_H
 
