@@ -59,7 +59,7 @@ void mrn_constraint_apply(mrn_constraint *c, const mrn_grid *g, double *vel, dou
     if (!(m > floor_mass)) continue;
     for (int d = 0; d < 3; d++) {
       if (!(c->mask & (1u << d))) continue;
-      if (dt > 0.0) reaction[d] += m * (c->velocity[d] - vel[3 * n + d]) / dt;
+      if (dt > 0.0 && mrn_grid_owns(g, (long)n)) reaction[d] += m * (c->velocity[d] - vel[3 * n + d]) / dt;
       vel[3 * n + d] = c->velocity[d];
     }
   }

@@ -5,7 +5,9 @@
  * get the prescribed components of their velocity, each time the grid
  * velocity is computed in a step, after the face conditions. The force the
  * constraint exerts on the material in the last step, sum m (v_set - v~)/dt
- * over its nodes (N, or N/m in 2D), is kept as its reaction. */
+ * over its nodes (N, or N/m in 2D), is kept as its reaction: over the nodes
+ * whose rows this process books (grid.own_lo, own_hi), every node but in a
+ * distributed run. */
 #ifndef MRN_GRID_CONSTRAINT_H
 #define MRN_GRID_CONSTRAINT_H
 

@@ -12,6 +12,7 @@
 #include "core/error.h"
 #include "lua/lua_check.h"
 #include "lua/lua_internal.h"
+#include "solver/dist.h"
 #include "solver/point_force.h"
 #include "solver/simulation.h"
 
@@ -34,23 +35,25 @@ long mrn_lua_point_force_args(lua_State *L, int idx, const mrn_sim *sim, const c
   int has_traction = mrn_lua_get_vector(L, idx, where, force_specs, n, "traction", sim->dim, f, 0);
   if (has_force == has_traction) mrn_lua_error(L, where, "give exactly one of force and traction");
   const mrn_particles *ps = &sim->particles;
-  long count = 0;
+  double count = 0.0; /* over every process of a distributed run (collective there) */
   for (size_t p = 0; p < ps->n; p++) count += mrn_region_contains(r, ps->x + 3 * p) == 1;
-  if (count == 0) mrn_lua_error(L, where, "region: holds no material point");
+  mrn_dist_reduce(sim, &count, 1, MRN_COMM_SUM);
+  if (count == 0.0) mrn_lua_error(L, where, "region: holds no material point");
   for (size_t p = 0; p < ps->n; p++) {
     if (mrn_region_contains(r, ps->x + 3 * p) != 1) continue;
     double fp[3];
-    double scale = has_force ? 1.0 / (double)count : pow(ps->vol0[p], (sim->dim - 1.0) / sim->dim);
+    double scale = has_force ? 1.0 / count : pow(ps->vol0[p], (sim->dim - 1.0) / sim->dim);
     for (int d = 0; d < 3; d++) fp[d] = f[d] * scale;
     if (set(ctx, p, fp)) mrn_lua_engine_error(L, where);
   }
-  return count;
+  return (long)count;
 }
 
 static int set_explicit(void *ctx, size_t p, const double f[3]) { return mrn_sim_set_point_force(ctx, p, f); }
 
 static int l_sim_point_force(lua_State *L) {
   mrn_sim *sim = mrn_lua_check_sim(L, 1);
+  if (mrn_sim_add_point_forces(sim) != MRN_OK) mrn_lua_engine_error(L, "point_force{}");
   lua_pushinteger(L, mrn_lua_point_force_args(L, 2, sim, "point_force{}", set_explicit, sim));
   return 1;
 }

@@ -87,11 +87,13 @@ int l_sim_diagnostics(lua_State *L) {
   lua_pushnumber(L, b->sim->time); lua_setfield(L, -2, "time");
   lua_pushinteger(L, b->sim->step); lua_setfield(L, -2, "step");
   lua_pushnumber(L, b->sim->dt); lua_setfield(L, -2, "dt");
-  lua_pushinteger(L, d.outflow_particles); lua_setfield(L, -2, "outflow_particles");
-  lua_pushnumber(L, d.outflow_mass); lua_setfield(L, -2, "outflow_mass");
-  lua_pushnumber(L, d.outflow); lua_setfield(L, -2, "energy_outflow");
-  lua_pushinteger(L, d.inflow_particles); lua_setfield(L, -2, "inflow_particles");
-  lua_pushnumber(L, d.inflow_mass); lua_setfield(L, -2, "inflow_mass");
+  mrn_books books; /* summed over the processes (solver/dist.h) */
+  mrn_dist_books(b->sim, &books);
+  lua_pushinteger(L, (lua_Integer)books.outflow_particles); lua_setfield(L, -2, "outflow_particles");
+  lua_pushnumber(L, books.outflow_mass); lua_setfield(L, -2, "outflow_mass");
+  lua_pushnumber(L, books.outflow); lua_setfield(L, -2, "energy_outflow");
+  lua_pushinteger(L, (lua_Integer)books.inflow_particles); lua_setfield(L, -2, "inflow_particles");
+  lua_pushnumber(L, books.inflow_mass); lua_setfield(L, -2, "inflow_mass");
   lua_pushnumber(L, b->sim->mass_scaling); lua_setfield(L, -2, "mass_scaling");
   return 1;
 }

@@ -153,7 +153,8 @@ int l_sim_add_particles(lua_State *L) {
     }
     return lua_error(L);
   }
-  mrn_sim_book_inflow(b->sim, first, (size_t)count); /* once the energy balance runs, W_MPM books them */
+  /* once the energy balance runs, W_MPM books them; before, E_ref takes them in */
+  if (b->sim->energy_ref_set) mrn_sim_book_inflow(b->sim, first, (size_t)count);
   lua_pushinteger(L, count);
   return 1;
 }

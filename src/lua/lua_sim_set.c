@@ -7,6 +7,7 @@
 #include "lua/lua_check.h"
 #include "lua/lua_sim.h"
 #include "lua/lua_safe.h"
+#include "solver/dist.h"
 #include "solver/split.h"
 
 /* the checks of simulation{gravity}, on the value given alone */
@@ -114,11 +115,15 @@ static mrn_constraint *check_constraint(lua_State *L, sim_box *b, int idx, const
   return &b->sim->constraints[i - 1];
 }
 
-/* sim:reaction(i) -> force the constraint exerted on the material in the last step */
+/* sim:reaction(i) -> force the constraint exerted on the material in the
+ * last step (summed over the processes of a distributed run: collective) */
 int l_sim_reaction(lua_State *L) {
   sim_box *b = mrn_lua_sim_check(L, 1);
   mrn_constraint *c = check_constraint(L, b, 2, "reaction()");
-  mrn_lua_push_vector(L, c->reaction, b->sim->dim);
+  double r[3];
+  memcpy(r, c->reaction, sizeof r);
+  mrn_dist_reduce(b->sim, r, 3, MRN_COMM_SUM);
+  mrn_lua_push_vector(L, r, b->sim->dim);
   return 1;
 }
 

@@ -135,7 +135,7 @@ long mrn_particles_add(mrn_particles *p, const double x[3], double mass, double 
   return (long)i;
 }
 
-long mrn_particles_clone(mrn_particles *p, size_t i) {
+long mrn_particles_clone(mrn_particles *p, size_t i, int64_t id) {
   if (p->n == p->cap && mrn_particles_reserve(p, p->cap ? 2 * p->cap : 256) != MRN_OK) return -1;
   const size_t j = p->n++;
   for (int f = 0; f < FIELD_COUNT; f++) {
@@ -144,7 +144,7 @@ long mrn_particles_clone(mrn_particles *p, size_t i) {
     memcpy(data + j * nc, data + i * nc, sizeof(double) * nc);
   }
   p->material[j] = p->material[i];
-  p->id[j] = p->next_id++;
+  p->id[j] = id;
   if (p->state_stride)
     memcpy(p->state + j * p->state_stride, p->state + i * p->state_stride, sizeof(double) * p->state_stride);
   if (p->user_stride)

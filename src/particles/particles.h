@@ -84,9 +84,9 @@ const mrn_user_field *mrn_particles_user_field(const mrn_particles *p, const cha
  * and registered fields */
 size_t mrn_particles_record_bytes(const mrn_particles *p);
 /* Append a copy of particle i (every field, history variable and registered
- * field) with a new id. Returns its index, or -1 on allocation failure
- * (message set). */
-long mrn_particles_clone(mrn_particles *p, size_t i);
+ * field) with the id `id`, one not in use (next_id is left to the caller).
+ * Returns its index, or -1 on allocation failure (message set). */
+long mrn_particles_clone(mrn_particles *p, size_t i, int64_t id);
 /* particle i's record (mrn_particles_record_bytes bytes, id included) into
  * buf, and a record appended as a particle with the id it holds: how a
  * particle moves between the processes of a distributed run. Both sets

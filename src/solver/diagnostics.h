@@ -28,9 +28,6 @@ typedef struct mrn_diagnostics {
   double com[3];       /* centre of mass */
   double com_velocity[3];
   long particles;
-  /* what left through free faces and came in (sources, hooks), accumulated */
-  double outflow_mass, inflow_mass;
-  long outflow_particles, inflow_particles;
 } mrn_diagnostics;
 
 /* one name per column, in the order mrn_diagnostics_values() fills them */

@@ -10,10 +10,7 @@
 #include "core/error.h"
 #include "grid/active.h"
 #include "solver/contact.h"
-#include "solver/point_force.h"
 #include "solver/simulation.h"
-
-static void books_set(mrn_sim *sim, const double *b);
 
 /* what the distributed step does not do yet, by the option that asks for it */
 static int refuse(const mrn_sim *sim) {
@@ -22,10 +19,7 @@ static int refuse(const mrn_sim *sim) {
   if (sim->integrator.step) what = "the implicit integrator (simulation{integrator})";
   else if (sim->contact && sim->contact->npairs) what = "contact between bodies (sim:add_contact)";
   else if (sim->boundary.walls) what = "walls and rigid bodies (sim:add_wall)";
-  else if (sim->nsources) what = "inflow sources (sim:add_source)";
-  else if (sim->split_stretch > 0.0) what = "particle splitting (simulation{split})";
   else if (sim->shape == MRN_SHAPE_CPDI) what = "CPDI (shape = \"cpdi\")";
-  else if (mrn_particles_user_field(&sim->particles, MRN_POINT_FORCE_FIELD)) what = "point forces (sim:set_point_force)";
   else if (mrn_boundary_periodic(&sim->boundary, axis)) what = "a periodic face along the last axis (faces)";
   for (int f = 0; !what && f < 2 * sim->dim; f++)
     if (sim->boundary.face[f].gap_check) what = "gap_check on a friction face (faces)";
@@ -100,6 +94,8 @@ int mrn_dist_adopt(mrn_sim *sim, size_t first) {
   return MRN_OK;
 }
 
+static void books_set(mrn_sim *sim, const mrn_books *b);
+
 int mrn_dist_start(mrn_sim *sim) {
   if (sim->dist || mrn_comm_size() < 2) return MRN_OK;
   /* what is refused is refused by every process alike: process 0 says it */
@@ -122,11 +118,8 @@ int mrn_dist_start(mrn_sim *sim) {
   d->axis = axis;
   sim->dist = d;
   if ((rc = cut_by_count(sim, d, 1)) || (rc = mrn_dist_adopt(sim, 0))) return rc;
-  /* the books of work done so far are process 0's; the others start at 0 */
-  if (d->rank != 0) {
-    const double zero[MRN_BOOKS] = {0};
-    books_set(sim, zero);
-  }
+  /* the books kept so far are process 0's; the others start at 0 */
+  if (d->rank != 0) books_set(sim, &(mrn_books){0});
   return MRN_OK;
 }
 
@@ -454,32 +447,31 @@ static int assemble(mrn_particles *out, const mrn_particles *like, const unsigne
   return rc;
 }
 
-/* the books of work kept per process (dist.h), summed on every process */
-static void books_get(const mrn_sim *sim, double *b) {
-  b[MRN_BOOK_FRICTION] = sim->work_friction;
-  b[MRN_BOOK_DAMPING] = sim->work_damping;
-  b[MRN_BOOK_OUTFLOW] = sim->energy_outflow;
-  b[MRN_BOOK_OUTFLOW_MASS] = sim->outflow_mass;
-  b[MRN_BOOK_OUTFLOW_PARTICLES] = (double)sim->outflow_particles;
-  b[MRN_BOOK_INFLOW] = sim->energy_inflow;
-  b[MRN_BOOK_INFLOW_MASS] = sim->inflow_mass;
-  b[MRN_BOOK_INFLOW_PARTICLES] = (double)sim->inflow_particles;
+/* the books kept per process (dist.h) */
+static mrn_books books_get(const mrn_sim *sim) {
+  return (mrn_books){sim->work_friction, sim->work_damping, sim->work_external, sim->energy_inflow,
+                     sim->work_inflow, sim->inflow_mass, (double)sim->inflow_particles, sim->energy_outflow,
+                     sim->outflow_mass, (double)sim->outflow_particles};
 }
 
-static void books_set(mrn_sim *sim, const double *b) {
-  sim->work_friction = b[MRN_BOOK_FRICTION];
-  sim->work_damping = b[MRN_BOOK_DAMPING];
-  sim->energy_outflow = b[MRN_BOOK_OUTFLOW];
-  sim->outflow_mass = b[MRN_BOOK_OUTFLOW_MASS];
-  sim->outflow_particles = (long)b[MRN_BOOK_OUTFLOW_PARTICLES];
-  sim->energy_inflow = b[MRN_BOOK_INFLOW];
-  sim->inflow_mass = b[MRN_BOOK_INFLOW_MASS];
-  sim->inflow_particles = (long)b[MRN_BOOK_INFLOW_PARTICLES];
+static void books_set(mrn_sim *sim, const mrn_books *b) {
+  sim->work_friction = b->friction;
+  sim->work_damping = b->damping;
+  sim->work_external = b->external;
+  sim->energy_inflow = b->inflow;
+  sim->work_inflow = b->inflow_work;
+  sim->inflow_mass = b->inflow_mass;
+  sim->inflow_particles = (long)b->inflow_particles;
+  sim->energy_outflow = b->outflow;
+  sim->outflow_mass = b->outflow_mass;
+  sim->outflow_particles = (long)b->outflow_particles;
 }
 
-void mrn_dist_books(const mrn_sim *sim, double b[MRN_BOOKS]) {
-  books_get(sim, b);
-  mrn_dist_reduce(sim, b, MRN_BOOKS, MRN_COMM_SUM);
+enum { BOOKS = sizeof(mrn_books) / sizeof(double) };
+
+void mrn_dist_books(const mrn_sim *sim, mrn_books *b) {
+  *b = books_get(sim);
+  mrn_dist_reduce(sim, (double *)b, BOOKS, MRN_COMM_SUM);
 }
 
 /* The nodal values a checkpoint keeps (mass, V, force, the contact bits),
@@ -566,11 +558,10 @@ int mrn_dist_gather_begin(const mrn_sim *csim) {
     }
   }
   if (rc == MRN_OK) rc = gather_grid(sim, d);
-  books_get(sim, d->held_books);
-  double b[MRN_BOOKS];
-  memcpy(b, d->held_books, sizeof b);
-  mrn_comm_allreduce(b, MRN_BOOKS, MRN_COMM_SUM);
-  if (d->rank == 0) books_set(sim, b);
+  d->held_books = books_get(sim);
+  mrn_books b = d->held_books;
+  mrn_comm_allreduce((double *)&b, BOOKS, MRN_COMM_SUM);
+  if (d->rank == 0) books_set(sim, &b);
   free(cnt);
   free(mine);
   free(all);
@@ -582,12 +573,66 @@ void mrn_dist_gather_end(const mrn_sim *csim) {
   mrn_dist *d = sim->dist;
   if (!d) return;
   gather_grid_end(sim, d);
-  books_set(sim, d->held_books);
+  books_set(sim, &d->held_books);
   if (!d->held) return;
   mrn_particles_free(&sim->particles);
   sim->particles = *d->held;
   free(d->held);
   d->held = NULL;
+}
+
+static int by_key(const void *a, const void *b) {
+  const int64_t x = *(const int64_t *)a, y = *(const int64_t *)b;
+  return (x > y) - (x < y);
+}
+
+/* every process's keys, on every process, in the order of rank; *rc
+ * agreed before each exchange */
+static int64_t *all_keys(const mrn_sim *sim, const int64_t *keys, size_t n, int64_t *total, int *rc) {
+  const size_t P = (size_t)sim->dist->size;
+  /* bytes from each process and where they go; bytes to each and where
+   * they come from: the same keys to each, from the start */
+  size_t *cnt = calloc(4 * P, sizeof *cnt), *displ = cnt + P, *scnt = cnt + 2 * P, *sdispl = cnt + 3 * P;
+  if (!cnt) *rc = mrn_error("parallel: out of memory");
+  int64_t *all = NULL;
+  if ((*rc = mrn_dist_agree(sim, *rc)) == MRN_OK) {
+    mrn_comm_allgather_size(n * sizeof *keys, cnt);
+    size_t bytes = 0;
+    for (size_t r = 0; r < P; r++) {
+      displ[r] = bytes;
+      bytes += cnt[r];
+      scnt[r] = n * sizeof *keys;
+    }
+    *total = (int64_t)(bytes / sizeof *keys);
+    if (bytes && !(all = malloc(bytes))) *rc = mrn_error("parallel: out of memory for %lld keys", (long long)*total);
+    if (bytes && (*rc = mrn_dist_agree(sim, *rc)) == MRN_OK) mrn_comm_alltoallv(keys, scnt, sdispl, all, cnt, displ);
+  }
+  free(cnt);
+  return all;
+}
+
+int mrn_dist_key_places(const mrn_sim *sim, const int64_t *keys, size_t n, int64_t *place, int64_t *total, int rc) {
+  if (!sim->dist) {
+    for (size_t k = 0; k < n; k++) place[k] = (int64_t)k;
+    *total = (int64_t)n;
+    return rc;
+  }
+  int64_t *all = all_keys(sim, keys, n, total, &rc);
+  if (rc == MRN_OK && *total > 0) {
+    qsort(all, (size_t)*total, sizeof *all, by_key);
+    /* a key's place: the keys below it, found by bisection */
+    for (size_t k = 0; k < n; k++) {
+      size_t lo = 0, hi = (size_t)*total;
+      while (lo < hi) {
+        const size_t mid = lo + (hi - lo) / 2;
+        if (all[mid] < keys[k]) lo = mid + 1;
+        else hi = mid;
+      }
+      place[k] = (int64_t)lo;
+    }
+  }
+  free(all);
+  return rc;
 }
 
 int mrn_sim_set_rebalance(mrn_sim *sim, long every, double imbalance) {

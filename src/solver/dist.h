@@ -26,12 +26,22 @@
  * Until the first step or run, every process holds every particle (the
  * deck builds them the same on each); mrn_dist_start then keeps each
  * process's own. The particle sums (diagnostics, energies, the time step)
- * are then summed over processes. Files are written by process 0, with the
- * particles gathered there in the order of their ids. */
+ * are then summed over processes, and so are the books each keeps
+ * (mrn_books). Files are written by process 0, with the particles gathered
+ * there in the order of their ids.
+ *
+ * Ids stay those of a run on one process: next_id is the same on every
+ * process. Particles made during a run alike on every process (an inflow
+ * source's layers, add_particles) are adopted (mrn_dist_adopt) by the
+ * process whose slab holds them; the children of split particles take ids
+ * in the order of their parents' ids over every process
+ * (mrn_dist_key_places). Point forces are spread to the nodes before the
+ * internal force's halo sum. */
 #ifndef MRN_SOLVER_DIST_H
 #define MRN_SOLVER_DIST_H
 
 #include <stddef.h>
+#include <stdint.h>
 
 #include "core/comm.h"
 
@@ -43,14 +53,15 @@ struct mrn_particles;
 #define MRN_DIST_REBALANCE_EVERY 100
 #define MRN_DIST_IMBALANCE 1.2
 
-/* the books each process keeps of its own nodes and particles: the work
- * of friction and damping, what left through free faces and what came in */
-enum {
-  MRN_BOOK_FRICTION, MRN_BOOK_DAMPING,
-  MRN_BOOK_OUTFLOW, MRN_BOOK_OUTFLOW_MASS, MRN_BOOK_OUTFLOW_PARTICLES,
-  MRN_BOOK_INFLOW, MRN_BOOK_INFLOW_MASS, MRN_BOOK_INFLOW_PARTICLES,
-  MRN_BOOKS
-};
+/* The books kept per process: the work done on the nodes of its rows
+ * (friction, damping, the sources' inlets), that of the point forces on
+ * its particles, and what its particles brought in (sources, particles
+ * added during a run) and took out (deleted on leaving). All doubles: the
+ * counts too, so that the struct is summed as one array. */
+typedef struct mrn_books {
+  double friction, damping, external, inflow, inflow_work, inflow_mass, inflow_particles, outflow, outflow_mass,
+      outflow_particles;
+} mrn_books;
 
 typedef struct mrn_dist {
   int rank, size;
@@ -65,7 +76,7 @@ typedef struct mrn_dist {
   /* while gathered (mrn_dist_gather_begin): process 0's own particles, and
    * this process's books of work */
   struct mrn_particles *held;
-  double held_books[MRN_BOOKS];
+  mrn_books held_books;
   double *held_mass, *held_vel, *held_force; /* process 0's nodal arrays */
   unsigned char *held_contact;
 } mrn_dist;
@@ -114,8 +125,15 @@ int mrn_dist_owns_point(const struct mrn_sim *sim, const double x[3]);
  * simulation; nothing when it is not (yet) distributed */
 void mrn_dist_reduce(const struct mrn_sim *sim, double *v, int n, mrn_comm_op op);
 
-/* the books summed over the processes (this process's alone, undistributed) */
-void mrn_dist_books(const struct mrn_sim *sim, double b[MRN_BOOKS]);
+/* the books (mrn_books) summed over the processes: the same on each */
+void mrn_dist_books(const struct mrn_sim *sim, mrn_books *b);
+
+/* Keys increasing on each process and distinct over all of them: the
+ * place of each among every process's keys, place[k] (k on one process),
+ * and their number, *total. Agrees on rc first (the outcome so far);
+ * collective. 0 or an error code. */
+int mrn_dist_key_places(const struct mrn_sim *sim, const int64_t *keys, size_t n, int64_t *place, int64_t *total,
+                        int rc);
 
 /* Process 0 takes every particle, in the order of their ids, in place of
  * its own until mrn_dist_gather_end, so that a writer sees the whole set;

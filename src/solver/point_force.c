@@ -13,16 +13,19 @@ static const mrn_user_field *force_field(const mrn_sim *sim) {
   return mrn_particles_user_field(&sim->particles, MRN_POINT_FORCE_FIELD);
 }
 
-int mrn_sim_set_point_force(mrn_sim *sim, size_t p, const double f[3]) {
-  mrn_particles *ps = &sim->particles;
+int mrn_sim_add_point_forces(mrn_sim *sim) {
   const mrn_user_field *uf = force_field(sim);
-  if (!uf) {
-    if (mrn_particles_add_user_field(ps, MRN_POINT_FORCE_FIELD, 3, 0.0, "N")) return MRN_ERR;
-    uf = force_field(sim);
-  }
+  if (!uf) return mrn_particles_add_user_field(&sim->particles, MRN_POINT_FORCE_FIELD, 3, 0.0, "N");
   if (uf->ncomp != 3)
     return mrn_error("particle field '%s' has %d components; point forces need it with 3", MRN_POINT_FORCE_FIELD,
                      uf->ncomp);
+  return MRN_OK;
+}
+
+int mrn_sim_set_point_force(mrn_sim *sim, size_t p, const double f[3]) {
+  mrn_particles *ps = &sim->particles;
+  if (mrn_sim_add_point_forces(sim) != MRN_OK) return MRN_ERR;
+  const mrn_user_field *uf = force_field(sim);
   double *v = ps->user + p * ps->user_stride + uf->offset;
   for (int d = 0; d < 3; d++) v[d] = d < sim->dim ? f[d] : 0.0;
   return MRN_OK;

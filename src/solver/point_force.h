@@ -22,16 +22,23 @@ struct mrn_sim;
 
 #define MRN_POINT_FORCE_FIELD "point_force"
 
-/* Set the force on particle p (replaces its earlier one). 0, or MRN_ERR
- * (out of memory, or the field name is taken by another field; message set). */
+/* Register the field "point_force" unless it is: a distributed run does
+ * it on every process alike, whether it holds a loaded particle or not
+ * (their particles' records must agree). 0, or MRN_ERR (out of memory, or
+ * the field name is taken by another field; message set). */
+int mrn_sim_add_point_forces(struct mrn_sim *sim);
+/* Set the force on particle p (replaces its earlier one), registering the
+ * field on first use. 0, or MRN_ERR as mrn_sim_add_point_forces. */
 int mrn_sim_set_point_force(struct mrn_sim *sim, size_t p, const double f[3]);
 /* every point force to zero */
 void mrn_sim_clear_point_forces(struct mrn_sim *sim);
 /* multiply every point force by factor from the next step (finite; default 1) */
 void mrn_sim_set_load_factor(struct mrn_sim *sim, double factor);
 
-/* Step internals: add lambda sum_p N_I f_p to the nodal forces (grid.force);
- * after the velocity update, the work of those forces over the step. */
+/* Step internals: add lambda sum_p N_I f_p to the nodal forces (grid.force),
+ * before their halo sum in a distributed run (solver/dist.h); after the
+ * velocity update, the work of those forces over the step (this process's
+ * points': a book summed over the processes, mrn_books). */
 void mrn_point_forces_to_grid(struct mrn_sim *sim);
 double mrn_point_forces_work(const struct mrn_sim *sim, double dt);
 

@@ -173,38 +173,32 @@ void mrn_sim_energies(const mrn_sim *sim, mrn_diagnostics *out) {
   }
   add_pieces(part, DIAG_SUMS, t);
   mrn_dist_reduce(sim, t, DIAG_SUMS, MRN_COMM_SUM); /* over the processes of a distributed run */
-  double books[MRN_BOOKS];
-  mrn_dist_books(sim, books);
-  const double work_friction = books[MRN_BOOK_FRICTION], work_damping = books[MRN_BOOK_DAMPING];
-  const double energy_outflow = books[MRN_BOOK_OUTFLOW], energy_inflow = books[MRN_BOOK_INFLOW];
+  mrn_books b; /* the books kept per process, summed (solver/dist.h) */
+  mrn_dist_books(sim, &b);
   const double ek = t[S_EK], eg = t[S_EG], eel = t[S_EEL], wpl = t[S_WPL], mass = t[S_MASS];
   memset(out, 0, sizeof *out);
   out->kinetic = ek;
   out->gravity = eg;
   out->elastic = eel;
   out->plastic = wpl;
-  out->friction = work_friction;
-  out->damping = work_damping;
-  out->external = sim->work_external;
+  out->friction = b.friction;
+  out->damping = b.damping;
+  out->external = b.external;
   out->walls = sim->work_walls;
   mrn_walls_body_energy(sim->boundary.walls, &out->bodies, &out->bodies_work);
   out->contact = sim->work_contact;
   out->total = ek + eg + eel;
-  out->inflow = energy_inflow;
-  out->inflow_work = sim->work_inflow;
-  out->outflow = energy_outflow;
+  out->inflow = b.inflow;
+  out->inflow_work = b.inflow_work;
+  out->outflow = b.outflow;
   /* (000, Eq. 68) summed over the steps since the balance started, with what
    * came in and went out through sources and free faces */
   out->mpm_error = sim->energy_ref_set
-                       ? out->total + out->bodies - sim->energy_ref - wpl - work_friction - work_damping -
-                             sim->work_external - sim->work_walls - out->bodies_work - sim->work_contact +
-                             energy_outflow - energy_inflow - sim->work_inflow
+                       ? out->total + out->bodies - sim->energy_ref - wpl - b.friction - b.damping - b.external -
+                             sim->work_walls - out->bodies_work - sim->work_contact + b.outflow - b.inflow -
+                             b.inflow_work
                        : 0.0;
   out->mass = mass;
-  out->outflow_mass = books[MRN_BOOK_OUTFLOW_MASS];
-  out->outflow_particles = (long)books[MRN_BOOK_OUTFLOW_PARTICLES];
-  out->inflow_mass = books[MRN_BOOK_INFLOW_MASS];
-  out->inflow_particles = (long)books[MRN_BOOK_INFLOW_PARTICLES];
   for (int d = 0; d < 3; d++) {
     out->momentum[d] = t[S_MOM + d];
     out->angular[d] = t[S_ANG + d];
@@ -301,7 +295,6 @@ double mrn_sim_slowness(const mrn_sim *sim) {
 }
 
 void mrn_sim_book_inflow(mrn_sim *sim, size_t first, size_t count) {
-  if (!sim->energy_ref_set) return; /* before the balance starts, E_ref takes them in */
   const mrn_particles *ps = &sim->particles;
   for (size_t p = first; p < first + count; p++) {
     sim->energy_inflow += mrn_sim_particle_kinetic(sim, p) + mrn_sim_particle_gravity(sim, p) + ps->e_elastic[p];
@@ -404,7 +397,7 @@ void mrn_sim_energy_balance_start(mrn_sim *sim) {
   sim->energy_ref_set = 0;
   mrn_sim_diagnostics(sim, &d);
   sim->energy_ref = d.total + d.bodies - d.bodies_work - d.plastic - d.friction - d.damping + d.outflow - d.inflow -
-                    sim->work_inflow;
+                    d.inflow_work;
   sim->energy_ref_set = 1;
 }
 

@@ -235,9 +235,10 @@ static inline double mrn_sim_particle_gravity(const mrn_sim *sim, size_t p) {
 /* The error of mrn_sim_check_state for a particle that failed the test */
 int mrn_sim_particle_error(const mrn_sim *sim, size_t p);
 
-/* The energy a particle added to a running simulation brings in, E_k + E_g
- * + E_el, booked as inflow with its mass once the energy balance has started
- * (W_MPM then does not jump). For particles first .. first + count - 1. */
+/* The energy particles added to a simulation bring in, E_k + E_g + E_el,
+ * booked as inflow with their mass and count (W_MPM then does not jump).
+ * For particles first .. first + count - 1 (this process's, in a
+ * distributed run: the books are summed over the processes). */
 void mrn_sim_book_inflow(mrn_sim *sim, size_t first, size_t count);
 
 /* smallest sqrt(rho/E) over the materials in use, for the a_tau step; with

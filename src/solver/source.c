@@ -5,6 +5,7 @@
 #include <string.h>
 
 #include "core/error.h"
+#include "solver/dist.h"
 #include "solver/simulation.h"
 
 /* a coordinate within this fraction of a cell of a bound counts as on it */
@@ -262,7 +263,7 @@ void mrn_sources_apply(mrn_sim *sim, double *vel, double dt, double share) {
     /* the reaction sum m (v - V) / dt times v dt: the friction faces' sum m dV . V_after */
     double work = 0.0;
     for (int d = 0; d < 3; d++) work += s->inlet.reaction[d] * s->v[d] * dt;
-    s->st.work += share * work;
+    s->work_step += share * work;
     sim->work_inflow += share * work;
   }
 }
@@ -283,30 +284,42 @@ static int emit_layers(mrn_sim *sim, mrn_source *s, long due) {
       if (p < 0) return MRN_ERR;
       memcpy(ps->v + 3 * p, s->v, 3 * sizeof(double));
       memcpy(ps->stress + 6 * p, c->stress, 6 * sizeof(double));
-      const double e = mrn_sim_particle_kinetic(sim, (size_t)p) + mrn_sim_particle_gravity(sim, (size_t)p) +
-                       ps->e_elastic[p];
-      s->st.energy += e;
-      sim->energy_inflow += e;
+      s->st.energy += mrn_sim_particle_kinetic(sim, (size_t)p) + mrn_sim_particle_gravity(sim, (size_t)p) +
+                      ps->e_elastic[p];
       s->st.mass += mass;
-      sim->inflow_mass += mass;
     }
     s->st.particles += (long)s->npoints;
-    sim->inflow_particles += (long)s->npoints;
   }
   s->st.layers = due;
   return MRN_OK;
 }
 
-int mrn_sources_emit(mrn_sim *sim, double dt) {
-  int made = 0;
+/* the inlets' work of the step, summed over the processes: each booked
+ * its rows' (grid/constraint.h) */
+static void book_inlet_work(mrn_sim *sim) {
+  double work[MRN_MAX_SOURCES];
+  for (int k = 0; k < sim->nsources; k++) work[k] = sim->sources[k].work_step;
+  mrn_dist_reduce(sim, work, sim->nsources, MRN_COMM_SUM);
   for (int k = 0; k < sim->nsources; k++) {
+    sim->sources[k].st.work += work[k];
+    sim->sources[k].work_step = 0.0;
+  }
+}
+
+int mrn_sources_emit(mrn_sim *sim, double dt) {
+  book_inlet_work(sim);
+  /* every process makes every new particle alike, then keeps its own */
+  const size_t first = sim->particles.n;
+  int rc = MRN_OK;
+  for (int k = 0; k < sim->nsources && rc == MRN_OK; k++) {
     mrn_source *s = &sim->sources[k];
     s->st.progress += flow_sign(&s->cfg) * s->v[s->cfg.axis] * dt;
     const long due = (long)floor(s->st.progress / s->spacing + 0.5);
-    if (due <= s->st.layers) continue;
-    if (emit_layers(sim, s, due) != MRN_OK) return MRN_ERR;
-    made = 1;
+    if (due > s->st.layers) rc = emit_layers(sim, s, due);
   }
-  if (made) mrn_sim_particles_changed(sim);
-  return MRN_OK;
+  const int made = sim->particles.n > first;
+  if (rc == MRN_OK && made && sim->dist) rc = mrn_dist_adopt(sim, first);
+  if (rc == MRN_OK) mrn_sim_book_inflow(sim, first, sim->particles.n - first);
+  if ((rc = mrn_dist_agree(sim, rc)) == MRN_OK && made) mrn_sim_particles_changed(sim);
+  return rc;
 }

@@ -72,6 +72,7 @@ typedef struct mrn_source {
   double volume;  /* of one particle: Delta^dim */
   double area;    /* of the inflow: npoints Delta^(dim - 1) (m^2; m in 2D) */
   double v[3];    /* the inflow velocity of the current step */
+  double work_step; /* the inlet's work in the current step, on this process's rows, until booked */
   mrn_constraint inlet;
 } mrn_source;
 

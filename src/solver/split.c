@@ -1,12 +1,14 @@
 #include "solver/split.h"
 
 #include <math.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include "core/error.h"
 #include "core/tensor.h"
 #include "material/principal.h"
 #include "particles/domain.h"
+#include "solver/dist.h"
 #include "solver/simulation.h"
 
 /* where the two fields sit in a particle's record of ps->user, or -1 */
@@ -121,36 +123,90 @@ static void make_children(mrn_sim *sim, split_fields f, size_t i, size_t j, cons
   }
 }
 
+/* a particle due to split: its id and index, its domain and the axis */
+typedef struct due {
+  int64_t id;
+  size_t i;
+  domain dm;
+  double sigma, n[3], m[3];
+} due;
+
+static int by_id(const void *a, const void *b) {
+  const int64_t x = ((const due *)a)->id, y = ((const due *)b)->id;
+  return (x > y) - (x < y);
+}
+
+/* whether particle i is due; its domain and axis into *d */
+static int is_due(const mrn_sim *sim, split_fields f, size_t i, due *d) {
+  read_domain(sim, f, i, &d->dm);
+  if (d->dm.level >= sim->split_max_level) return 0;
+  const double limit = sim->split_stretch * d->dm.r_ref;
+  double frob = 0.0; /* sigma^2 <= |A|^2: most particles stop here */
+  for (int k = 0; k < 9; k++) frob += d->dm.A[k] * d->dm.A[k];
+  if (frob <= limit * limit) return 0;
+  d->sigma = largest_axis(sim->dim, d->dm.A, d->n, d->m);
+  d->id = sim->particles.id[i];
+  d->i = i;
+  return d->sigma > limit;
+}
+
+/* the particles due, in the order of their ids: *count of them in *out
+ * (to be freed); 0 or MRN_ERR (out of memory, message set) */
+static int find_due(const mrn_sim *sim, split_fields f, due **out, size_t *count) {
+  size_t cap = 0;
+  due d;
+  *out = NULL;
+  *count = 0;
+  for (size_t i = 0; i < sim->particles.n; i++) {
+    if (!is_due(sim, f, i, &d)) continue;
+    if (*count == cap) {
+      due *grown = realloc(*out, (cap = cap ? 2 * cap : 64) * sizeof *grown);
+      if (!grown) return mrn_error("split: out of memory");
+      *out = grown;
+    }
+    (*out)[(*count)++] = d;
+  }
+  if (*count) qsort(*out, *count, sizeof **out, by_id);
+  return MRN_OK;
+}
+
+/* The second children's ids: next_id onwards, in the order of their
+ * parents' ids over every process (mrn_dist_key_places), so that each is
+ * the one a run on one process gives. */
+static int split_due(mrn_sim *sim, split_fields f, due *list, size_t count, int rc, int64_t *total) {
+  mrn_particles *ps = &sim->particles;
+  int64_t *key = malloc(2 * (count + 1) * sizeof *key), *place = key ? key + count + 1 : NULL;
+  if (!key) rc = mrn_error("split: out of memory"), count = 0;
+  for (size_t k = 0; k < count; k++) key[k] = list[k].id;
+  rc = mrn_dist_key_places(sim, key, count, place, total, rc);
+  for (size_t k = 0; rc == MRN_OK && k < count; k++) {
+    const long j = mrn_particles_clone(ps, list[k].i, ps->next_id + place[k]);
+    if (j < 0) rc = MRN_ERR;
+    else make_children(sim, f, list[k].i, (size_t)j, &list[k].dm, list[k].sigma, list[k].n, list[k].m);
+  }
+  if (rc == MRN_OK) ps->next_id += *total;
+  free(key);
+  return rc;
+}
+
 long mrn_sim_split(mrn_sim *sim) {
   if (!(sim->split_stretch > 0.0)) return 0;
-  mrn_particles *ps = &sim->particles;
-  const split_fields f = find_fields(ps);
+  const split_fields f = find_fields(&sim->particles);
   if (f.domain < 0 || f.level < 0) {
     mrn_error("split: the particle fields '%s' and '%s' are missing (switch splitting on with mrn_sim_set_split)",
               MRN_SPLIT_DOMAIN_FIELD, MRN_SPLIT_LEVEL_FIELD);
     return -1;
   }
-  const size_t n0 = ps->n;
-  long made = 0;
-  for (size_t i = 0; i < n0; i++) {
-    domain dm;
-    read_domain(sim, f, i, &dm);
-    if (dm.level >= sim->split_max_level) continue;
-    const double limit = sim->split_stretch * dm.r_ref;
-    double frob = 0.0; /* sigma^2 <= |A|^2: most particles stop here */
-    for (int k = 0; k < 9; k++) frob += dm.A[k] * dm.A[k];
-    if (frob <= limit * limit) continue;
-    double n[3], m[3];
-    const double sigma = largest_axis(sim->dim, dm.A, n, m);
-    if (sigma <= limit) continue;
-    const long j = mrn_particles_clone(ps, i);
-    if (j < 0) return -1;
-    make_children(sim, f, i, (size_t)j, &dm, sigma, n, m);
-    made++;
-  }
-  if (made) {
-    sim->split_count += made;
+  size_t count;
+  due *list;
+  int rc = find_due(sim, f, &list, &count);
+  int64_t total = 0;
+  rc = mrn_dist_agree(sim, split_due(sim, f, list, count, rc, &total));
+  free(list);
+  if (rc != MRN_OK) return -1;
+  if (total) {
+    sim->split_count += (long)total;
     mrn_sim_particles_changed(sim);
   }
-  return made;
+  return (long)total;
 }

@@ -37,9 +37,12 @@ struct mrn_sim;
 int mrn_sim_set_split(struct mrn_sim *sim, double stretch, int max_level);
 
 /* Split every particle that is due, now (the step calls it). The particles
- * split keep their index (the first child, at +sigma n / 2); the second
- * children are appended in the order of their parents. Returns the number
- * of particles split, or -1 (message set: out of memory). */
+ * split keep their index and id (the first child, at +sigma n / 2); the
+ * second children are appended in the order of their parents' ids and take
+ * the ids from next_id on in that order, the same on any number of
+ * processes. Returns the number of particles split (over every process of
+ * a distributed run, where it is collective), or -1 (message set: out of
+ * memory). */
 long mrn_sim_split(struct mrn_sim *sim);
 
 /* The stretch of particle i's domain: its largest half-axis over r_ref */

@@ -109,7 +109,6 @@ void mrn_grid_update_on(mrn_sim *sim, mrn_grid *g, double dt) {
   double gravity[3];
   for (int d = 0; d < 3; d++) gravity[d] = sim->gravity[d] / sim->mass_scaling;
   const mrn_node_ranges r = mrn_grid_active_ranges(g); /* every nodal array is zero elsewhere */
-  mrn_point_forces_to_grid(sim);
 #pragma omp parallel for schedule(static) if (r.nodes > MRN_OMP_MIN_NODES)
   for (long k = 0; k < r.count; k++) {
     double work = 0.0;
@@ -374,6 +373,13 @@ static int move_pass(mrn_sim *sim, mrn_transfer *tr, unsigned stages, double dt,
  * a stage that failed here passes its code on to it rather than return,
  * so that every process meets the same exchanges. */
 
+/* the internal force's halo sum (`what` holds MRN_CLEAR_FORCE), the point
+ * forces spread to the nodes first: the sum then holds them too */
+static int force_sum_halo(mrn_sim *sim, unsigned what, int rc) {
+  if (rc == MRN_OK) mrn_point_forces_to_grid(sim);
+  return mrn_dist_sum_halo(sim, what, rc);
+}
+
 /* USF: the stress from V^i, before the internal force is found from it */
 static int step_usf(mrn_sim *sim, mrn_transfer *tr, double dt, step_end *end) {
   mrn_p2g(tr, 1, 0);                                                    /* mass, momentum */
@@ -381,7 +387,7 @@ static int step_usf(mrn_sim *sim, mrn_transfer *tr, double dt, step_end *end) {
   if (rc == MRN_OK) rc = grid_velocity_stage(sim, tr, dt);              /* V^i */
   mrn_particle_stages update = {UPDATE_FORCE, .gvel = sim->grid.vel, .material_dt = dt};
   if (rc == MRN_OK) rc = mrn_particle_stages_run(sim, tr, &update);     /* gradient -> material update -> force */
-  if ((rc = mrn_dist_sum_halo(sim, MRN_CLEAR_FORCE, rc))) return rc;
+  if ((rc = force_sum_halo(sim, MRN_CLEAR_FORCE, rc))) return rc;
   grid_update(sim, dt);                                                 /* V~^i */
   return move_pass(sim, tr, MOVE_END, dt, 0.0, end);              /* move -> end-of-step check */
 }
@@ -390,7 +396,7 @@ static int step_usf(mrn_sim *sim, mrn_transfer *tr, double dt, step_end *end) {
 static int step_usl(mrn_sim *sim, mrn_transfer *tr, double dt, step_end *end) {
   int rc;
   mrn_p2g(tr, 1, 1);                                   /* mass, momentum, internal force */
-  if ((rc = mrn_dist_sum_halo(sim, MRN_CLEAR_MASS_MOM | MRN_CLEAR_FORCE, MRN_OK))) return rc;
+  if ((rc = force_sum_halo(sim, MRN_CLEAR_MASS_MOM | MRN_CLEAR_FORCE, MRN_OK))) return rc;
   if ((rc = grid_velocity_stage(sim, tr, dt))) return rc; /* V^i */
   grid_update(sim, dt);                                /* V~^i */
   return move_pass(sim, tr, MOVE_UPDATE_END, dt, dt, end); /* move -> gradient -> material update -> check */
@@ -429,7 +435,7 @@ static int move_remap_update(mrn_sim *sim, mrn_transfer *tr, double dt, double m
 static int step_musl(mrn_sim *sim, mrn_transfer *tr, double dt, step_end *end) {
   int rc;
   mrn_p2g(tr, 1, 1);                                   /* mass, momentum, internal force */
-  if ((rc = mrn_dist_sum_halo(sim, MRN_CLEAR_MASS_MOM | MRN_CLEAR_FORCE, MRN_OK))) return rc;
+  if ((rc = force_sum_halo(sim, MRN_CLEAR_MASS_MOM | MRN_CLEAR_FORCE, MRN_OK))) return rc;
   if ((rc = grid_velocity_stage(sim, tr, dt))) return rc; /* V^i */
   grid_update(sim, dt);                                /* V~^i */
   return move_remap_update(sim, tr, dt, dt, end);
@@ -445,7 +451,7 @@ static int step_usavg(mrn_sim *sim, mrn_transfer *tr, double dt, step_end *end) 
   if (rc == MRN_OK) rc = grid_velocity_stage(sim, tr, dt);              /* V^i */
   mrn_particle_stages update = {UPDATE_FORCE, .gvel = sim->grid.vel, .material_dt = 0.5 * dt};
   if (rc == MRN_OK) rc = mrn_particle_stages_run(sim, tr, &update);     /* gradient -> material update -> force */
-  if ((rc = mrn_dist_sum_halo(sim, MRN_CLEAR_FORCE, rc))) return rc;
+  if ((rc = force_sum_halo(sim, MRN_CLEAR_FORCE, rc))) return rc;
   grid_update(sim, dt);                                           /* V~^i */
   return move_remap_update(sim, tr, dt, 0.5 * dt, end);
 }
@@ -476,7 +482,7 @@ int mrn_sim_step_dt(mrn_sim *sim, double dt) {
   if (!(dt > 0.0) || !isfinite(dt)) return mrn_error("step %ld: invalid time step %s", sim->step + 1, mrn_num(dt).s);
   sim->dt = dt;
   int rc = mrn_dist_start(sim);
-  if (rc == MRN_OK && sim->nsources) rc = mrn_sources_begin_step(sim, dt);
+  if (rc == MRN_OK && sim->nsources) rc = mrn_dist_agree(sim, mrn_sources_begin_step(sim, dt));
   if (rc) return rc;
   /* the end of the step inside G2P, chunk by chunk (see end_ctx) */
   end_ctx e = end_setup(sim);
@@ -510,9 +516,11 @@ int mrn_sim_step_dt(mrn_sim *sim, double dt) {
   sim->time += dt;
   sim->step++;
   rc = !end.pass ? end_of_step(sim) : end.bad >= 0 ? mrn_sim_particle_error(sim, (size_t)end.bad) : MRN_OK;
-  /* the sources' new particles join the state the step ended on */
+  /* the sources' new particles join the state the step ended on, and so
+   * do the children of the particles split (solver/split.h): both take
+   * every process, which first agree on the step */
+  if (sim->nsources || sim->split_stretch > 0.0) rc = mrn_dist_agree(sim, rc);
   if (rc == MRN_OK && sim->nsources) rc = mrn_sources_emit(sim, dt);
-  /* and so do the children of the particles split (solver/split.h) */
   if (rc == MRN_OK && sim->split_stretch > 0.0 && mrn_sim_split(sim) < 0) rc = MRN_ERR;
   /* and the particles that left this process's slab go to their new one */
   return mrn_dist_migrate(sim, rc);

@@ -11,7 +11,9 @@ compares with the one-process run:
     W_MPM is a difference of energies of that size, and carries their
     round-off;
   - every particle field of the final checkpoint (sim:save, particles in
-    the order of their ids), relative to the field's largest magnitude.
+    the order of their ids), the registered ones too, relative to the
+    field's largest magnitude; its counters (next_id, particles split,
+    added and deleted) exactly, its sources' books to the bound.
 The bound is 1e-12 (doc/parallel.md: the sums over processes add the same
 numbers in another order, so the runs agree to round-off, not bitwise).
 Usage: equivalence.py MORAINE DECK WORKDIR CASE STEPS NP... [--rebalance N] [--transfer NAME] [--volumetric NAME]
@@ -87,6 +89,22 @@ def compare_csv(ref, other, label):
     return worst
 
 
+def compare_books(fa, fb, label):
+    """The counters of the checkpoints equal, the sources' books to TOL."""
+    if fa["particles"].attrs["next_id"] != fb["particles"].attrs["next_id"]:
+        sys.exit(f"FAIL {label}: next_id {fb['particles'].attrs['next_id']} is not "
+                 f"{fa['particles'].attrs['next_id']}")
+    for key in ("step", "split_count", "inflow_particles", "outflow_particles"):
+        a, b = fa["simulation"].attrs[key], fb["simulation"].attrs[key]
+        if a != b:
+            sys.exit(f"FAIL {label}: {key} {b} is not {a}")
+    for k in fa["sources"] if "sources" in fa else []:
+        for key, a in fa["sources/" + k].attrs.items():
+            b = fb["sources/" + k].attrs[key]
+            if isinstance(a, float) and abs(a - b) > TOL * abs(a) or not isinstance(a, float) and a != b:
+                sys.exit(f"FAIL {label}: source {k}'s {key} is {b}, not {a}")
+
+
 def compare_states(ref, other, label):
     fa, fb = h5py.File(ref, "r"), h5py.File(other, "r")
     ida, idb = fa["particles/id"][:], fb["particles/id"][:]
@@ -94,8 +112,10 @@ def compare_states(ref, other, label):
         sys.exit(f"FAIL {label}: the checkpoints hold different particles ({len(ida)} vs {len(idb)})")
     if not np.all(np.diff(ida) > 0):
         sys.exit(f"FAIL {label}: the checkpoint's particles are not in the order of their ids")
+    compare_books(fa, fb, label)
     worst, where = 0.0, ""
-    for name in FIELDS:
+    user = ["user/" + name for name in fa["particles/user"]] if "particles/user" in fa else []
+    for name in FIELDS + user:
         if "particles/" + name not in fa:
             continue
         a, b = fa["particles/" + name][:], fb["particles/" + name][:]

@@ -27,6 +27,16 @@ add_test(NAME mpi.equivalence_fbar3d
 add_test(NAME mpi.equivalence_late_affine
          COMMAND ${Python3_EXECUTABLE} ${MORAINE_PAR_DIR}/equivalence.py $<TARGET_FILE:moraine> ${MORAINE_PAR_DECK}
                  ${MORAINE_TEST_OUT}/mpi_equivalence_late cube3d 300 2 3 --set late=100)
+# particles made or loaded during the run (tests/parallel/particles.lua): inflow sources over the cuts (and
+# the slabs re-cut every 50 steps), particles split across them, point forces on particles of every process
+set(MORAINE_PAR_PARTICLES ${MORAINE_PAR_DIR}/particles.lua)
+foreach(spec "source 400 2 3 --rebalance 50" "split 400 2 3" "point 600 2 3")
+  separate_arguments(args UNIX_COMMAND "${spec}")
+  list(GET args 0 case)
+  add_test(NAME mpi.equivalence_${case}
+           COMMAND ${Python3_EXECUTABLE} ${MORAINE_PAR_DIR}/equivalence.py $<TARGET_FILE:moraine>
+                   ${MORAINE_PAR_PARTICLES} ${MORAINE_TEST_OUT}/mpi_particles ${args})
+endforeach()
 # the VTK series of the 3-process collapse read by ParaView's reader: every particle once, as on one process
 add_test(NAME mpi.vtk_series
          COMMAND ${Python3_EXECUTABLE} ${MORAINE_PAR_DIR}/check_vtk.py
@@ -39,12 +49,19 @@ foreach(case collapse2d cube3d)
            COMMAND ${Python3_EXECUTABLE} ${MORAINE_PAR_DIR}/restart.py $<TARGET_FILE:moraine> ${MORAINE_PAR_DECK}
                    ${MORAINE_TEST_OUT}/mpi_restart_${case} ${case} 500)
 endforeach()
+# the same with sources (their books and progress in the checkpoint) and with particles split
+foreach(case source split)
+  add_test(NAME mpi.restart_${case}
+           COMMAND ${Python3_EXECUTABLE} ${MORAINE_PAR_DIR}/restart.py $<TARGET_FILE:moraine> ${MORAINE_PAR_PARTICLES}
+                   ${MORAINE_TEST_OUT}/mpi_restart_${case} ${case} 200)
+endforeach()
 # crossing two slabs in a step, empty processes, a particle leaving (a stop; a deletion booked as
 # outflow), a Lua error on one process,
 # a grid too thin, SIGINT to mpirun
 add_test(NAME mpi.robust COMMAND ${MORAINE_PAR_DIR}/robust.sh $<TARGET_FILE:moraine> ${MORAINE_TEST_OUT}/mpi_robust)
 # the cases share the two equivalence directories' one-process runs: one at a time
 set_tests_properties(mpi.equivalence_collapse2d mpi.equivalence_cube3d mpi.equivalence_xpic mpi.equivalence_fbar
-                     mpi.equivalence_fbar3d mpi.equivalence_late_affine mpi.vtk_series mpi.restart_collapse2d
-                     mpi.restart_cube3d mpi.robust
+                     mpi.equivalence_fbar3d mpi.equivalence_late_affine mpi.equivalence_source
+                     mpi.equivalence_split mpi.equivalence_point mpi.vtk_series mpi.restart_collapse2d
+                     mpi.restart_cube3d mpi.restart_source mpi.restart_split mpi.robust
                      PROPERTIES LABELS mpi RUN_SERIAL TRUE ENVIRONMENT "OMP_NUM_THREADS=1;OMP_WAIT_POLICY=PASSIVE")

@@ -7,12 +7,14 @@
  * must hold the half of its parent's domain: F U0 of a child is
  * (I - n n^T / 2) F U0 of the parent, its centre at +-sigma n / 2. */
 #include <math.h>
+#include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "check.h"
 #include "core/error.h"
 #include "core/tensor.h"
+#include "particles/sort.h"
 #include "material/material.h"
 #include "solver/simulation.h"
 #include "solver/split.h"
@@ -158,8 +160,33 @@ static void check_dim(int dim) {
   mrn_sim_free(sim);
 }
 
+/* The second children take their ids from next_id on in the order of
+ * their parents' ids, wherever the parents sit in the arrays (solver/split.h):
+ * with the particles in reverse order the child of the parent of id q is
+ * appended as the q-th and takes id n + q (the ids were 1 .. n). */
+static void check_ids(int dim) {
+  mrn_sim *sim = make(dim, 11u);
+  mrn_particles *ps = &sim->particles;
+  const size_t n = ps->n;
+  uint32_t order[64];
+  for (size_t i = 0; i < n; i++) order[i] = (uint32_t)(n - 1 - i);
+  CHECK(mrn_particles_permute(ps, order) == MRN_OK);
+  CHECK(ps->id[0] == (int64_t)n && ps->next_id == (int64_t)n + 1);
+  CHECK(mrn_sim_set_split(sim, 2.0, 2) == MRN_OK);
+  CHECK(mrn_sim_split(sim) == (long)n);
+  for (size_t k = 0; k < n; k++) {
+    const size_t parent = n - 1 - k; /* the particle of id k + 1 */
+    CHECK(ps->id[parent] == (int64_t)k + 1 && ps->id[n + k] == (int64_t)(n + k + 1));
+    CHECK(ps->mass[n + k] == ps->mass[parent]); /* the halves of that parent */
+  }
+  CHECK(ps->next_id == (int64_t)(2 * n) + 1);
+  mrn_sim_free(sim);
+}
+
 int main(void) {
   check_dim(2);
   check_dim(3);
+  check_ids(2);
+  check_ids(3);
   CHECK_DONE();
 }
