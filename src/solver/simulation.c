@@ -77,6 +77,7 @@ mrn_transfer mrn_sim_transfer(mrn_sim *sim) {
                      .sort_now = sort_due(sim),
                      .sum_nodal = sim->dist ? mrn_dist_sum_nodal : NULL,
                      .max_over = sim->dist ? mrn_dist_max_over : NULL,
+                     .hold = mrn_sim_hold_velocity,
                      .sum_ctx = sim};
   return tr;
 }

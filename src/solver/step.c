@@ -57,9 +57,19 @@ double mrn_hold_share(const mrn_scheme *s) {
   }
 }
 
+/* the conditions on a velocity field of g: the faces, the constraints, and
+ * the inlets last (an inlet opens in a face) */
+static void hold_velocity(mrn_sim *sim, mrn_grid *g, double *vel) {
+  mrn_boundary_apply(&sim->boundary, g, sim->mass_floor, vel, 0);
+  for (int c = 0; c < sim->nconstraints; c++) mrn_constraint_apply(&sim->constraints[c], g, vel, sim->mass_floor, 0.0);
+  if (sim->nsources) mrn_sources_apply(sim, vel, 0.0, 0.0);
+}
+
 /* nodal velocity from momentum, for nodes above the mass floor, then the
  * holds; `inlet_share` of the inlets' hold is booked as their work (in the
- * step's first V, the part the velocity update passes on) */
+ * step's first V, the part the velocity update passes on), measured from V
+ * as the transfer gave it: a face condition on the inlet's nodes (the slip
+ * face an inlet opens in) is overridden there, not work of the inlet */
 static void grid_velocity_held(mrn_sim *sim, mrn_grid *g, double dt, double inlet_share) {
   const double t0 = mrn_phase_begin();
   const double floor_mass = sim->mass_floor;
@@ -71,10 +81,14 @@ static void grid_velocity_held(mrn_sim *sim, mrn_grid *g, double dt, double inle
       double m = g->mass[i];
       for (int d = 0; d < 3; d++) g->vel[3 * i + d] = m > floor_mass ? g->mom[3 * i + d] / m : 0.0;
     }
-  mrn_boundary_apply(&sim->boundary, g, floor_mass, g->vel, 0);
-  for (int c = 0; c < sim->nconstraints; c++) mrn_constraint_apply(&sim->constraints[c], g, g->vel, floor_mass, 0.0);
-  if (sim->nsources) mrn_sources_apply(sim, g->vel, dt, inlet_share);
+  if (sim->nsources && inlet_share > 0.0) mrn_sources_apply(sim, g->vel, dt, inlet_share);
+  hold_velocity(sim, g, g->vel);
   mrn_phase_end(MRN_PHASE_GRID, t0);
+}
+
+void mrn_sim_hold_velocity(void *ctx, double *vel) {
+  mrn_sim *sim = ctx;
+  hold_velocity(sim, &sim->grid, vel);
 }
 
 void mrn_grid_velocity_on(mrn_sim *sim, mrn_grid *g) { grid_velocity_held(sim, g, 0.0, 0.0); }

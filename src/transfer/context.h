@@ -36,7 +36,11 @@ typedef struct mrn_transfer {
   /* the largest of n values over the same processes, in place (a
    * convergence test that every process must end alike). NULL: nothing */
   void (*max_over)(void *ctx, double *values, int n);
-  void *sum_ctx; /* of both */
+  /* the owner's conditions on a nodal velocity field (faces, constraints,
+   * inlets), applied to a field a transfer made (XPIC's smoothed passes).
+   * NULL: the face conditions of `boundary` */
+  void (*hold)(void *ctx, double *vel);
+  void *sum_ctx; /* of all three */
 } mrn_transfer;
 
 #endif

@@ -16,8 +16,10 @@ void mrn_xpic_smooth(mrn_transfer *tr, double *pscratch) {
     mrn_grid_to_particles(tr, g->work, pscratch);
     mrn_particles_to_grid(tr, pscratch, g->work);
     if (tr->sum_nodal) tr->sum_nodal(tr->sum_ctx, g->work, 3);
-    /* the smoothed field obeys the same face conditions as the velocity */
-    mrn_boundary_apply(tr->boundary, g, tr->mass_floor, g->work, 0);
+    /* the smoothed field obeys the same conditions as the velocity: at a
+     * held node every S^k V is the held value, and so is V* */
+    if (tr->hold) tr->hold(tr->sum_ctx, g->work);
+    else mrn_boundary_apply(tr->boundary, g, tr->mass_floor, g->work, 0);
     binom = binom * (m - k + 1) / k;
     double sign = (k % 2 == 0) ? -1.0 : 1.0; /* (-1)^(k+1) */
     for (size_t i = 0; i < len; i++) g->vel_star[i] += sign * binom * g->work[i];
