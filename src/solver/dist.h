@@ -27,7 +27,8 @@
  * deck builds them the same on each); mrn_dist_start then keeps each
  * process's own. The particle sums (diagnostics, energies, the time step)
  * are then summed over processes. Files are written by process 0, with the
- * particles gathered there in the order of their ids. */
+ * particles gathered there in the order of their ids, but for the particle
+ * snapshots, written as a piece per process (io/output.h). */
 #ifndef MRN_SOLVER_DIST_H
 #define MRN_SOLVER_DIST_H
 
@@ -114,5 +115,10 @@ void mrn_dist_books(const struct mrn_sim *sim, double *friction, double *damping
  * the others keep theirs. Collective. 0 or an error code. */
 int mrn_dist_gather_begin(const struct mrn_sim *sim);
 void mrn_dist_gather_end(const struct mrn_sim *sim);
+/* The grid alone: process 0's nodal mass, velocity, force and contact bits
+ * hold every node's values, each row from the process that owns it, until
+ * mrn_dist_gather_grid_end. Collective. 0 or an error code, agreed. */
+int mrn_dist_gather_grid_begin(const struct mrn_sim *sim);
+void mrn_dist_gather_grid_end(const struct mrn_sim *sim);
 
 #endif

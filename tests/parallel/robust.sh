@@ -6,9 +6,11 @@
 # process, a grid too thin for the processes, and SIGINT to mpirun. Each
 # must end (no hang: every run has a time limit) with its message once and,
 # where the state is kept, one checkpoint.
-# usage: robust.sh MORAINE OUTDIR
+# The crossing's VTK series, a piece per process, two of them empty at each
+# snapshot, is read back with ParaView's reader (check_vtk.py --empty).
+# usage: robust.sh MORAINE OUTDIR [PYTHON]
 set -u
-moraine=$1 out=$2 here=$(cd "$(dirname "$0")" && pwd)
+moraine=$1 out=$2 py=${3:-/usr/bin/python3} here=$(cd "$(dirname "$0")" && pwd)
 mpirun="$here/../../scripts/mpirun"
 deck="$here/robust.lua"
 rm -rf "$out"; mkdir -p "$out"
@@ -28,6 +30,9 @@ run3 crossing; s=$?
 [ $s -eq 0 ] || { bad "crossing exited $s"; cat "$out/crossing.out"; }
 grep -q "cuts 0 4 8 12" "$out/crossing.out" || bad "crossing: not cut into three slabs of 4 cells"
 say "crossing: exit $s; $(grep -c 'holds' "$out/crossing.out") line(s) of process 0's report"
+"$py" "$here/check_vtk.py" --empty "$out/crossing" crossing 3 8 >"$out/crossing_vtk.out" 2>&1 ||
+  { bad "crossing: its VTK series"; cat "$out/crossing_vtk.out"; }
+say "crossing: VTK series: $(grep -c 'particles in pieces' "$out/crossing_vtk.out") snapshot(s) read, each particle once"
 
 # leave: the diagnosis once, one checkpoint, every process stopped
 run3 leave; s=$?
