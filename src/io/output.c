@@ -254,8 +254,8 @@ static int write_grid_snapshot(mrn_output *o, const mrn_sim *sim, const char *ba
   char *grid_path = snapshot_path(grid_base, o->vtk_count, ".vti");
   if (!o->grid_pvd.path) {
     char *pvd_path = malloc(len);
-    snprintf(pvd_path, len, "%s.pvd", grid_base);
-    mrn_pvd_init(&o->grid_pvd, pvd_path);
+    if (pvd_path) snprintf(pvd_path, len, "%s.pvd", grid_base);
+    mrn_pvd_init(&o->grid_pvd, pvd_path); /* without a path, its mrn_pvd_add fails */
     free(pvd_path);
   }
   int rc = grid_path ? mrn_vti_write_grid(grid_path, &sim->grid, sim->time, o->encoding)
@@ -322,8 +322,10 @@ static int write_pieces(mrn_output *o, const mrn_sim *sim, const char *base, con
   char *pvtp = rc == MRN_OK ? snapshot_path(base, o->vtk_count, ".pvtp") : NULL;
   if (rc == MRN_OK && (!paths || !pvtp)) rc = mrn_error_code(MRN_ERR_IO, "cannot write a snapshot: out of memory");
   int wrote = 0;
-  if (rc == MRN_OK) wrote = (rc = mrn_vtp_write_with(paths[rank], sim->particles.n, sim->particles.x, arrays, nf,
-                                                     form)) == MRN_OK;
+  if (rc == MRN_OK) {
+    rc = mrn_vtp_write_with(paths[rank], sim->particles.n, sim->particles.x, arrays, nf, form);
+    wrote = rc == MRN_OK;
+  }
   rc = mrn_dist_agree(sim, rc); /* every piece complete before the .pvtp names it */
   if (rc == MRN_OK) {
     rc = mrn_pvtp_write(pvtp, arrays, nf, form, names, size);
