@@ -12,10 +12,13 @@
     magnitude (nonzero in the last snapshot; the first, before any step,
     is all zeros).
 Usage: check_vtk.py DIR_ONE_PROCESS NAME_ONE DIR_N NAME_N NP
-       check_vtk.py --empty DIR NAME NP PARTICLES
-The second form checks a series in which some processes hold no particle:
-each such piece is a valid empty .vtp, and each .pvtp holds PARTICLES
-particles, each once."""
+       check_vtk.py --series DIR NAME PARTICLES [--empty]
+The second form checks any distributed series: each entry of NAME.pvd, a
+.pvtp (its pieces present and declared exactly) or a .vtp, holds PARTICLES
+particles, each once, and the directory holds no piece that no listed
+.pvtp names (a continued run removes the snapshots after its checkpoint,
+pieces included). With --empty some piece must be empty: a process without
+particles writes a valid empty .vtp."""
 import os
 import re
 import sys
@@ -69,15 +72,16 @@ def piece_arrays(path):
     return declared(point_data, "DataArray"), declared(points, "DataArray")
 
 
-def check_declarations(pvtp, nproc):
-    """the .pvtp names nproc pieces, each present, whose arrays it declares exactly"""
+def check_declarations(pvtp, nproc=None):
+    """the .pvtp names its pieces (nproc of them, when given), each present,
+    whose arrays it declares exactly"""
     root = ET.parse(pvtp).getroot()
     if root.get("type") != "PPolyData":
         fail(f"{pvtp}: type {root.get('type')}, not PPolyData")
     ppd = [(a.get("Name"), a.get("type"), int(a.get("NumberOfComponents"))) for a in root.find("PPolyData/PPointData")]
     ppts = [(a.get("Name"), a.get("type"), int(a.get("NumberOfComponents"))) for a in root.find("PPolyData/PPoints")]
     pieces = [os.path.join(os.path.dirname(pvtp), p.get("Source")) for p in root.iter("Piece")]
-    if len(pieces) != nproc:
+    if nproc is not None and len(pieces) != nproc:
         fail(f"{pvtp}: {len(pieces)} pieces for {nproc} processes")
     for p in pieces:
         if not os.path.isfile(p):
@@ -153,29 +157,34 @@ def check_grid(d1, n1, dn, nn):
               ", ".join(f"{k} {v:.2g}" for k, v in worst.items()))
 
 
-def check_empty(d, name, nproc, count):
+def check_series(d, name, count, want_empty):
     snaps = series(d, name)
     if not snaps:
         fail(f"{d}/{name}.pvd lists no snapshot")
-    empty = 0
+    empty, named = 0, set()
     for b in snaps:
-        if not b.endswith(".pvtp"):
-            fail(f"{b}: a distributed snapshot is not a .pvtp")
-        pieces = check_declarations(b, nproc)
-        sizes = [len(read_vtp(p)[0]) for p in pieces]
-        empty += sizes.count(0)
-        ids = read_pvtp(b)[0]
+        if b.endswith(".pvtp"):
+            pieces = check_declarations(b)
+            named.update(os.path.basename(p) for p in pieces)
+            sizes = [len(read_vtp(p)[0]) for p in pieces]
+            empty += sizes.count(0)
+            ids = read_pvtp(b)[0]
+        else:
+            sizes, ids = [], read_vtp(b)[0]
         if len(ids) != count or len(np.unique(ids)) != count:
             fail(f"{b}: {len(ids)} particles, {len(np.unique(ids))} distinct; expected {count}")
-        print(f"{os.path.basename(b)}: {count} particles in pieces of {sizes}")
-    if empty == 0:
+        print(f"{os.path.basename(b)}: {count} particles" + (f" in pieces of {sizes}" if sizes else ", one file"))
+    stray = sorted(f for f in os.listdir(d) if re.fullmatch(re.escape(name) + r"_\d{6}_p\d+\.vtp", f) and f not in named)
+    if stray:
+        fail(f"pieces no listed .pvtp names: {stray}")
+    if want_empty and empty == 0:
         fail("no piece was empty: the case does not test empty processes")
     print("PASS")
 
 
 def main():
-    if sys.argv[1] == "--empty":
-        check_empty(sys.argv[2], sys.argv[3], int(sys.argv[4]), int(sys.argv[5]))
+    if sys.argv[1] == "--series":
+        check_series(sys.argv[2], sys.argv[3], int(sys.argv[4]), "--empty" in sys.argv[5:])
         return
     d1, n1, dn, nn, nproc = sys.argv[1], sys.argv[2], sys.argv[3], sys.argv[4], int(sys.argv[5])
     one, many = series(d1, n1), series(dn, nn)

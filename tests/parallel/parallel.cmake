@@ -38,7 +38,8 @@ foreach(case collapse2d cube3d)
 endforeach()
 # crossing two slabs in a step, empty processes, a particle leaving (a stop; a deletion booked as
 # outflow), a Lua error on one process,
-# a grid too thin, SIGINT to mpirun; the crossing's VTK pieces, empty ones among them
+# a grid too thin, SIGINT to mpirun; the crossing's VTK pieces, empty ones among them; a VTK series
+# saved on 3 processes and continued on 2 from an earlier checkpoint (the later pieces replaced)
 add_test(NAME mpi.robust COMMAND ${MORAINE_PAR_DIR}/robust.sh $<TARGET_FILE:moraine> ${MORAINE_TEST_OUT}/mpi_robust
                                  ${Python3_EXECUTABLE})
 # the cases share the two equivalence directories' one-process runs: one at a time
