@@ -28,8 +28,10 @@ if case == "crossing" or case == "leave" or case == "outflow" then
     scheme = { transfer = "PIC", stress_update = "USL" }, dt = { fixed = 0.01 }, thermo = 0, watchdog = false,
     boundary = { all = "free" }, diagnostics = "crossing.csv", diagnostics_every = 1, name = case,
     on_leave = case == "outflow" and "delete" or "stop",
-    -- a snapshot a step, pieces of empty processes among them (robust.sh reads them)
-    output = { vtk = case, every_steps = 1, fields = { "velocity", "stress", "id" }, grid = true } }
+    -- a snapshot a step, pieces of empty processes among them (robust.sh reads them); the leave
+    -- case's gathered into one .vtp each
+    output = { vtk = case, every_steps = 1, fields = { "velocity", "stress", "id" }, grid = true,
+               gather = case == "leave" } }
   sim:add_particles(mpm.box{ min = { 0.1, 0.05 }, max = { 0.3, 0.15 } },
                     { material = steel, per_axis = 2, velocity = { 0, 100 } })
   local d0 = sim:diagnostics()

@@ -7,8 +7,9 @@
 # must end (no hang: every run has a time limit) with its message once and,
 # where the state is kept, one checkpoint.
 # The crossing's VTK series, a piece per process, two of them empty at each
-# snapshot, is read back with ParaView's reader (check_vtk.py); so is a
-# series saved on 3 processes and continued on 2 from an earlier checkpoint.
+# snapshot, is read back with ParaView's reader (check_vtk.py); so are the
+# leave case's gathered series (output{gather = true}) and a series saved on
+# 3 processes and continued on 2 from an earlier checkpoint.
 # usage: robust.sh MORAINE OUTDIR [PYTHON]
 set -u
 moraine=$1 out=$2 py=${3:-/usr/bin/python3} here=$(cd "$(dirname "$0")" && pwd)
@@ -42,6 +43,11 @@ n=$(grep -c "left the grid" "$out/leave.out")
 [ "$n" -eq 1 ] || { bad "leave: the diagnosis printed $n times"; cat "$out/leave.out"; }
 [ -s "$out/leave/leave_failed.h5" ] || bad "leave: no checkpoint leave_failed.h5"
 say "leave: exit $s; $(grep -o 'particle [0-9]* left the grid[^;]*' "$out/leave.out" | head -1)"
+# its series (output{gather = true}): one .vtp per snapshot, the last one written on the failure
+[ -z "$(find "$out/leave" -name '*.pvtp')" ] || bad "leave: a gathered series holds .pvtp files"
+"$py" "$here/check_vtk.py" --series "$out/leave" leave 8 >"$out/leave_vtk.out" 2>&1 ||
+  { bad "leave: its gathered VTK series"; cat "$out/leave_vtk.out"; }
+say "leave: gathered VTK series: $(grep -c 'one file' "$out/leave_vtk.out") .vtp snapshot(s) read"
 
 # outflow: deleted where it is, booked by every process, summed once
 run3 outflow; s=$?
