@@ -328,6 +328,8 @@ static int write_pieces(mrn_output *o, const mrn_sim *sim, const char *base, con
   }
   rc = mrn_dist_agree(sim, rc); /* every piece complete before the .pvtp names it */
   if (rc == MRN_OK) {
+    /* the run's summary (process 0's) counts every process's piece */
+    for (int r = 0; r < size && mrn_comm_writes(); r++) mrn_summary_note_file(paths[r]);
     rc = mrn_pvtp_write(pvtp, arrays, nf, form, names, size);
     if (rc == MRN_OK && (rc = mrn_pvd_add(&o->pvd, sim->time, file_part(pvtp))) != MRN_OK && mrn_comm_writes())
       unlink(pvtp); /* not listed: gone before its pieces are */
