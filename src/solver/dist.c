@@ -479,10 +479,11 @@ void mrn_dist_books(const mrn_sim *sim, double *friction, double *damping, doubl
   *outflow = b[2];
 }
 
-/* The nodal values a checkpoint keeps (mass, V, force, the contact bits),
- * each row from the process that owns it, on process 0 in place of its
- * own (kept in d->held_mass, ...) until gather_grid_end. Collective: the
- * processes agree on their buffers before the sum. */
+/* The nodal values a checkpoint keeps and a grid snapshot shows (mass, V,
+ * force, the contact bits), each row from the process that owns it, on
+ * process 0 in place of its own (kept in d->held_mass, ...) until
+ * gather_grid_end. Collective: the processes agree on their buffers
+ * before the sum. */
 enum { GRID_VALUES = 8 }; /* per node: mass, V, force, contact */
 
 static int gather_grid(mrn_sim *sim, mrn_dist *d) {
