@@ -40,7 +40,9 @@ static void release(mrn_atomic_file *f) {
 
 /* ---- open / write / commit / abort ------------------------------------- */
 
-int mrn_atomic_open(mrn_atomic_file *f, const char *path) {
+/* writes: 1 on the process that puts the file in place, 0 on those that
+ * go through the same calls into /dev/null */
+static int open_as(mrn_atomic_file *f, const char *path, int writes) {
   f->fp = NULL;
   f->final_path = NULL;
   f->temp_path = NULL;
@@ -48,7 +50,7 @@ int mrn_atomic_open(mrn_atomic_file *f, const char *path) {
   if (!path || !*path || path[strlen(path) - 1] == '/')
     return mrn_error_code(MRN_ERR_IO, "cannot write '%s': not a file name", path ? path : "");
   f->final_path = strdup(path);
-  if (!mrn_comm_writes()) { /* process 0 writes the files of a distributed run */
+  if (!writes) {
     f->fp = f->final_path ? fopen("/dev/null", "wb") : NULL;
     if (!f->fp) release(f);
     return f->fp ? MRN_OK : mrn_error_code(MRN_ERR_IO, "cannot open /dev/null");
@@ -66,6 +68,11 @@ int mrn_atomic_open(mrn_atomic_file *f, const char *path) {
   }
   return MRN_OK;
 }
+
+/* process 0 writes the files of a distributed run */
+int mrn_atomic_open(mrn_atomic_file *f, const char *path) { return open_as(f, path, mrn_comm_writes()); }
+
+int mrn_atomic_open_own(mrn_atomic_file *f, const char *path) { return open_as(f, path, 1); }
 
 /* A stream may take the bytes into its buffer and still fail the write that
  * empties it: the error flag is checked after every call, while errno still

@@ -18,8 +18,13 @@ typedef struct mrn_atomic_file {
   int err; /* errno of the first failed write, 0 while all is well */
 } mrn_atomic_file;
 
-/* open a temporary file for `path`; returns 0 or an MRN_ERR_IO code with the path in the message */
+/* open a temporary file for `path`; returns 0 or an MRN_ERR_IO code with the
+ * path in the message. In a distributed run (core/comm.h) only process 0
+ * writes the file: the others write into /dev/null and put nothing in place. */
 int mrn_atomic_open(mrn_atomic_file *f, const char *path);
+/* the same, written by this process whichever it is: a file of its own, as
+ * the pieces of a distributed snapshot (io/vtk.h) */
+int mrn_atomic_open_own(mrn_atomic_file *f, const char *path);
 
 /* Write through the stream. The first failure keeps its errno in f->err
  * (a stream loses it by the next call) and later writes are skipped: the

@@ -230,64 +230,153 @@ static int gather_fields(const mrn_output *o, const mrn_sim *sim, mrn_vtk_array 
   return MRN_OK;
 }
 
+/* OUTDIR/<vtk name>_NNNNNN<suffix> of snapshot `count`, malloc'd */
+static char *snapshot_path(const char *base, int count, const char *suffix) {
+  size_t len = strlen(base) + strlen(suffix) + 32;
+  char *path = malloc(len);
+  if (path) snprintf(path, len, "%s_%06d%s", base, count, suffix);
+  return path;
+}
+
+/* the name of a file in its directory, as a collection lists it */
+static const char *file_part(const char *path) {
+  const char *slash = strrchr(path, '/');
+  return slash ? slash + 1 : path;
+}
+
 /* the nodal mass, velocity and force of the last step, beside the particles'
- * snapshot; len bounds the length of the particles' file name */
-static int write_grid_snapshot(mrn_output *o, const mrn_sim *sim, const char *base, size_t len) {
-  char *grid_path = malloc(len + 16);
-  snprintf(grid_path, len + 16, "%s_grid_%06d.vti", base, o->vtk_count);
+ * snapshot: <vtk>_grid_NNNNNN.vti in <vtk>_grid.pvd */
+static int write_grid_snapshot(mrn_output *o, const mrn_sim *sim, const char *base) {
+  const size_t len = strlen(base) + 16;
+  char *grid_base = malloc(len);
+  if (!grid_base) return mrn_error_code(MRN_ERR_IO, "cannot write a grid snapshot: out of memory");
+  snprintf(grid_base, len, "%s_grid", base);
+  char *grid_path = snapshot_path(grid_base, o->vtk_count, ".vti");
   if (!o->grid_pvd.path) {
-    char *pvd_path = malloc(len + 16);
-    snprintf(pvd_path, len + 16, "%s_grid.pvd", base);
-    mrn_pvd_init(&o->grid_pvd, pvd_path);
+    char *pvd_path = malloc(len);
+    if (pvd_path) snprintf(pvd_path, len, "%s.pvd", grid_base);
+    mrn_pvd_init(&o->grid_pvd, pvd_path); /* without a path, its mrn_pvd_add fails */
     free(pvd_path);
   }
-  const char *grid_file = strrchr(grid_path, '/');
-  grid_file = grid_file ? grid_file + 1 : grid_path;
-  int rc = mrn_vti_write_grid(grid_path, &sim->grid, sim->time, o->encoding);
-  if (rc == MRN_OK) rc = mrn_pvd_add(&o->grid_pvd, sim->time, grid_file);
+  int rc = grid_path ? mrn_vti_write_grid(grid_path, &sim->grid, sim->time, o->encoding)
+                     : mrn_error_code(MRN_ERR_IO, "cannot write a grid snapshot: out of memory");
+  if (rc == MRN_OK) rc = mrn_pvd_add(&o->grid_pvd, sim->time, file_part(grid_path));
   free(grid_path);
+  free(grid_base);
   return rc;
 }
 
-static int write_vtk_whole(mrn_output *o, const mrn_sim *sim) {
-  char *base = snapshot_base(o);
-  if (!base) return MRN_ERR_IO;
-  size_t len = strlen(base) + 32;
-  char *path = malloc(len);
-  snprintf(path, len, "%s_%06d%s", base, o->vtk_count, MRN_OUTPUT_SNAPSHOT_EXT(o));
-  const char *file_part = strrchr(path, '/');
-  file_part = file_part ? file_part + 1 : path;
+/* the same in a distributed run whose particles were not gathered: each node
+ * row from the process that owns it, gathered on process 0 for the file, so
+ * that the file is the one a single process writes; agreed */
+static int write_grid_gathered(mrn_output *o, const mrn_sim *sim, const char *base) {
+  int rc = mrn_dist_gather_grid_begin(sim);
+  if (rc == MRN_OK) rc = write_grid_snapshot(o, sim, base);
+  mrn_dist_gather_grid_end(sim);
+  return mrn_dist_agree(sim, rc);
+}
 
-  int nf;
+/* every particle in one file: this process's own, or, in a distributed run,
+ * every process's gathered on process 0 (mrn_dist_gather_begin) */
+static int write_whole(mrn_output *o, const mrn_sim *sim, const char *base, const mrn_vtk_array *arrays, int nf,
+                       const mrn_vtp_options *form) {
+  char *path = snapshot_path(base, o->vtk_count, MRN_OUTPUT_SNAPSHOT_EXT(o));
+  if (!path) return mrn_error_code(MRN_ERR_IO, "cannot write a snapshot: out of memory");
+  int rc = o->vtkhdf ? mrn_vtkhdf_write(path, sim->particles.n, sim->particles.x, arrays, nf, form)
+                     : mrn_vtp_write_with(path, sim->particles.n, sim->particles.x, arrays, nf, form);
+  if (rc == MRN_OK) rc = mrn_pvd_add(&o->pvd, sim->time, file_part(path));
+  free(path);
+  return rc;
+}
+
+/* the paths of the pieces of snapshot `count`, <base>_NNNNNN_p<rank>.vtp for
+ * each of `size` processes, and their names in their directory (names[r]
+ * points into paths[r]); NULL when out of memory */
+static char **piece_paths(const char *base, int count, int size, const char ***names) {
+  char **paths = calloc((size_t)size, sizeof *paths + sizeof **names);
+  if (!paths) return NULL;
+  *names = (const char **)(paths + size);
+  for (int r = 0; r < size; r++) {
+    char suffix[32];
+    snprintf(suffix, sizeof suffix, "_p%d.vtp", r);
+    if (!(paths[r] = snapshot_path(base, count, suffix))) {
+      for (int k = 0; k < r; k++) free(paths[k]);
+      free(paths);
+      return NULL;
+    }
+    (*names)[r] = file_part(paths[r]);
+  }
+  return paths;
+}
+
+/* This process's particles as its piece of the snapshot, then, once every
+ * process's piece is complete, the .pvtp that lists them (written by process
+ * 0) entered in the .pvd: a reader never sees a .pvtp whose pieces are
+ * missing. A snapshot that fails on any process leaves neither its .pvtp
+ * nor its pieces. `rc`: this process's outcome so far; the result is agreed. */
+static int write_pieces(mrn_output *o, const mrn_sim *sim, const char *base, const mrn_vtk_array *arrays, int nf,
+                        const mrn_vtp_options *form, int rc) {
+  const int size = sim->dist->size, rank = sim->dist->rank;
+  const char **names = NULL;
+  char **paths = rc == MRN_OK ? piece_paths(base, o->vtk_count, size, &names) : NULL;
+  char *pvtp = rc == MRN_OK ? snapshot_path(base, o->vtk_count, ".pvtp") : NULL;
+  if (rc == MRN_OK && (!paths || !pvtp)) rc = mrn_error_code(MRN_ERR_IO, "cannot write a snapshot: out of memory");
+  int wrote = 0;
+  if (rc == MRN_OK) {
+    rc = mrn_vtp_write_with(paths[rank], sim->particles.n, sim->particles.x, arrays, nf, form);
+    wrote = rc == MRN_OK;
+  }
+  rc = mrn_dist_agree(sim, rc); /* every piece complete before the .pvtp names it */
+  if (rc == MRN_OK) {
+    /* the run's summary (process 0's) counts every process's piece */
+    for (int r = 0; r < size && mrn_comm_writes(); r++) mrn_summary_note_file(paths[r]);
+    rc = mrn_pvtp_write(pvtp, arrays, nf, form, names, size);
+    if (rc == MRN_OK && (rc = mrn_pvd_add(&o->pvd, sim->time, file_part(pvtp))) != MRN_OK && mrn_comm_writes())
+      unlink(pvtp); /* not listed: gone before its pieces are */
+  }
+  rc = mrn_dist_agree(sim, rc);
+  if (rc != MRN_OK && wrote) unlink(paths[rank]);
+  for (int r = 0; paths && r < size; r++) free(paths[r]);
+  free(paths);
+  free(pvtp);
+  return rc;
+}
+
+/* Snapshot number vtk_count: the particles (a piece per process, or whole)
+ * and, if asked, the grid. A distributed run's processes all take part;
+ * the result is agreed when `pieces` is set (mrn_output_write_vtk agrees
+ * on a whole one). */
+static int write_snapshot(mrn_output *o, const mrn_sim *sim, int pieces) {
+  char *base = snapshot_base(o);
+  int nf = 0;
   mrn_vtk_array arrays[MRN_OUTPUT_MAX_FIELDS];
   field_source sources[MRN_OUTPUT_MAX_FIELDS]; /* made a chunk at a time as the file is written */
-  int rc = gather_fields(o, sim, arrays, sources, &nf);
+  int rc = base ? gather_fields(o, sim, arrays, sources, &nf) : MRN_ERR_IO;
   /* the model time in the file too, for readers given the file alone */
-  const mrn_vtp_options form = {o->encoding, o->vtk_compress, o->vtk_float32, 1, sim->time};
-  if (rc == MRN_OK)
-    rc = o->vtkhdf ? mrn_vtkhdf_write(path, sim->particles.n, sim->particles.x, arrays, nf, &form)
-                   : mrn_vtp_write_with(path, sim->particles.n, sim->particles.x, arrays, nf, &form);
-  if (rc == MRN_OK) rc = mrn_pvd_add(&o->pvd, sim->time, file_part);
-  if (rc == MRN_OK && o->grid_vtk) rc = write_grid_snapshot(o, sim, base, len);
+  const mrn_vtp_options form = {o->encoding, o->vtk_compress, o->vtk_float32, 1, sim->time, pieces};
+  if (pieces) rc = write_pieces(o, sim, base, arrays, nf, &form, rc);
+  else if (rc == MRN_OK) rc = write_whole(o, sim, base, arrays, nf, &form);
+  /* a whole snapshot's grid was gathered with its particles */
+  if (rc == MRN_OK && o->grid_vtk) rc = pieces ? write_grid_gathered(o, sim, base) : write_grid_snapshot(o, sim, base);
   if (rc == MRN_OK) {
     o->vtk_count++;
     o->vtk_last_step = sim->step;
   }
-  free(path);
   free(base);
   return rc;
 }
 
-/* In a distributed run process 0 writes the snapshot with every particle
- * gathered to it (solver/dist.h); the others go through the same steps
- * into no file, so that every process keeps the same series. */
+/* In a distributed run each process writes its particles as a piece of the
+ * snapshot, listed by a .pvtp, unless the deck asked for one file (gather)
+ * or the snapshots are VTKHDF files: then process 0 writes the snapshot
+ * with every particle gathered to it (solver/dist.h), and the others go
+ * through the same steps into no file, so that every process keeps the
+ * same series. */
 int mrn_output_write_vtk(mrn_output *o, const mrn_sim *sim) {
   if (!o->vtk_name) return MRN_OK;
-  if (sim->dist && o->grid_vtk)
-    return mrn_error("parallel: grid snapshots (output{grid}) are not written in a distributed run; each "
-                     "process holds only its slab of the grid");
+  if (sim->dist && !o->vtkhdf && !o->vtk_gather) return write_snapshot(o, sim, 1);
   int rc = mrn_dist_gather_begin(sim);
-  if (rc == MRN_OK) rc = write_vtk_whole(o, sim);
+  if (rc == MRN_OK) rc = write_snapshot(o, sim, 0);
   mrn_dist_gather_end(sim);
   return mrn_dist_agree(sim, rc);
 }

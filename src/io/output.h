@@ -2,8 +2,18 @@
  *
  *   OUTDIR/<vtk>_NNNNNN.vtp + OUTDIR/<vtk>.pvd   particle snapshots (ParaView)
  *   or OUTDIR/<vtk>_NNNNNN.vtkhdf + OUTDIR/<vtk>.vtkhdf.series
+ *   OUTDIR/<vtk>_grid_NNNNNN.vti + OUTDIR/<vtk>_grid.pvd   grid snapshots
  *   OUTDIR/<diagnostics>                          CSV of the diagnostics
- * Every path is relative to the output directory (the -o option). */
+ * Every path is relative to the output directory (the -o option).
+ *
+ * In a distributed run (solver/dist.h) a .vtp snapshot is written as one
+ * piece per process, OUTDIR/<vtk>_NNNNNN_p<rank>.vtp holding that
+ * process's particles (none: an empty piece), and OUTDIR/<vtk>_NNNNNN.pvtp,
+ * written by process 0 once every piece is complete, listing them; the
+ * .pvd lists the .pvtp. With vtk_gather, and for .vtkhdf snapshots, the
+ * particles are gathered on process 0 into the one file a single process
+ * writes. The grid, the CSV and the HDF5 series are written by process 0
+ * with the values of every process. */
 #ifndef MRN_IO_OUTPUT_H
 #define MRN_IO_OUTPUT_H
 
@@ -31,6 +41,7 @@ typedef struct mrn_output {
   int vtk_compress; /* 0: raw; 1..9: zlib level of the snapshots */
   int vtk_float32;  /* Float64 arrays and points stored as Float32 */
   int vtkhdf;       /* .vtkhdf files in a .vtkhdf.series instead of .vtp in a .pvd */
+  int vtk_gather;   /* distributed: one .vtp gathered on process 0 instead of pieces and a .pvtp */
   int nfields;
   /* names listed by the deck: built-in fields or fields it registered
    * (checked when a snapshot is written); none: every field */

@@ -55,6 +55,7 @@ void mrn_output_stash(mrn_output *o, mrn_stash *s) {
   mrn_stash_int(s, "output.vtk_compress", &o->vtk_compress);
   mrn_stash_int(s, "output.vtk_float32", &o->vtk_float32);
   mrn_stash_int(s, "output.vtkhdf", &o->vtkhdf);
+  mrn_stash_int(s, "output.vtk_gather", &o->vtk_gather);
   stash_fields(s, o);
   mrn_stash_text(s, "output.diagnostics", &o->csv_name);
   mrn_stash_long(s, "output.diagnostics_every", &o->csv_every);
@@ -155,6 +156,25 @@ static int collection_entry(const mrn_pvd *pvd, const char *line, char *file, si
   return 1;
 }
 
+/* the snapshot `file` in `dir`; a .pvtp with its pieces FILE_p0.vtp,
+ * FILE_p1.vtp, ... (io/output.h), the .pvtp first so that no reader finds
+ * it without them */
+static void remove_snapshot(const char *dir, const char *file) {
+  char *path = mrn_path_join(dir, file);
+  const size_t len = path ? strlen(path) : 0;
+  if (!path || unlink(path) != 0 || len < 5 || strcmp(path + len - 5, ".pvtp") != 0) {
+    free(path);
+    return;
+  }
+  char *piece = malloc(len + 32);
+  for (int r = 0; piece; r++) {
+    snprintf(piece, len + 32, "%.*s_p%d.vtp", (int)(len - 5), path, r);
+    if (unlink(piece) != 0) break; /* the pieces are numbered from 0 without a gap */
+  }
+  free(piece);
+  free(path);
+}
+
 /* the collection at pvd->path, as written before: its first `keep` entries
  * stay (rewritten at once), the files of the others are removed */
 static int resume_pvd(mrn_pvd *pvd, int keep) {
@@ -177,9 +197,7 @@ static int resume_pvd(mrn_pvd *pvd, int keep) {
       last_time = time;
       last_file = strdup(file);
     } else if (!strchr(file, '/')) { /* a snapshot written after the checkpoint */
-      char *stale = mrn_path_join(dir, file);
-      unlink(stale);
-      free(stale);
+      remove_snapshot(dir, file);
     }
     index++;
   }
@@ -329,7 +347,10 @@ int mrn_output_claim(mrn_output *o, int overwrite) {
   found f = {"", 0};
   if (!overwrite) {
     check_file(pvd, &f);
-    if (pvd && !mrn_path_set_has(&claimed, pvd)) find_snapshots(base, MRN_OUTPUT_SNAPSHOT_EXT(o), &f);
+    if (pvd && !mrn_path_set_has(&claimed, pvd)) {
+      find_snapshots(base, MRN_OUTPUT_SNAPSHOT_EXT(o), &f);
+      if (!o->vtkhdf) find_snapshots(base, ".pvtp", &f); /* a distributed run's */
+    }
     check_file(csv, &f);
     check_file(series, &f);
   }

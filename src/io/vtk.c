@@ -61,10 +61,15 @@ int mrn_vtk_check_arrays(const char *path, size_t n, const double *points, const
   return MRN_OK;
 }
 
+/* the VTK type name an array of type t is written as */
+static const char *written_type(mrn_vtk_type t, int float32) {
+  return float32 && t == MRN_VTK_FLOAT64 ? "Float32" : mrn_vtk_type_name(t);
+}
+
 static block make_block(const char *name, int ncomp, mrn_vtk_type t, block_source src, const void *data,
                         void (*fill)(const void *, size_t, size_t, void *), const void *ctx, int float32) {
   const int narrow = float32 && t == MRN_VTK_FLOAT64;
-  return (block){.name = name, .type = narrow ? "Float32" : mrn_vtk_type_name(t), .ncomp = ncomp,
+  return (block){.name = name, .type = written_type(t, float32), .ncomp = ncomp,
                  .elem = mrn_vtk_type_size(t), .out_elem = narrow ? 4 : mrn_vtk_type_size(t), .source = src,
                  .vtype = t, .data = data, .fill = fill, .ctx = ctx};
 }
@@ -346,7 +351,7 @@ static int write_blocks(const char *path, block *blocks, int narrays, size_t n, 
       return mrn_error_code(MRN_ERR_IO, "cannot write '%s': out of memory while compressing", path);
   }
   mrn_xml_writer w;
-  int rc = mrn_xw_open(&w, path);
+  int rc = o->piece ? mrn_xw_open_own(&w, path) : mrn_xw_open(&w, path);
   if (rc != MRN_OK) return rc;
   w_structure(&w, blocks, narrays, n, o, buf);
   if (o->encoding == MRN_VTK_BINARY && !w.file.err) w_appended(&w, blocks, nblocks, n, buf, conv);
@@ -384,6 +389,43 @@ int mrn_vtp_write(const char *path, size_t npoints, const double *points, const 
                   int narrays, mrn_vtk_encoding encoding) {
   const mrn_vtp_options o = {.encoding = encoding};
   return mrn_vtp_write_with(path, npoints, points, arrays, narrays, &o);
+}
+
+/* ---- .pvtp -------------------------------------------------------------- */
+
+static void w_pdata_array(mrn_xml_writer *w, const char *type, const char *name, int ncomp) {
+  mrn_xw_printf(w, "      <PDataArray type=\"%s\" Name=\"", type);
+  mrn_xw_attr(w, name);
+  mrn_xw_printf(w, "\" NumberOfComponents=\"%d\"/>\n", ncomp);
+}
+
+int mrn_pvtp_write(const char *path, const mrn_vtk_array *arrays, int narrays, const mrn_vtp_options *options,
+                   const char *const *pieces, int npieces) {
+  if (!path) return mrn_error_code(MRN_ERR_IO, "cannot write a VTK file without a path");
+  const int float32 = options && options->float32;
+  if (narrays < 0) narrays = 0;
+  int rc = mrn_vtk_check_arrays(path, 0, NULL, arrays, narrays);
+  if (rc != MRN_OK) return rc;
+  mrn_xml_writer w;
+  if ((rc = mrn_xw_open(&w, path)) != MRN_OK) return rc;
+  mrn_xw_printf(&w, "<?xml version=\"1.0\"?>\n");
+  mrn_xw_printf(&w, "<VTKFile type=\"PPolyData\" version=\"1.0\" byte_order=\"LittleEndian\" header_type=\"UInt64\">\n");
+  mrn_xw_printf(&w, "  <PPolyData GhostLevel=\"0\">\n");
+  mrn_xw_printf(&w, "    <PPointData>\n");
+  for (int i = 0; i < narrays; i++)
+    w_pdata_array(&w, written_type(arrays[i].type, float32), arrays[i].name, arrays[i].ncomp);
+  mrn_xw_printf(&w, "    </PPointData>\n");
+  mrn_xw_printf(&w, "    <PPoints>\n");
+  w_pdata_array(&w, written_type(MRN_VTK_FLOAT64, float32), "Points", 3);
+  mrn_xw_printf(&w, "    </PPoints>\n");
+  for (int r = 0; r < npieces; r++) {
+    mrn_xw_printf(&w, "    <Piece Source=\"");
+    mrn_xw_attr(&w, pieces[r]);
+    mrn_xw_printf(&w, "\"/>\n");
+  }
+  mrn_xw_printf(&w, "  </PPolyData>\n");
+  mrn_xw_printf(&w, "</VTKFile>\n");
+  return mrn_xw_finish(&w);
 }
 
 /* ---- .pvd --------------------------------------------------------------- */

@@ -4,6 +4,8 @@
  *    point-data arrays in appended binary form, raw or zlib-compressed
  *    (header_type UInt64, so arrays larger than 4 GiB are fine), in Float64
  *    or Float32, or ASCII for debugging; the model time as TimeValue;
+ *  - a distributed snapshot as a parallel PolyData file (.pvtp) listing the
+ *    .vtp pieces its processes wrote;
  *  - collections listing each file with its model time, rewritten
  *    atomically after every new file so ParaView can open a running series:
  *    a .pvd (VTK XML), or ParaView's JSON file series (NAME.vtkhdf.series)
@@ -54,6 +56,9 @@ typedef struct mrn_vtp_options {
   int float32;  /* write the Float64 arrays and the points as Float32 */
   int has_time; /* add `time` (s) as the TimeValue field data ParaView reads */
   double time;
+  /* 1: a piece of a distributed snapshot, written by this process whichever
+   * it is; 0: written by process 0 alone (io/atomic_file.h). .vtp only. */
+  int piece;
 } mrn_vtp_options;
 
 /* uncompressed bytes per zlib block */
@@ -65,6 +70,14 @@ int mrn_vtp_write_with(const char *path, size_t npoints, const double *points, c
 /* the plain form in `encoding` */
 int mrn_vtp_write(const char *path, size_t npoints, const double *points, const mrn_vtk_array *arrays,
                   int narrays, mrn_vtk_encoding encoding);
+
+/* A parallel PolyData file (.pvtp) listing `npieces` .vtp files (`pieces`,
+ * relative to the .pvtp's directory) that were written with these arrays and
+ * options: their point-data arrays and points declared with the names,
+ * components and types the pieces hold them in. Written by process 0 of a
+ * distributed run. 0 or MRN_ERR_IO. */
+int mrn_pvtp_write(const char *path, const mrn_vtk_array *arrays, int narrays, const mrn_vtp_options *options,
+                   const char *const *pieces, int npieces);
 
 /* a collection kept in memory and rewritten on each addition */
 typedef struct mrn_pvd {

@@ -5,6 +5,8 @@
 
 int mrn_xw_open(mrn_xml_writer *w, const char *path) { return mrn_atomic_open(&w->file, path); }
 
+int mrn_xw_open_own(mrn_xml_writer *w, const char *path) { return mrn_atomic_open_own(&w->file, path); }
+
 int mrn_xw_finish(mrn_xml_writer *w) { return mrn_atomic_commit(&w->file); }
 
 void mrn_xw_bytes(mrn_xml_writer *w, const void *data, size_t size) { mrn_atomic_write(&w->file, data, size); }

@@ -21,6 +21,8 @@ typedef struct mrn_xml_writer {
 
 /* 0, or MRN_ERR_IO with the path in the message */
 int mrn_xw_open(mrn_xml_writer *w, const char *path);
+/* written by this process in a distributed run too (mrn_atomic_open_own) */
+int mrn_xw_open_own(mrn_xml_writer *w, const char *path);
 /* commit the file, or drop it and report the first write error */
 int mrn_xw_finish(mrn_xml_writer *w);
 

@@ -67,13 +67,17 @@ static const mrn_spec output_specs[] = {
     {"float32", MRN_SPEC_BOOLEAN, 0, 0, 0, 0, 0, 0, NULL,
      "store the Float64 fields and the positions as Float32 (default false)", NULL},
     {"grid", MRN_SPEC_BOOLEAN, 0, 0, 0, 0, 0, 0, NULL, "also write the grid (.vti: nodal mass, velocity, force)", NULL},
+    {"gather", MRN_SPEC_BOOLEAN, 0, 0, 0, 0, 0, 0, NULL,
+     "under MPI, one .vtp per snapshot gathered on process 0 instead of a piece per process and a .pvtp "
+     "(default false)", NULL},
 };
 
 #define OUTPUT_SPECS output_specs, MRN_COUNT(output_specs)
 
-/* format, compress, float32 and grid: how each snapshot is written (absent: unchanged) */
+/* format, compress, float32, grid and gather: how each snapshot is written (absent: unchanged) */
 static void read_vtk_form(lua_State *L, int idx, const char *sub, mrn_output *o) {
   if (mrn_lua_has(L, idx, "grid")) o->grid_vtk = mrn_lua_get_boolean(L, idx, sub, OUTPUT_SPECS, "grid", 0);
+  if (mrn_lua_has(L, idx, "gather")) o->vtk_gather = mrn_lua_get_boolean(L, idx, sub, OUTPUT_SPECS, "gather", 0);
   const char *format = mrn_lua_get_string(L, idx, sub, OUTPUT_SPECS, "format");
   if (format) {
     /* the grid's .vti files stay binary beside .vtkhdf particle files */

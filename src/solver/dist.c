@@ -474,9 +474,11 @@ void mrn_dist_books(const mrn_sim *sim, mrn_books *b) {
   mrn_dist_reduce(sim, (double *)b, BOOKS, MRN_COMM_SUM);
 }
 
-/* The nodal values a checkpoint keeps (mass, V, force, the contact bits),
- * each row from the process that owns it, on process 0 in place of its
- * own (kept in d->held_grid) until mrn_dist_gather_end. */
+/* The nodal values a checkpoint keeps and a grid snapshot shows (mass, V,
+ * force, the contact bits), each row from the process that owns it, on
+ * process 0 in place of its own (kept in d->held_mass, ...) until
+ * gather_grid_end. Collective: the processes agree on their buffers
+ * before the sum. */
 enum { GRID_VALUES = 8 }; /* per node: mass, V, force, contact */
 
 static int gather_grid(mrn_sim *sim, mrn_dist *d) {
@@ -485,7 +487,13 @@ static int gather_grid(mrn_sim *sim, mrn_dist *d) {
   double *all = calloc(GRID_VALUES * n, sizeof *all);
   unsigned char *contact = d->rank == 0 ? malloc(n) : NULL;
   int ok = all && (d->rank != 0 || contact);
-  for (size_t i = 0; ok && i < n; i++) {
+  const int rc = mrn_dist_agree(sim, ok ? MRN_OK : mrn_error("parallel: out of memory gathering the grid"));
+  if (rc != MRN_OK) {
+    free(all);
+    free(contact);
+    return rc;
+  }
+  for (size_t i = 0; i < n; i++) {
     if (!mrn_grid_owns(g, (long)i)) continue;
     all[i] = g->mass[i];
     for (int k = 0; k < 3; k++) {
@@ -494,8 +502,8 @@ static int gather_grid(mrn_sim *sim, mrn_dist *d) {
     }
     all[7 * n + i] = g->contact[i];
   }
-  if (ok) mrn_comm_reduce_sum(all, GRID_VALUES * n, 0);
-  if (ok && d->rank == 0) {
+  mrn_comm_reduce_sum(all, GRID_VALUES * n, 0);
+  if (d->rank == 0) {
     for (size_t i = 0; i < n; i++) contact[i] = (unsigned char)all[7 * n + i];
     d->held_mass = g->mass;
     d->held_vel = g->vel;
@@ -508,8 +516,7 @@ static int gather_grid(mrn_sim *sim, mrn_dist *d) {
     return MRN_OK;
   }
   free(all);
-  free(contact);
-  return ok ? MRN_OK : mrn_error("parallel: out of memory gathering the grid");
+  return MRN_OK;
 }
 
 static void gather_grid_end(mrn_sim *sim, mrn_dist *d) {
@@ -557,6 +564,8 @@ int mrn_dist_gather_begin(const mrn_sim *csim) {
       rc = mrn_error("parallel: out of memory gathering the particles");
     }
   }
+  /* process 0 alone may have failed to assemble: agreed before the grid's sum */
+  rc = mrn_dist_agree(sim, rc);
   if (rc == MRN_OK) rc = gather_grid(sim, d);
   d->held_books = books_get(sim);
   mrn_books b = d->held_books;
@@ -633,6 +642,14 @@ int mrn_dist_key_places(const mrn_sim *sim, const int64_t *keys, size_t n, int64
   }
   free(all);
   return rc;
+}
+
+int mrn_dist_gather_grid_begin(const mrn_sim *sim) {
+  return sim->dist ? gather_grid((mrn_sim *)sim, sim->dist) : MRN_OK;
+}
+
+void mrn_dist_gather_grid_end(const mrn_sim *sim) {
+  if (sim->dist) gather_grid_end((mrn_sim *)sim, sim->dist);
 }
 
 int mrn_sim_set_rebalance(mrn_sim *sim, long every, double imbalance) {

@@ -28,7 +28,8 @@
  * process's own. The particle sums (diagnostics, energies, the time step)
  * are then summed over processes, and so are the books each keeps
  * (mrn_books). Files are written by process 0, with the particles gathered
- * there in the order of their ids.
+ * there in the order of their ids, but for the particle snapshots, written
+ * as a piece per process (io/output.h).
  *
  * Ids stay those of a run on one process: next_id is the same on every
  * process. Particles made during a run alike on every process (an inflow
@@ -140,6 +141,11 @@ int mrn_dist_key_places(const struct mrn_sim *sim, const int64_t *keys, size_t n
  * the others keep theirs. Collective. 0 or an error code. */
 int mrn_dist_gather_begin(const struct mrn_sim *sim);
 void mrn_dist_gather_end(const struct mrn_sim *sim);
+/* The grid alone: process 0's nodal mass, velocity, force and contact bits
+ * hold every node's values, each row from the process that owns it, until
+ * mrn_dist_gather_grid_end. Collective. 0 or an error code, agreed. */
+int mrn_dist_gather_grid_begin(const struct mrn_sim *sim);
+void mrn_dist_gather_grid_end(const struct mrn_sim *sim);
 
 /* Every process's n records of rec bytes (`mine`), each ending with the
  * int64 id of its particle, on every process in the order of the ids:

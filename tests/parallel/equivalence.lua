@@ -5,7 +5,8 @@
 -- damping.
 -- Writes the diagnostics every step (NAME.csv) and the final state
 -- (NAME.h5, sim:save: every particle, in the order of their ids); the 2D
--- case also a VTK series every 250 steps (NAME.pvd), for ParaView's reader.
+-- case also a VTK series every 250 steps (NAME.pvd, with grid snapshots in
+-- NAME_grid.pvd), for ParaView's reader.
 -- --set transfer=NAME replaces the case's strategy (XPIC(2): the smoothing's
 -- extra passes, each with its halo sum); --set volumetric=fbar averages the
 -- divergence over the nodes (its scatter with its halo sum); --set
@@ -30,7 +31,7 @@ elseif case == "collapse2d" then
     scheme = { transfer = transfer, stress_update = "USF", volumetric = volumetric }, gravity = { 0, -9.81 },
     boundary = { left = "slip", right = "slip", bottom = { "friction", mu = 0.3 }, top = "free" },
     dt = { cfl = 0.5 }, thermo = 0, diagnostics = name .. ".csv", diagnostics_every = 1,
-    output = { vtk = name, every_steps = 250, fields = { "velocity", "stress", "id" } } }
+    output = { vtk = name, every_steps = 250, fields = { "velocity", "stress", "id" }, grid = true } }
   sim:add_particles(mpm.box{ min = { 0, 0 }, max = { 0.5, 0.8 } }, { material = sand, per_axis = 2 })
 elseif case == "cube3d" then
   local rubber = mpm.material.linear_elastic{ density = 1000, E = 1e6, nu = 0.3 }

@@ -9,6 +9,8 @@
 --                    process that holds it, and every process books its energy as outflow
 --   case=small_grid  8 cells along y for 3 processes (4 each at least)
 --   case=sigint      a long run that the driver interrupts (SIGINT to mpirun)
+--   case=vtk_resume  a VTK snapshot every 10 steps and a checkpoint every 15, for 40 steps:
+--                    robust.sh continues it from its first checkpoint on another process count
 local case = mpm.param("case", "crossing")
 local steel = mpm.material.linear_elastic{ density = 7800, E = 2e8, nu = 0.3 }
 local function check(ok, fmt, ...)
@@ -25,7 +27,11 @@ if case == "crossing" or case == "leave" or case == "outflow" then
   local sim = mpm.simulation{ dim = 2, grid = { size = { 0.4, 1.2 }, cell = 0.1 }, gravity = { 0, 0 },
     scheme = { transfer = "PIC", stress_update = "USL" }, dt = { fixed = 0.01 }, thermo = 0, watchdog = false,
     boundary = { all = "free" }, diagnostics = "crossing.csv", diagnostics_every = 1, name = case,
-    on_leave = case == "outflow" and "delete" or "stop" }
+    on_leave = case == "outflow" and "delete" or "stop",
+    -- a snapshot a step, pieces of empty processes among them (robust.sh reads them); the leave
+    -- case's gathered into one .vtp each
+    output = { vtk = case, every_steps = 1, fields = { "velocity", "stress", "id" }, grid = true,
+               gather = case == "leave" } }
   sim:add_particles(mpm.box{ min = { 0.1, 0.05 }, max = { 0.3, 0.15 } },
                     { material = steel, per_axis = 2, velocity = { 0, 100 } })
   local d0 = sim:diagnostics()
@@ -117,6 +123,12 @@ elseif case == "files" then
   check(mpm.parallel_io("once") == "every", "the mode did not change")
   check(not pcall(mpm.parallel_io, "twice"), "parallel_io accepted 'twice'")
   print("files: written")
+elseif case == "vtk_resume" then
+  local sim = mpm.simulation{ dim = 2, grid = { size = { 1.0, 1.0 }, cell = 0.05 }, gravity = { 0, -9.81 },
+    dt = { cfl = 0.2 }, thermo = 0, name = case, boundary = { all = "slip" },
+    output = { vtk = case, every_steps = 10, fields = { "velocity", "stress", "id" } } }
+  sim:add_particles(mpm.box{ min = { 0.2, 0 }, max = { 0.8, 0.9 } }, { material = steel, per_axis = 2 })
+  sim:run{ steps = 40, checkpoint = { every = 15 } }
 elseif case == "small_grid" then
   local sim = mpm.simulation{ dim = 2, grid = { size = { 1.0, 0.8 }, cell = 0.1 }, thermo = 0 }
   sim:add_particles(mpm.box{ min = { 0.2, 0 }, max = { 0.8, 0.5 } }, { material = steel, per_axis = 2 })

@@ -7,9 +7,13 @@
 # SIGINT to mpirun. Each
 # must end (no hang: every run has a time limit) with its message once and,
 # where the state is kept, one checkpoint.
-# usage: robust.sh MORAINE OUTDIR
+# The crossing's VTK series, a piece per process, two of them empty at each
+# snapshot, is read back with ParaView's reader (check_vtk.py); so are the
+# leave case's gathered series (output{gather = true}) and a series saved on
+# 3 processes and continued on 2 from an earlier checkpoint.
+# usage: robust.sh MORAINE OUTDIR [PYTHON]
 set -u
-moraine=$1 out=$2 here=$(cd "$(dirname "$0")" && pwd)
+moraine=$1 out=$2 py=${3:-/usr/bin/python3} here=$(cd "$(dirname "$0")" && pwd)
 mpirun="$here/../../scripts/mpirun"
 deck="$here/robust.lua"
 rm -rf "$out"; mkdir -p "$out"
@@ -29,6 +33,9 @@ run3 crossing; s=$?
 [ $s -eq 0 ] || { bad "crossing exited $s"; cat "$out/crossing.out"; }
 grep -q "cuts 0 4 8 12" "$out/crossing.out" || bad "crossing: not cut into three slabs of 4 cells"
 say "crossing: exit $s; $(grep -c 'holds' "$out/crossing.out") line(s) of process 0's report"
+"$py" "$here/check_vtk.py" --series "$out/crossing" crossing 8 --empty >"$out/crossing_vtk.out" 2>&1 ||
+  { bad "crossing: its VTK series"; cat "$out/crossing_vtk.out"; }
+say "crossing: VTK series: $(grep -c 'particles in pieces' "$out/crossing_vtk.out") snapshot(s) read, each particle once"
 
 # leave: the diagnosis once, one checkpoint, every process stopped
 run3 leave; s=$?
@@ -37,6 +44,11 @@ n=$(grep -c "left the grid" "$out/leave.out")
 [ "$n" -eq 1 ] || { bad "leave: the diagnosis printed $n times"; cat "$out/leave.out"; }
 [ -s "$out/leave/leave_failed.h5" ] || bad "leave: no checkpoint leave_failed.h5"
 say "leave: exit $s; $(grep -o 'particle [0-9]* left the grid[^;]*' "$out/leave.out" | head -1)"
+# its series (output{gather = true}): one .vtp per snapshot, the last one written on the failure
+[ -z "$(find "$out/leave" -name '*.pvtp')" ] || bad "leave: a gathered series holds .pvtp files"
+"$py" "$here/check_vtk.py" --series "$out/leave" leave 8 >"$out/leave_vtk.out" 2>&1 ||
+  { bad "leave: its gathered VTK series"; cat "$out/leave_vtk.out"; }
+say "leave: gathered VTK series: $(grep -c 'one file' "$out/leave_vtk.out") .vtp snapshot(s) read"
 
 # outflow: deleted where it is, booked by every process, summed once
 run3 outflow; s=$?
@@ -69,6 +81,17 @@ n=$(grep -c -F "$expect" "$out/small_grid.out")
 [ "$n" -eq 1 ] || { bad "small_grid: the message printed $n times"; cat "$out/small_grid.out"; }
 say "small_grid: exit $s; $expect"
 
+# vtk_resume: 40 steps on 3 processes, a snapshot every 10, checkpoints at 15 and 30; continued on 2
+# processes from the one at 15: the 3 later snapshots (their .pvtp and 3 pieces each) are replaced
+run3 vtk_resume; s=$?
+[ $s -eq 0 ] || { bad "vtk_resume exited $s"; cat "$out/vtk_resume.out"; }
+OMP_NUM_THREADS=1 timeout 300 "$mpirun" -np 2 "$moraine" -q -o "$out/vtk_resume" \
+  --restart "$out/vtk_resume/vtk_resume_checkpoint_0000000015.h5" --set case=vtk_resume "$deck" \
+  >"$out/vtk_resume_2.out" 2>&1 || { bad "vtk_resume: the continuation on 2 processes failed"; cat "$out/vtk_resume_2.out"; }
+"$py" "$here/check_vtk.py" --series "$out/vtk_resume" vtk_resume 864 >"$out/vtk_resume_vtk.out" 2>&1 ||
+  { bad "vtk_resume: its VTK series"; cat "$out/vtk_resume_vtk.out"; }
+say "vtk_resume: $(grep -c 'particles in pieces' "$out/vtk_resume_vtk.out") snapshot(s) read; pieces $(grep -o '\[[0-9, ]*\]' "$out/vtk_resume_vtk.out" | tr '\n' ' ')"
+
 # sigint: SIGINT to mpirun; every process finishes its step, one checkpoint
 # --foreground: timeout passes a signal it gets to mpirun alone (without it,
 # also to its whole process group, the processes included, a second SIGINT
@@ -87,5 +110,5 @@ n=$(grep -c "interrupted by signal" "$out/sigint.out")
 [ -z "$(find "$out" -name '.*.tmp.*')" ] || bad "temporary files left"
 say "sigint: exit $s; $(grep -o 'interrupted by signal [0-9]* after step [0-9]*' "$out/sigint.out")"
 
-if [ $fail -eq 0 ]; then echo "7 passed, 0 failed"; else echo "some failed"; fi
+if [ $fail -eq 0 ]; then echo "8 passed, 0 failed"; else echo "some failed"; fi
 exit $fail
