@@ -19,6 +19,11 @@
  * - the touch bits of friction faces are combined the same way;
  * - after the step, particles whose cell left the slab go to the process
  *   that owns it, wherever that is (a particle may cross several slabs).
+ * Walls (dist_walls.c): a wall's contact columns may reach beyond a band,
+ * so every process works on the columns of all, whose sums are taken over
+ * the processes (each node by its row's owner), and the reactions are summed
+ * at the end of the step, so that every process moves a rigid body alike.
+ * Contact between bodies halo-sums each body's fields like the single one.
  * Every exchange first agrees on the step's outcome: a process that failed
  * (a particle out of the grid, a bad state) makes every process stop with
  * its message, never one process waiting for another.

@@ -13,14 +13,20 @@
 --                 (mu = 0.2) while sliding past each other vertically,
 --                 FLIP/MUSL: the interface is vertical over their height.
 -- Writes the diagnostics (with the walls' columns) every step (NAME.csv)
--- and the final state (NAME.h5, sim:save: the particles and the walls).
+-- and the final state (NAME.h5, sim:save: the particles and the walls);
+-- --set load=FILE continues from a checkpoint of the incline or the push
+-- instead (tests/parallel/restart.py; a simulation read with mpm.load has
+-- no contact pairs, doc/lua-api.md).
 local case = mpm.param("case", "incline")
 local steps = mpm.param("steps", 300)
 local name = mpm.param("name", case)
 local rebalance = mpm.param("rebalance", 0)
+local load = mpm.param("load", "")
 local elastic = mpm.material.linear_elastic{ density = 1000, E = 2e5, nu = 0.3 }
 local sim
-if case == "incline" then
+if load ~= "" then
+  sim = mpm.load(load, { thermo = 0, diagnostics = name .. ".csv" })
+elseif case == "incline" then
   local th = math.rad(30)
   local t, n = { math.cos(th), math.sin(th) }, { -math.sin(th), math.cos(th) }
   -- the plane through (0, 0.1), rising to the right; the block on it, 0.3 m along it, 0.12 m thick
