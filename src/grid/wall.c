@@ -379,9 +379,9 @@ mrn_wall *mrn_walls_find(mrn_walls *ws, const char *name) {
  * as for the friction faces (boundary.c), which this rule was chosen for */
 #define WALL_TOUCH_SLACK 0.5
 
-/* doubles per column in mrn_wall.sums: 7 + 2 while the columns are built,
- * N, M, P and the impulse J while they act */
-#define WALL_SUMS 9
+/* doubles per column in mrn_wall.sums: 7 + COLUMN_BITS while the columns
+ * are built, N, M, P and the impulse J while they act */
+enum { COLUMN_BITS = 4, WALL_SUMS = 7 + COLUMN_BITS };
 
 static int grow(void **p, size_t bytes) {
   void *q = realloc(*p, bytes);
@@ -544,10 +544,14 @@ static int local_patches(const mrn_wall *w, patch_entry **e, long long **keys, s
   return MRN_OK;
 }
 
+/* the state bits a column takes from the union of its nodes', one number each */
+static const unsigned char column_bit[COLUMN_BITS - 1] = {MRN_WALL_CONTACT, MRN_WALL_OVER, MRN_WALL_CLEAR};
+
 /* A column's sums over its nodes here, e[lo .. hi - 1]: sums[0 .. 7) the
  * normals (into the wall) and velocities of the nodes this process books
- * and their count, to be summed over the processes; bits[0 .. 2) the union
- * of their state bits and minus the first node's index, to be maximised */
+ * and their count, to be summed over the processes; bits[0 .. 3) 1 where
+ * one of them has the bit column_bit[k], bits[3] minus the first node's
+ * index, to be maximised */
 static void column_sums(const mrn_wall *w, const mrn_grid *g, const patch_entry *e, size_t lo, size_t hi, double *sums,
                         double *bits) {
   unsigned seen = 0;
@@ -558,15 +562,16 @@ static void column_sums(const mrn_wall *w, const mrn_grid *g, const patch_entry 
     for (int d = 0; d < 3; d++) sums[d] -= w->n[3 * k + d], sums[3 + d] += w->w[3 * k + d];
     sums[6] += 1.0;
   }
-  bits[0] = seen;
-  if (hi > lo) bits[1] = -(double)e[lo].node; /* the lowest index: the nodes are sorted */
+  for (int k = 0; k < COLUMN_BITS - 1; k++) bits[k] = (seen & column_bit[k]) != 0;
+  if (hi > lo) bits[COLUMN_BITS - 1] = -(double)e[lo].node; /* the lowest index: the nodes are sorted */
 }
 
 /* Column c from its summed sums: its mean normal and velocity, its contact
  * bit and first node; 0 when the material over its patch stands clear of the
  * wall (gap_check): then it is no column, and its nodes lose their contact */
 static int column_close(mrn_wall *w, size_t c, const double *sums, const double *bits) {
-  const unsigned char seen = (unsigned char)bits[0];
+  unsigned char seen = 0;
+  for (int k = 0; k < COLUMN_BITS - 1; k++) seen |= bits[k] > 0.0 ? column_bit[k] : 0;
   if ((seen & MRN_WALL_CLEAR) && !(seen & MRN_WALL_OVER)) return 0;
   double *n = w->col_n + 3 * c, *v = w->col_w + 3 * c;
   const double len = sqrt(dot3(sums, sums));
@@ -575,7 +580,7 @@ static int column_close(mrn_wall *w, size_t c, const double *sums, const double 
     v[d] = sums[3 + d] / sums[6];
   }
   w->col_state[c] = seen & MRN_WALL_CONTACT;
-  w->col_first[c] = (size_t)-bits[1];
+  w->col_first[c] = (size_t)-bits[COLUMN_BITS - 1];
   return 1;
 }
 
@@ -584,7 +589,7 @@ static int column_close(mrn_wall *w, size_t c, const double *sums, const double 
  * processes when shared */
 static void fill_columns(mrn_wall *w, const mrn_grid *g, const mrn_walls_share *share, const patch_entry *e,
                          const long long *all, size_t total) {
-  double *sums = w->sums, *bits = w->sums + 7 * total;
+  double *sums = w->sums, *bits = w->sums + 7 * total; /* COLUMN_BITS per column */
   size_t *from = w->col_start; /* where each patch's nodes start in e, until overwritten below */
   memset(sums, 0, 7 * total * sizeof *sums);
   for (size_t c = 0, q = 0; c <= total; c++) {
@@ -592,18 +597,20 @@ static void fill_columns(mrn_wall *w, const mrn_grid *g, const mrn_walls_share *
     while (c < total && q < w->count && memcmp(e[q].key, all + 3 * c, sizeof e[q].key) == 0) q++;
   }
   for (size_t c = 0; c < total; c++) {
-    bits[2 * c] = 0.0, bits[2 * c + 1] = -HUGE_VAL;
-    column_sums(w, g, e, from[c], from[c + 1], sums + 7 * c, bits + 2 * c);
+    double *b = bits + COLUMN_BITS * c;
+    for (int k = 0; k < COLUMN_BITS - 1; k++) b[k] = 0.0;
+    b[COLUMN_BITS - 1] = -HUGE_VAL;
+    column_sums(w, g, e, from[c], from[c + 1], sums + 7 * c, b);
   }
   if (share) {
     share->reduce(share->ctx, sums, 7 * total, MRN_COMM_SUM);
-    share->reduce(share->ctx, bits, 2 * total, MRN_COMM_MAX);
+    share->reduce(share->ctx, bits, COLUMN_BITS * total, MRN_COMM_MAX);
   }
   w->ncol = 0;
   size_t m = 0;
   for (size_t c = 0; c < total; c++) {
     const size_t lo = from[c], hi = from[c + 1]; /* read before column ncol <= c overwrites them */
-    if (!column_close(w, w->ncol, sums + 7 * c, bits + 2 * c)) {
+    if (!column_close(w, w->ncol, sums + 7 * c, bits + COLUMN_BITS * c)) {
       for (size_t q = lo; q < hi; q++) w->state[e[q].node] &= (unsigned char)~(MRN_WALL_TOUCH | MRN_WALL_CONTACT);
       continue;
     }

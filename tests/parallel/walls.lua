@@ -1,8 +1,9 @@
 -- Walls, rigid bodies and contact between bodies on 1, 2 and 3 processes
 -- (tests/parallel/equivalence.py runs it under mpirun and compares). The
 -- slabs are cut along y, so each case puts its contact across the cuts:
---   case=incline  an elastic block sliding down (from 1 m/s) a 30 degree plane wall with
---                 friction (mu = 0.3) that moves along itself, FLIP/USF:
+--   case=incline  an elastic block sliding down (from 1 m/s) a 30 degree
+--                 plane wall with friction (mu = 0.3, gap_check) that moves
+--                 along itself, FLIP/USF:
 --                 the plane's contact columns lie across the rows the cuts
 --                 fall in;
 --   case=push     a box rigid body (free in x and rz) pushed by a constant
@@ -36,7 +37,7 @@ elseif case == "incline" then
     boundary = { all = "slip", top = "free" }, dt = { cfl = 0.4 }, thermo = 0, diagnostics = name .. ".csv",
     diagnostics_every = 1 }
   sim:add_wall{ name = "slope", shape = "plane", point = { 0, 0.1 }, normal = n, kind = "friction", mu = 0.3,
-                velocity = { 0.2 * t[1], 0.2 * t[2] } }
+                gap_check = true, velocity = { 0.2 * t[1], 0.2 * t[2] } }
   sim:add_particles(mpm.polygon{ vertices = { at(0.6, 0), at(0.9, 0), at(0.9, 0.12), at(0.6, 0.12) } },
                     { material = elastic, per_axis = 2, velocity = { -t[1], -t[2] } })
 elseif case == "push" then
