@@ -122,16 +122,24 @@ void mrn_grid_active_switch(mrn_grid *g, unsigned clear) {
   spans_to_ranges(a, g);
 }
 
+/* [*lo, *hi) widened to cover [x0, x1) (an empty span becomes it) */
+static void widen(int *lo, int *hi, int x0, int x1) {
+  if (*lo >= *hi) {
+    *lo = x0;
+    *hi = x1;
+    return;
+  }
+  if (x0 < *lo) *lo = x0;
+  if (x1 > *hi) *hi = x1;
+}
+
 void mrn_grid_active_widen(mrn_grid *g, size_t row, int x0, int x1) {
   mrn_grid_active *a = g->active;
   if (x0 >= x1) return;
-  if (a->lo[row] >= a->hi[row]) {
-    a->lo[row] = x0;
-    a->hi[row] = x1;
-    return;
-  }
-  if (x0 < a->lo[row]) a->lo[row] = x0;
-  if (x1 > a->hi[row]) a->hi[row] = x1;
+  widen(&a->lo[row], &a->hi[row], x0, x1);
+  /* and the spans a switch without a new begin keeps (a P2G reusing the
+   * binning): else it would clear what the halo sum added there */
+  widen(&a->new_lo[row], &a->new_hi[row], x0, x1);
 }
 
 void mrn_grid_active_refresh(mrn_grid *g) { spans_to_ranges(g->active, g); }

@@ -54,7 +54,8 @@ void mrn_grid_active_switch(struct mrn_grid *g, unsigned clear);
 
 /* Widen the span of `row` to cover [x0, x1) as well (an empty interval
  * changes nothing), for nodes that are zero and about to be added to (a
- * distributed run's halo sum, solver/dist.h); then refresh the ranges. */
+ * distributed run's halo sum, solver/dist.h); then refresh the ranges. A
+ * switch without a new begin keeps the widened span. */
 void mrn_grid_active_widen(struct mrn_grid *g, size_t row, int x0, int x1);
 void mrn_grid_active_refresh(struct mrn_grid *g);
 

@@ -51,14 +51,18 @@ static inline size_t column_node(const mrn_contact_column *c, int l) {
   return c->nodes ? c->nodes[l] : (size_t)((long)c->first + l * c->step);
 }
 
-/* The column's normal momentum into the obstacle, relative to it,
- * N = sum m (v - w) . n, over the nodes above the mass floor (lighter ones
- * are empty, or hold a kernel's negative weight with `wls`). */
-static double column_push(const mrn_contact_column *c, const mrn_grid *g, double mass_floor, const double *vel) {
+/* node n counts in the column's sums: above the mass floor (lighter nodes
+ * are empty, or hold a kernel's negative weight with `wls`) and, in a
+ * shared column, on this process's rows */
+static inline int column_sums(const mrn_contact_column *c, const mrn_grid *g, double mass_floor, size_t n) {
+  return g->mass[n] > mass_floor && (!c->shared || mrn_grid_owns(g, (long)n));
+}
+
+double mrn_contact_push(const mrn_contact_column *c, const mrn_grid *g, double mass_floor, const double *vel) {
   double N = 0.0;
   for (int l = 0; l < c->count; l++) {
     const size_t n = column_node(c, l);
-    if (!(g->mass[n] > mass_floor)) continue;
+    if (!column_sums(c, g, mass_floor, n)) continue;
     const double *v = vel + 3 * n;
     /* a face's (m v) n_axis as one product: a compiler that fuses the
      * multiply-add then rounds as it always did */
@@ -68,37 +72,42 @@ static double column_push(const mrn_contact_column *c, const mrn_grid *g, double
   return N;
 }
 
-/* remove the normal velocity relative to the obstacle from every node of
- * the column, adding the impulse to J */
-static void column_hold(const mrn_contact_column *c, const mrn_grid *g, double mass_floor, double *vel, double J[3]) {
+int mrn_contact_held(double N, int with_friction, int touching, unsigned char *state, unsigned char bit) {
+  const int held = touching && (N > 0.0 || (!with_friction && (*state & bit)));
+  if (with_friction) *state = (unsigned char)(held ? *state | bit : *state & ~bit);
+  return held;
+}
+
+void mrn_contact_hold(const mrn_contact_column *c, const mrn_grid *g, double mass_floor, double *vel, double J[3]) {
   for (int l = 0; l < c->count; l++) {
     const size_t n = column_node(c, l);
     if (!(g->mass[n] > mass_floor)) continue;
+    const int books = mrn_grid_owns(g, (long)n); /* once over the processes */
     double *v = vel + 3 * n;
     const double vn = (v[0] - c->w[0]) * c->n[0] + (v[1] - c->w[1]) * c->n[1] + (v[2] - c->w[2]) * c->n[2];
     for (int d = 0; d < 3; d++)
       if (c->n[d] != 0.0) { /* a face's tangential components stay untouched, the sign of a zero included */
         v[d] -= vn * c->n[d];
-        J[d] -= g->mass[n] * vn * c->n[d];
+        if (books) J[d] -= g->mass[n] * vn * c->n[d];
       }
   }
 }
 
-/* Coulomb friction on a column in contact whose normal momentum N was just
- * removed: the column's tangential momentum relative to the obstacle, P_t,
- * is reduced by min(mu N, |P_t|) along -P_t, the same velocity change for
- * every node (the column's mean relative velocity never reverses). Adds the
- * impulse to J and returns the frictional work sum m dV . (V_after - w)
- * (000, Eq. 66, in the obstacle's frame). */
-static double column_friction(const mrn_contact_column *c, const mrn_grid *g, double mass_floor, double *vel,
-                              double mu, double N, double J[3]) {
-  double M = 0.0, P[3] = {0.0, 0.0, 0.0};
+void mrn_contact_slide_sums(const mrn_contact_column *c, const mrn_grid *g, double mass_floor, const double *vel,
+                            double MP[4]) {
+  for (int k = 0; k < 4; k++) MP[k] = 0.0;
   for (int l = 0; l < c->count; l++) {
     const size_t n = column_node(c, l);
-    if (!(g->mass[n] > mass_floor)) continue;
-    M += g->mass[n];
-    for (int d = 0; d < 3; d++) P[d] += g->mass[n] * (vel[3 * n + d] - c->w[d]);
+    if (!column_sums(c, g, mass_floor, n)) continue;
+    MP[0] += g->mass[n];
+    for (int d = 0; d < 3; d++) MP[1 + d] += g->mass[n] * (vel[3 * n + d] - c->w[d]);
   }
+}
+
+double mrn_contact_slide(const mrn_contact_column *c, const mrn_grid *g, double mass_floor, double *vel, double mu,
+                         double N, const double MP[4], double J[3]) {
+  const double M = MP[0];
+  double P[3] = {MP[1], MP[2], MP[3]};
   /* what is left of the normal part is round-off (none on a face) */
   const double Pn = P[0] * c->n[0] + P[1] * c->n[1] + P[2] * c->n[2];
   if (Pn != 0.0)
@@ -110,9 +119,11 @@ static double column_friction(const mrn_contact_column *c, const mrn_grid *g, do
   for (int l = 0; l < c->count; l++) {
     const size_t n = column_node(c, l);
     if (!(g->mass[n] > mass_floor)) continue;
+    const int books = mrn_grid_owns(g, (long)n); /* once over the processes */
     for (int d = 0; d < 3; d++) {
       const double dv = -Jt * P[d] / (pt * M);
       vel[3 * n + d] += dv;
+      if (!books) continue;
       work += g->mass[n] * dv * (vel[3 * n + d] - c->w[d]);
       J[d] += g->mass[n] * dv;
     }
@@ -139,17 +150,23 @@ static double column_friction(const mrn_contact_column *c, const mrn_grid *g, do
  * column resting on the obstacle can seem to leave it before the forces have
  * acted; letting it go then, and catching it again in V~, gave the stress
  * update a velocity field the step did not follow. Separation is decided with
- * the forces, in V~. */
+ * the forces, in V~.
+ *
+ * Friction: the column's tangential momentum relative to the obstacle, P_t,
+ * is reduced by min(mu N, |P_t|) along -P_t, the same velocity change for
+ * every node (the column's mean relative velocity never reverses); the
+ * frictional work is sum m dV . (V_after - w) (000, Eq. 66, in the
+ * obstacle's frame). */
 double mrn_contact_apply(const mrn_contact_column *c, mrn_grid *g, double mass_floor, double *vel, double mu,
                          int with_friction, int touching, unsigned char *state, unsigned char bit, double J[3]) {
-  const double N = column_push(c, g, mass_floor, vel);
-  const int held = touching && (N > 0.0 || (!with_friction && (*state & bit)));
-  if (with_friction) *state = (unsigned char)(held ? *state | bit : *state & ~bit);
-  if (!held) return 0.0;
-  double scratch[3] = {0.0, 0.0, 0.0};
+  const double N = mrn_contact_push(c, g, mass_floor, vel);
+  if (!mrn_contact_held(N, with_friction, touching, state, bit)) return 0.0;
+  double scratch[3] = {0.0, 0.0, 0.0}, MP[4];
   if (!J) J = scratch;
-  column_hold(c, g, mass_floor, vel, J);
-  return with_friction ? column_friction(c, g, mass_floor, vel, mu, N, J) : 0.0;
+  mrn_contact_hold(c, g, mass_floor, vel, J);
+  if (!with_friction) return 0.0;
+  mrn_contact_slide_sums(c, g, mass_floor, vel, MP);
+  return mrn_contact_slide(c, g, mass_floor, vel, mu, N, MP, J);
 }
 
 /* the node index range [lo, hi] of the layers on and beyond one face
@@ -280,9 +297,9 @@ static double apply_friction_face(const mrn_face_bc *f, mrn_grid *g, double mass
     for (int j = lo[1]; j <= hi[1]; j++)
       for (int i = lo[0]; i <= hi[0]; i++) {
         c.first = mrn_grid_index(g, i, j, k);
-        const double w = mrn_contact_apply(&c, g, mass_floor, vel, f->mu, with_friction,
-                                           (g->touch[c.first] & bit) != 0, g->contact + c.first, bit, NULL);
-        if (mrn_grid_owns(g, (long)c.first)) work += w; /* booked once in a distributed run */
+        /* a column lies on one row or on the first slab's: whole on the processes that hold it */
+        work += mrn_contact_apply(&c, g, mass_floor, vel, f->mu, with_friction, (g->touch[c.first] & bit) != 0,
+                                  g->contact + c.first, bit, NULL);
       }
   return work;
 }

@@ -61,6 +61,8 @@ typedef struct mrn_contact_column {
   int count;
   const size_t *nodes;
   int axis;    /* the normal's axis when it is one (a face), else -1 */
+  int shared;  /* 1: the nodes may lie on several processes (a wall's column, solver/dist.h): the sums of
+                * mrn_contact_push and _slide_sums take this process's rows (mrn_grid_owns) only */
   double n[3]; /* unit normal pointing into the obstacle */
   double w[3]; /* the obstacle's velocity there (m/s) */
 } mrn_contact_column;
@@ -71,9 +73,27 @@ typedef struct mrn_contact_column {
  * contact at the end of the last step (bit `bit` of *state, which the call
  * with friction updates). With friction, the tangential impulse is bounded by
  * mu times the normal one. The impulse on the material is added to J (may be
- * NULL); returns the frictional work sum m dV . (V - w), <= 0. */
+ * NULL); returns the frictional work sum m dV . (V - w), <= 0 (both of
+ * the nodes on this process's rows, mrn_grid_owns). */
 double mrn_contact_apply(const mrn_contact_column *c, mrn_grid *g, double mass_floor, double *vel, double mu,
                          int with_friction, int touching, unsigned char *state, unsigned char bit, double J[3]);
+
+/* The steps of mrn_contact_apply, for a caller that sums a shared column's
+ * N and M, P over the processes between them (grid/wall.c): N, the normal
+ * momentum into the obstacle (push); whether the column is held (held:
+ * with friction it sets or clears `bit` of *state); the normal velocity
+ * removed (hold); M and P, the column's mass and momentum relative to the
+ * obstacle (slide_sums); friction from the summed N, M, P (slide: returns
+ * its work). The impulse added to J and the work are those of the nodes
+ * on this process's rows (mrn_grid_owns): summed over the processes, each
+ * node counts once. */
+double mrn_contact_push(const mrn_contact_column *c, const mrn_grid *g, double mass_floor, const double *vel);
+int mrn_contact_held(double N, int with_friction, int touching, unsigned char *state, unsigned char bit);
+void mrn_contact_hold(const mrn_contact_column *c, const mrn_grid *g, double mass_floor, double *vel, double J[3]);
+void mrn_contact_slide_sums(const mrn_contact_column *c, const mrn_grid *g, double mass_floor, const double *vel,
+                            double MP[4]);
+double mrn_contact_slide(const mrn_contact_column *c, const mrn_grid *g, double mass_floor, double *vel, double mu,
+                         double N, const double MP[4], double J[3]);
 
 /* 1 when a particle at surface coordinate x, of half side r, lies over the
  * patch of a face or wall centred at c (one cell wide): a column is touched

@@ -308,6 +308,9 @@ static void wall_release(mrn_wall *w) {
   free(w->col_start);
   free(w->col_n);
   free(w->col_w);
+  free(w->col_first);
+  free(w->col_state);
+  free(w->sums);
 }
 
 /* the polygon's corners or the mesh's triangles, copied */
@@ -376,6 +379,10 @@ mrn_wall *mrn_walls_find(mrn_walls *ws, const char *name) {
  * as for the friction faces (boundary.c), which this rule was chosen for */
 #define WALL_TOUCH_SLACK 0.5
 
+/* doubles per column in mrn_wall.sums: 7 + COLUMN_BITS while the columns
+ * are built, N, M, P and the impulse J while they act */
+enum { COLUMN_BITS = 4, WALL_SUMS = 7 + COLUMN_BITS };
+
 static int grow(void **p, size_t bytes) {
   void *q = realloc(*p, bytes);
   if (!q) return mrn_error("out of memory for a wall's contacts");
@@ -388,9 +395,7 @@ static int touched_push(mrn_wall *w, size_t node, const double n[3], const doubl
     size_t cap = w->cap ? 2 * w->cap : 256;
     if (grow((void **)&w->node, cap * sizeof *w->node) || grow((void **)&w->n, 3 * cap * sizeof *w->n) ||
         grow((void **)&w->w, 3 * cap * sizeof *w->w) || grow((void **)&w->key, 3 * cap * sizeof *w->key) ||
-        grow((void **)&w->col_node, cap * sizeof *w->col_node) ||
-        grow((void **)&w->col_start, (cap + 1) * sizeof *w->col_start) ||
-        grow((void **)&w->col_n, 3 * cap * sizeof *w->col_n) || grow((void **)&w->col_w, 3 * cap * sizeof *w->col_w))
+        grow((void **)&w->col_node, cap * sizeof *w->col_node))
       return MRN_ERR;
     w->cap = cap;
   }
@@ -431,6 +436,13 @@ static int over_patch(const mrn_wall *w, const mrn_grid *g, const long long key[
   return 1;
 }
 
+/* the patch of a node: the cell-sized piece of the surface nearest it */
+static void patch_key(const mrn_grid *g, const double uv[3], long long key[3]) {
+  key[0] = (long long)uv[2];
+  key[1] = llround(uv[0] * g->inv_cell);
+  key[2] = llround(uv[1] * g->inv_cell);
+}
+
 /* Visit the nodes inside the wall (signed distance <= 0) within `reach`
  * cells of a particle at x (the nodes its momentum lands in); uvp: its
  * nearest point of the surface, r its half side. A particle on the wall
@@ -459,8 +471,8 @@ static int touch_visit(mrn_wall *w, const mrn_grid *g, const double *x, const do
           if (outside_push(w, node)) return MRN_ERR;
           continue;
         }
-        /* the patch: the cell-sized piece of the surface nearest the node */
-        const long long key[3] = {(long long)uv[2], llround(uv[0] * g->inv_cell), llround(uv[1] * g->inv_cell)};
+        long long key[3];
+        patch_key(g, uv, key);
         if (w->spec.gap_check && over_patch(w, g, key, uvp, r)) w->state[node] |= on ? MRN_WALL_OVER : MRN_WALL_CLEAR;
         if (!on || (st & MRN_WALL_TOUCH)) continue;
         mrn_wall_velocity_at(w, g->dim, xn, v);
@@ -468,6 +480,23 @@ static int touch_visit(mrn_wall *w, const mrn_grid *g, const double *x, const do
         if (touched_push(w, node, n, v, key)) return MRN_ERR;
       }
   return MRN_OK;
+}
+
+/* a node a neighbouring process's material touched (mrn_walls_share.band_or) */
+typedef struct fresh_ctx {
+  mrn_wall *w;
+  const mrn_grid *g;
+} fresh_ctx;
+
+static int touch_fresh(void *arg, size_t node) {
+  const fresh_ctx *f = arg;
+  double xn[3], n[3], v[3], uv[3];
+  long long key[3];
+  mrn_grid_node_position(f->g, node, xn);
+  wall_distance_uv(f->w, f->g->dim, xn, n, uv, HUGE_VAL, 1e-9 * f->g->cell);
+  patch_key(f->g, uv, key);
+  mrn_wall_velocity_at(f->w, f->g->dim, xn, v);
+  return touched_push(f->w, node, n, v, key);
 }
 
 /* a touched node as the sort sees it: its patch, its node, its place */
@@ -484,56 +513,157 @@ static int by_patch(const void *a, const void *b) {
   return p->node < q->node ? -1 : p->node > q->node;
 }
 
-/* close the column of order[lo .. hi - 1]: its mean normal and velocity */
-static void column_close(mrn_wall *w, const size_t *order, size_t lo, size_t hi) {
-  double *n = w->col_n + 3 * w->ncol, *v = w->col_w + 3 * w->ncol;
-  for (int d = 0; d < 3; d++) n[d] = v[d] = 0.0;
-  for (size_t k = lo; k < hi; k++)
-    for (int d = 0; d < 3; d++) n[d] -= w->n[3 * order[k] + d], v[d] += w->w[3 * order[k] + d] / (double)(hi - lo);
-  const double len = sqrt(dot3(n, n));
-  for (int d = 0; d < 3; d++) n[d] = len > 0.0 ? n[d] / len : 0.0;
-  w->ncol++;
-  w->col_start[w->ncol] = hi;
-}
-
-/* group the touched nodes into columns, one per surface patch */
-static int build_columns(mrn_wall *w) {
-  w->ncol = 0;
-  if (!w->count) return MRN_OK;
-  patch_entry *e = malloc(w->count * sizeof *e);
-  size_t *order = malloc(w->count * sizeof *order);
-  if (!e || !order) {
-    free(e), free(order);
-    return mrn_error("out of memory for a wall's contacts");
-  }
-  for (size_t k = 0; k < w->count; k++) {
-    memcpy(e[k].key, w->key + 3 * k, sizeof e[k].key);
-    e[k].node = w->node[k], e[k].k = k;
-  }
-  qsort(e, w->count, sizeof *e, by_patch);
-  w->col_start[0] = 0;
-  size_t lo = 0, m = 0;
-  for (size_t k = 0; k < w->count; k++) {
-    if (k + 1 < w->count && memcmp(e[k].key, e[k + 1].key, sizeof e[k].key) == 0) continue;
-    unsigned char seen = 0;
-    for (size_t q = lo; q <= k; q++) seen |= w->state[e[q].node];
-    if ((seen & MRN_WALL_CLEAR) && !(seen & MRN_WALL_OVER)) {
-      /* the material over this patch stands clear of the wall: no contact */
-      for (size_t q = lo; q <= k; q++) w->state[e[q].node] &= (unsigned char)~(MRN_WALL_TOUCH | MRN_WALL_CONTACT);
-    } else {
-      const size_t first = m;
-      for (size_t q = lo; q <= k; q++, m++) order[m] = e[q].k, w->col_node[m] = e[q].node;
-      column_close(w, order, first, m);
-    }
-    lo = k + 1;
-  }
-  free(e), free(order);
+/* room for n columns */
+static int columns_reserve(mrn_wall *w, size_t n) {
+  if (n <= w->col_cap) return MRN_OK;
+  const size_t cap = n > 2 * w->col_cap ? n : 2 * w->col_cap;
+  if (grow((void **)&w->col_start, (cap + 1) * sizeof *w->col_start) ||
+      grow((void **)&w->col_first, cap * sizeof *w->col_first) || grow((void **)&w->col_n, 3 * cap * sizeof *w->col_n) ||
+      grow((void **)&w->col_w, 3 * cap * sizeof *w->col_w) || grow((void **)&w->col_state, cap) ||
+      grow((void **)&w->sums, WALL_SUMS * cap * sizeof *w->sums))
+    return MRN_ERR;
+  w->col_cap = cap;
   return MRN_OK;
 }
 
+/* The touched nodes sorted by patch, then node (e), and the patches' keys
+ * (3 each, *nkeys of them, in that order) */
+static int local_patches(const mrn_wall *w, patch_entry **e, long long **keys, size_t *nkeys) {
+  *nkeys = 0;
+  *e = malloc((w->count + 1) * sizeof **e);
+  *keys = malloc((3 * w->count + 1) * sizeof **keys);
+  if (!*e || !*keys) return mrn_error("out of memory for a wall's contacts");
+  for (size_t k = 0; k < w->count; k++) {
+    memcpy((*e)[k].key, w->key + 3 * k, sizeof (*e)[k].key);
+    (*e)[k].node = w->node[k], (*e)[k].k = k;
+  }
+  qsort(*e, w->count, sizeof **e, by_patch);
+  for (size_t k = 0; k < w->count; k++)
+    if (k == 0 || memcmp((*e)[k].key, (*e)[k - 1].key, sizeof (*e)[k].key) != 0)
+      memcpy(*keys + 3 * (*nkeys)++, (*e)[k].key, sizeof (*e)[k].key);
+  return MRN_OK;
+}
+
+/* the state bits a column takes from the union of its nodes', one number each */
+static const unsigned char column_bit[COLUMN_BITS - 1] = {MRN_WALL_CONTACT, MRN_WALL_OVER, MRN_WALL_CLEAR};
+
+/* A column's sums over its nodes here, e[lo .. hi - 1]: sums[0 .. 7) the
+ * normals (into the wall) and velocities of the nodes this process books
+ * and their count, to be summed over the processes; bits[0 .. 3) 1 where
+ * one of them has the bit column_bit[k], bits[3] minus the first node's
+ * index, to be maximised */
+static void column_sums(const mrn_wall *w, const mrn_grid *g, const patch_entry *e, size_t lo, size_t hi, double *sums,
+                        double *bits) {
+  unsigned seen = 0;
+  for (size_t q = lo; q < hi; q++) {
+    const size_t k = e[q].k;
+    seen |= w->state[e[q].node];
+    if (!mrn_grid_owns(g, (long)e[q].node)) continue;
+    for (int d = 0; d < 3; d++) sums[d] -= w->n[3 * k + d], sums[3 + d] += w->w[3 * k + d];
+    sums[6] += 1.0;
+  }
+  for (int k = 0; k < COLUMN_BITS - 1; k++) bits[k] = (seen & column_bit[k]) != 0;
+  if (hi > lo) bits[COLUMN_BITS - 1] = -(double)e[lo].node; /* the lowest index: the nodes are sorted */
+}
+
+/* Column c from its summed sums: its mean normal and velocity, its contact
+ * bit and first node; 0 when the material over its patch stands clear of the
+ * wall (gap_check): then it is no column, and its nodes lose their contact */
+static int column_close(mrn_wall *w, size_t c, const double *sums, const double *bits) {
+  unsigned char seen = 0;
+  for (int k = 0; k < COLUMN_BITS - 1; k++) seen |= bits[k] > 0.0 ? column_bit[k] : 0;
+  if ((seen & MRN_WALL_CLEAR) && !(seen & MRN_WALL_OVER)) return 0;
+  double *n = w->col_n + 3 * c, *v = w->col_w + 3 * c;
+  const double len = sqrt(dot3(sums, sums));
+  for (int d = 0; d < 3; d++) {
+    n[d] = len > 0.0 ? sums[d] / len : 0.0;
+    v[d] = sums[3 + d] / sums[6];
+  }
+  w->col_state[c] = seen & MRN_WALL_CONTACT;
+  w->col_first[c] = (size_t)-bits[COLUMN_BITS - 1];
+  return 1;
+}
+
+/* The columns of the patches all[0 .. total) (3 numbers each, in the order
+ * of e's), from the touched nodes e here; sums and bits combined over the
+ * processes when shared */
+static void fill_columns(mrn_wall *w, const mrn_grid *g, const mrn_walls_share *share, const patch_entry *e,
+                         const long long *all, size_t total) {
+  double *sums = w->sums, *bits = w->sums + 7 * total; /* COLUMN_BITS per column */
+  size_t *from = w->col_start; /* where each patch's nodes start in e, until overwritten below */
+  memset(sums, 0, 7 * total * sizeof *sums);
+  for (size_t c = 0, q = 0; c <= total; c++) {
+    from[c] = q;
+    while (c < total && q < w->count && memcmp(e[q].key, all + 3 * c, sizeof e[q].key) == 0) q++;
+  }
+  for (size_t c = 0; c < total; c++) {
+    double *b = bits + COLUMN_BITS * c;
+    for (int k = 0; k < COLUMN_BITS - 1; k++) b[k] = 0.0;
+    b[COLUMN_BITS - 1] = -HUGE_VAL;
+    column_sums(w, g, e, from[c], from[c + 1], sums + 7 * c, b);
+  }
+  if (share) {
+    share->reduce(share->ctx, sums, 7 * total, MRN_COMM_SUM);
+    share->reduce(share->ctx, bits, COLUMN_BITS * total, MRN_COMM_MAX);
+  }
+  w->ncol = 0;
+  size_t m = 0;
+  for (size_t c = 0; c < total; c++) {
+    const size_t lo = from[c], hi = from[c + 1]; /* read before column ncol <= c overwrites them */
+    if (!column_close(w, w->ncol, sums + 7 * c, bits + COLUMN_BITS * c)) {
+      for (size_t q = lo; q < hi; q++) w->state[e[q].node] &= (unsigned char)~(MRN_WALL_TOUCH | MRN_WALL_CONTACT);
+      continue;
+    }
+    w->col_start[w->ncol++] = m;
+    for (size_t q = lo; q < hi; q++) w->col_node[m++] = e[q].node;
+  }
+  w->col_start[w->ncol] = m;
+}
+
+/* Group the touched nodes into columns, one per surface patch: in a
+ * distributed run, the patches of every process, each with its sums over
+ * all (rc: the outcome so far, agreed first) */
+static int build_columns(mrn_wall *w, const mrn_grid *g, const mrn_walls_share *share, int rc) {
+  patch_entry *e = NULL;
+  long long *keys = NULL, *all = NULL;
+  size_t nkeys = 0, total = 0;
+  if (rc == MRN_OK) rc = local_patches(w, &e, &keys, &nkeys);
+  if (share) rc = share->agree(share->ctx, rc);
+  if (rc == MRN_OK && share) all = share->union_keys(share->ctx, keys, nkeys, &total);
+  else if (rc == MRN_OK) all = keys, total = nkeys;
+  if (rc == MRN_OK && (!all || columns_reserve(w, total + 1))) rc = MRN_ERR; /* message set */
+  if (share) rc = share->agree(share->ctx, rc);
+  if (rc == MRN_OK) fill_columns(w, g, share, e, all, total);
+  if (all != keys) free(all);
+  free(keys);
+  free(e);
+  return rc;
+}
+
+/* One pass over the particles: the material on the wall (pass 0), or the
+ * material above it (pass 1, gap_check only); the distance exact where the
+ * passes compare it (a mesh stops beyond) */
+static int touch_pass(mrn_wall *w, const mrn_grid *g, double reach, const double *x, const double *vol0, size_t np,
+                      int pass) {
+  const int passes = w->spec.gap_check ? 2 : 1;
+  int rc = MRN_OK;
+  for (size_t p = 0; p < np && !rc; p++) {
+    const double r = 0.5 * (g->dim == 2 ? sqrt(vol0[p]) : cbrt(vol0[p]));
+    const double deep = passes > 1 ? HUGE_VAL : 1.5 * r, far = passes > 1 ? fmax(1.5 * r, reach * g->cell) : 1.5 * r;
+    double n[3], uv[3];
+    const double gap = wall_distance_uv(w, g->dim, x + 3 * p, n, uv, deep, far) - r;
+    if (pass == 0 && gap <= WALL_TOUCH_SLACK * r) rc = touch_visit(w, g, x + 3 * p, uv, r, reach, 1, gap > 0.0);
+    else if (pass == 1 && gap > 0.0 && gap + r < reach * g->cell) rc = touch_visit(w, g, x + 3 * p, uv, r, reach, 0, 0);
+  }
+  return rc;
+}
+
 /* One wall: the nodes of the last step lose their touch bit; those no
- * longer touched lose their contact too (as a face's untouched column). */
-static int wall_touch(mrn_wall *w, const mrn_grid *g, double reach, const double *x, const double *vol0, size_t np) {
+ * longer touched lose their contact too (as a face's untouched column). In
+ * a distributed run the nodes of the bands a neighbour's material touched
+ * are touched here too, before the material above the wall is looked at. */
+static int wall_touch(mrn_wall *w, const mrn_grid *g, double reach, const double *x, const double *vol0, size_t np,
+                      const mrn_walls_share *share) {
   const size_t old = w->count;
   for (size_t k = 0; k < old; k++)
     w->state[w->node[k]] &= (unsigned char)~(MRN_WALL_TOUCH | MRN_WALL_OVER | MRN_WALL_CLEAR);
@@ -542,25 +672,19 @@ static int wall_touch(mrn_wall *w, const mrn_grid *g, double reach, const double
   w->count = 0;
   /* the old list is read again below: keep it aside while the new one grows */
   size_t *prev = old ? malloc(old * sizeof *prev) : NULL;
-  if (old && !prev) return mrn_error("out of memory for a wall's contacts");
-  if (old) memcpy(prev, w->node, old * sizeof *prev);
-  int rc = MRN_OK;
-  /* first the material on the wall, then the material above it; the
-   * distance exact where the passes compare it (a mesh stops beyond) */
-  const int passes = w->spec.gap_check ? 2 : 1;
-  for (int pass = 0; pass < passes; pass++)
-    for (size_t p = 0; p < np && !rc; p++) {
-      const double r = 0.5 * (g->dim == 2 ? sqrt(vol0[p]) : cbrt(vol0[p]));
-      const double deep = passes > 1 ? HUGE_VAL : 1.5 * r, far = passes > 1 ? fmax(1.5 * r, reach * g->cell) : 1.5 * r;
-      double n[3], uv[3];
-      const double gap = wall_distance_uv(w, g->dim, x + 3 * p, n, uv, deep, far) - r;
-      if (pass == 0 && gap <= WALL_TOUCH_SLACK * r) rc = touch_visit(w, g, x + 3 * p, uv, r, reach, 1, gap > 0.0);
-      else if (pass == 1 && gap > 0.0 && gap + r < reach * g->cell) rc = touch_visit(w, g, x + 3 * p, uv, r, reach, 0, 0);
-    }
-  for (size_t k = 0; k < old; k++)
+  int rc = old && !prev ? mrn_error("out of memory for a wall's contacts") : MRN_OK;
+  if (prev) memcpy(prev, w->node, old * sizeof *prev);
+  if (rc == MRN_OK) rc = touch_pass(w, g, reach, x, vol0, np, 0);
+  if (share && (rc = share->agree(share->ctx, rc)) == MRN_OK) {
+    fresh_ctx f = {w, g};
+    rc = share->band_or(share->ctx, w->state, MRN_WALL_TOUCH, touch_fresh, &f);
+  }
+  if (rc == MRN_OK && w->spec.gap_check) rc = touch_pass(w, g, reach, x, vol0, np, 1);
+  for (size_t k = 0; rc == MRN_OK && k < old; k++)
     if (!(w->state[prev[k]] & MRN_WALL_TOUCH)) w->state[prev[k]] &= (unsigned char)~MRN_WALL_CONTACT;
   free(prev);
-  return rc ? rc : build_columns(w);
+  if (rc && !share) return rc;
+  return build_columns(w, g, share, rc);
 }
 
 /* the motion function's velocities, checked */
@@ -577,6 +701,13 @@ static int wall_motion(mrn_wall *w, int dim, double t) {
   return MRN_OK;
 }
 
+int mrn_wall_reset_contacts(mrn_wall *w, const size_t *contact, size_t n) {
+  for (size_t k = 0; k < w->count; k++)
+    w->state[w->node[k]] &= (unsigned char)~(MRN_WALL_TOUCH | MRN_WALL_CONTACT | MRN_WALL_OVER | MRN_WALL_CLEAR);
+  w->count = w->ncol = 0;
+  return mrn_wall_restore(w, contact, n);
+}
+
 int mrn_wall_restore(mrn_wall *w, const size_t *contact, size_t n) {
   const double zero[3] = {0, 0, 0};
   const long long key[3] = {0, 0, 0};
@@ -589,53 +720,80 @@ int mrn_wall_restore(mrn_wall *w, const size_t *contact, size_t n) {
 
 int mrn_walls_touch(mrn_walls *ws, const mrn_grid *g, double t_mid, double reach, const double *x, const double *vol0,
                     size_t n) {
-  for (int i = 0; ws && i < ws->count; i++) {
+  if (!ws) return MRN_OK;
+  int rc = MRN_OK;
+  for (int i = 0; rc == MRN_OK && i < ws->count; i++)
+    if (ws->wall[i].motion) rc = wall_motion(&ws->wall[i], g->dim, t_mid);
+  if (ws->share) rc = ws->share->agree(ws->share->ctx, rc);
+  for (int i = 0; rc == MRN_OK && i < ws->count; i++) {
     mrn_wall *w = &ws->wall[i];
-    int rc = w->motion ? wall_motion(w, g->dim, t_mid) : MRN_OK;
-    if (rc) return rc;
     memset(w->impulse, 0, sizeof w->impulse);
     memset(w->angular, 0, sizeof w->angular);
     memset(w->hold_impulse, 0, sizeof w->hold_impulse);
     memset(w->hold_angular, 0, sizeof w->hold_angular);
-    w->step_work = w->hold_work = 0.0;
+    w->step_work = w->hold_work = w->step_friction = 0.0;
     w->v_done = 0;
     w->contacts = 0;
-    if ((rc = wall_touch(w, g, reach, x, vol0, n))) return rc;
+    rc = wall_touch(w, g, reach, x, vol0, n, ws->share);
   }
-  return MRN_OK;
+  return rc;
 }
 
 /* ---- the contact ------------------------------------------------------------------- */
 
-/* a fixed wall: the node moves with the wall; the impulse goes to J */
+/* a fixed wall: the node moves with the wall; the impulse goes to J where
+ * this process books it (mrn_grid_owns) */
 static void wall_fix(const mrn_grid *g, double mass_floor, double *v, size_t node, const double w[3], double J[3]) {
   if (!(g->mass[node] > mass_floor)) return;
+  const int books = mrn_grid_owns(g, (long)node);
   for (int d = 0; d < 3; d++) {
-    J[d] += g->mass[node] * (w[d] - v[d]);
+    if (books) J[d] += g->mass[node] * (w[d] - v[d]);
     v[d] = w[d];
   }
 }
 
-/* One column: the contact of grid/boundary.h, its state the union of its
- * nodes' (a column's nodes change as the material and the wall move) */
-static double column_apply(mrn_wall *w, size_t c, mrn_grid *g, double mass_floor, double *vel, int with_friction,
-                           double J[3]) {
+/* column c as the contact of grid/boundary.h sees it */
+static mrn_contact_column column_of(const mrn_wall *w, size_t c) {
   const size_t lo = w->col_start[c], hi = w->col_start[c + 1];
-  if (w->spec.kind == MRN_WALL_FIXED) {
-    for (size_t k = lo; k < hi; k++) wall_fix(g, mass_floor, vel + 3 * w->col_node[k], w->col_node[k], w->col_w + 3 * c, J);
-    return 0.0;
-  }
-  mrn_contact_column col = {.count = (int)(hi - lo), .nodes = w->col_node + lo, .axis = -1};
+  mrn_contact_column col = {.count = (int)(hi - lo), .nodes = w->col_node + lo, .axis = -1, .shared = 1};
   memcpy(col.n, w->col_n + 3 * c, sizeof col.n);
   memcpy(col.w, w->col_w + 3 * c, sizeof col.w);
-  unsigned char state = 0;
-  for (size_t k = lo; k < hi; k++) state |= w->state[w->col_node[k]];
+  return col;
+}
+
+/* The contact of grid/boundary.h on every column, in sweeps with the sums
+ * over the processes between them (share): each column's N; the holds, and
+ * M and P of the columns held; friction. The column's contact bit is its
+ * own (the union of its nodes', kept on them for the next step's touch).
+ * J: 3 per column. Returns the frictional work. */
+static double contact_columns(mrn_wall *w, mrn_grid *g, double mass_floor, double *vel, int with_friction, double *J,
+                              const mrn_walls_share *share) {
+  const size_t nc = w->ncol;
+  double *N = w->sums + 3 * nc, *MP = N + nc, work = 0.0;
   const double mu = w->spec.kind == MRN_WALL_FRICTION ? w->spec.mu : 0.0;
-  const double work = mrn_contact_apply(&col, g, mass_floor, vel, mu, with_friction, 1, &state, MRN_WALL_CONTACT, J);
-  if (!with_friction) return work;
-  for (size_t k = lo; k < hi; k++)
-    w->state[w->col_node[k]] = (unsigned char)((w->state[w->col_node[k]] & ~MRN_WALL_CONTACT) | (state & MRN_WALL_CONTACT));
-  w->contacts += (state & MRN_WALL_CONTACT) != 0;
+  for (size_t c = 0; c < nc; c++) {
+    const mrn_contact_column col = column_of(w, c);
+    N[c] = mrn_contact_push(&col, g, mass_floor, vel);
+  }
+  if (share) share->reduce(share->ctx, N, nc, MRN_COMM_SUM);
+  for (size_t c = 0; c < nc; c++) {
+    const mrn_contact_column col = column_of(w, c);
+    for (int k = 0; k < 4; k++) MP[4 * c + k] = 0.0; /* a column not held slides by nothing */
+    if (mrn_contact_held(N[c], with_friction, 1, &w->col_state[c], MRN_WALL_CONTACT)) {
+      mrn_contact_hold(&col, g, mass_floor, vel, J + 3 * c);
+      if (with_friction) mrn_contact_slide_sums(&col, g, mass_floor, vel, MP + 4 * c);
+    }
+    if (!with_friction) continue;
+    for (int k = 0; k < col.count; k++)
+      w->state[col.nodes[k]] = (unsigned char)((w->state[col.nodes[k]] & ~MRN_WALL_CONTACT) | w->col_state[c]);
+    w->contacts += w->col_state[c] != 0;
+  }
+  if (!with_friction) return 0.0;
+  if (share) share->reduce(share->ctx, MP, 4 * nc, MRN_COMM_SUM);
+  for (size_t c = 0; c < nc; c++) {
+    const mrn_contact_column col = column_of(w, c);
+    work += mrn_contact_slide(&col, g, mass_floor, vel, mu, N[c], MP + 4 * c, J + 3 * c);
+  }
   return work;
 }
 
@@ -644,7 +802,7 @@ static double column_apply(mrn_wall *w, size_t c, mrn_grid *g, double mass_floor
 static void book(const mrn_wall *w, const mrn_grid *g, size_t c, const double J[3], double imp[3], double ang[3],
                  double *work) {
   double pos[3], r[3];
-  mrn_grid_node_position(g, w->col_node[w->col_start[c]], pos);
+  mrn_grid_node_position(g, w->col_first[c], pos);
   for (int d = 0; d < 3; d++) {
     imp[d] += J[d];
     r[d] = pos[d] - w->ref[d];
@@ -655,24 +813,30 @@ static void book(const mrn_wall *w, const mrn_grid *g, size_t c, const double J[
   *work += dot3(J, w->col_w + 3 * c);
 }
 
-static double wall_apply(mrn_wall *w, mrn_grid *g, double mass_floor, double *vel, int with_friction) {
-  double work = 0.0;
+static double wall_apply(mrn_wall *w, mrn_grid *g, double mass_floor, double *vel, int with_friction,
+                         const mrn_walls_share *share) {
+  double work = 0.0, *J = w->sums;
+  if (w->ncol) memset(J, 0, 3 * w->ncol * sizeof *J);
+  if (w->spec.kind != MRN_WALL_FIXED) work = contact_columns(w, g, mass_floor, vel, with_friction, J, share);
+  else
+    for (size_t c = 0; c < w->ncol; c++)
+      for (size_t k = w->col_start[c]; k < w->col_start[c + 1]; k++)
+        wall_fix(g, mass_floor, vel + 3 * w->col_node[k], w->col_node[k], w->col_w + 3 * c, J + 3 * c);
   /* the reaction: the impulses of V~ and of the step's first V (the nodal
    * velocity, not XPIC's smoothed fields), acting at the column's first node */
   const int hold = !with_friction && !w->v_done && vel == g->vel;
   for (size_t c = 0; c < w->ncol; c++) {
-    double J[3] = {0.0, 0.0, 0.0};
-    work += column_apply(w, c, g, mass_floor, vel, with_friction, J);
-    if (with_friction) book(w, g, c, J, w->impulse, w->angular, &w->step_work);
-    else if (hold) book(w, g, c, J, w->hold_impulse, w->hold_angular, &w->hold_work);
+    if (with_friction) book(w, g, c, J + 3 * c, w->impulse, w->angular, &w->step_work);
+    else if (hold) book(w, g, c, J + 3 * c, w->hold_impulse, w->hold_angular, &w->hold_work);
   }
-  if (with_friction) w->work_friction += work, w->v_done = 1;
+  if (with_friction) w->step_friction += work, w->v_done = 1;
   return work;
 }
 
 double mrn_walls_apply(mrn_walls *ws, mrn_grid *g, double mass_floor, double *vel, int with_friction) {
   double work = 0.0;
-  for (int i = 0; ws && i < ws->count; i++) work += wall_apply(&ws->wall[i], g, mass_floor, vel, with_friction);
+  for (int i = 0; ws && i < ws->count; i++)
+    work += wall_apply(&ws->wall[i], g, mass_floor, vel, with_friction, ws->share);
   return work;
 }
 
@@ -691,11 +855,46 @@ static void rotate(double R[9], const double omega[3], double dt) {
   memcpy(R, out, sizeof out);
 }
 
-double mrn_walls_step_end(mrn_walls *ws, double dt, double hold_share, const double gravity[3]) {
+/* the step's impulses and works, booked by each process on its rows,
+ * summed over the processes (one exchange for all the walls) */
+enum { STEP_SUMS = 15 };
+static void step_pack(mrn_wall *w, double *v, int back) {
+  double *f[] = {w->impulse, w->angular, w->hold_impulse, w->hold_angular};
+  for (int a = 0; a < 4; a++)
+    for (int d = 0; d < 3; d++) {
+      if (back) f[a][d] = v[3 * a + d];
+      else v[3 * a + d] = f[a][d];
+    }
+  double *one[] = {&w->hold_work, &w->step_work, &w->step_friction};
+  for (int k = 0; k < 3; k++) {
+    if (back) *one[k] = v[12 + k];
+    else v[12 + k] = *one[k];
+  }
+}
+
+static int step_sums(mrn_walls *ws) {
+  if (!ws->share || !ws->count) return MRN_OK;
+  double *v = malloc((size_t)ws->count * STEP_SUMS * sizeof *v);
+  const int rc = ws->share->agree(ws->share->ctx, v ? MRN_OK : mrn_error("out of memory for the walls' reactions"));
+  if (rc == MRN_OK) {
+    for (int i = 0; i < ws->count; i++) step_pack(&ws->wall[i], v + STEP_SUMS * i, 0);
+    ws->share->reduce(ws->share->ctx, v, (size_t)ws->count * STEP_SUMS, MRN_COMM_SUM);
+    for (int i = 0; i < ws->count; i++) step_pack(&ws->wall[i], v + STEP_SUMS * i, 1);
+  }
+  free(v);
+  return rc;
+}
+
+int mrn_walls_step_end(mrn_walls *ws, double dt, double hold_share, const double gravity[3], double *work_done) {
   double work = 0.0;
-  if (ws) ws->damping_work = 0.0;
-  for (int i = 0; ws && i < ws->count; i++) {
+  *work_done = 0.0;
+  if (!ws) return MRN_OK;
+  ws->damping_work = 0.0;
+  int rc = step_sums(ws);
+  if (rc) return rc;
+  for (int i = 0; i < ws->count; i++) {
     mrn_wall *w = &ws->wall[i];
+    w->work_friction += w->step_friction;
     for (int d = 0; d < 3; d++) {
       w->impulse[d] += hold_share * w->hold_impulse[d];
       w->angular[d] += hold_share * w->hold_angular[d];
@@ -713,5 +912,6 @@ double mrn_walls_step_end(mrn_walls *ws, double dt, double hold_share, const dou
     rotate(w->rot, w->spec.omega, dt);
     if (w->spec.body) mrn_body_respin(w, ws->dim);
   }
-  return work;
+  *work_done = work;
+  return MRN_OK;
 }

@@ -26,6 +26,7 @@
 
 #include <stddef.h>
 
+#include "core/comm.h"
 #include "grid/grid.h"
 
 typedef enum { MRN_WALL_PLANE = 0, MRN_WALL_BOX, MRN_WALL_CYLINDER, MRN_WALL_POLYGON, MRN_WALL_MESH, MRN_WALL_SHAPE_COUNT } mrn_wall_shape;
@@ -100,6 +101,7 @@ typedef struct mrn_wall {
   double body_work;
   double spin[3]; /* within the step's end: the angular momentum the body turns to */
   double step_work;     /* that of the current step */
+  double step_friction; /* the frictional work of the current step */
   long contacts;        /* nodes held with friction in the last step */
   /* the motion as a function of time (NULL: spec.velocity and spec.omega
    * as set), asked at the middle of each step; release(ctx) on free */
@@ -121,11 +123,38 @@ typedef struct mrn_wall {
   size_t count, cap;
   /* those nodes in columns, one per surface patch: column c holds
    * col_node[col_start[c] .. col_start[c + 1] - 1], its normal into the wall
-   * col_n and the wall's velocity col_w (3 each) */
-  size_t *col_node, *col_start;
+   * col_n and the wall's velocity col_w (3 each), its contact bit col_state
+   * (MRN_WALL_CONTACT) and its first node col_first, where its impulse acts.
+   * In a distributed run the columns are those of every process, in the
+   * order of their patches; a process holds the nodes of some (solver/dist.h) */
+  size_t *col_node, *col_start, *col_first;
   double *col_n, *col_w;
-  size_t ncol;
+  unsigned char *col_state;
+  size_t ncol, col_cap;
+  double *sums; /* per column, the sums a step exchanges (ncol x 7) */
+
 } mrn_wall;
+
+/* How the walls reach over the processes of a distributed run, which all
+ * hold the whole grid but only their slab's particles (solver/dist.h): a
+ * wall's columns may have nodes on several processes, so the touched nodes
+ * of the bands are shared with the neighbours, the columns are those of
+ * every process, and their sums (N, M, P of grid/boundary.h, the normal and
+ * velocity, the reaction) are summed over the processes, each node counted
+ * by the process that owns its row. NULL in mrn_walls on one process. */
+typedef struct mrn_walls_share {
+  void *ctx;
+  /* the outcome rc of this process, agreed by every process (solver/dist.h) */
+  int (*agree)(void *ctx, int rc);
+  /* v[0 .. n) combined over the processes */
+  void (*reduce)(void *ctx, double *v, size_t n, mrn_comm_op op);
+  /* the `mask` bits of the node bytes `bits` OR-ed with the neighbours' on
+   * the bands; fresh(arg, node) for each node that gains one; 0 or an error */
+  int (*band_or)(void *ctx, unsigned char *bits, unsigned char mask, int (*fresh)(void *arg, size_t node), void *arg);
+  /* the sorted union over the processes of n sorted keys (3 each): a malloc'ed
+   * array of *total keys, or NULL (message set) */
+  long long *(*union_keys)(void *ctx, const long long *keys, size_t n, size_t *total);
+} mrn_walls_share;
 
 typedef struct mrn_walls {
   mrn_wall *wall;
@@ -133,6 +162,7 @@ typedef struct mrn_walls {
   int dim;
   double cundall;      /* D of Cundall's damping, for the bodies (set by the solver) */
   double damping_work; /* the work of that damping on the bodies in the last step */
+  const mrn_walls_share *share; /* a distributed run's, or NULL */
 } mrn_walls;
 
 #define MRN_WALL_TOUCH 1u
@@ -156,6 +186,10 @@ mrn_wall *mrn_walls_find(mrn_walls *ws, const char *name);
 double mrn_wall_distance(const mrn_wall *w, int dim, const double x[3], double n[3]);
 /* the wall's velocity at x */
 void mrn_wall_velocity_at(const mrn_wall *w, int dim, const double x[3], double v[3]);
+
+/* Forget the wall's contacts and take those of the nodes contact[0 .. n)
+ * (a distributed run's re-cut: every process's); 0 or an error */
+int mrn_wall_reset_contacts(mrn_wall *w, const size_t *contact, size_t n);
 
 /* A wall as a checkpoint left it: its placement, accumulators and the
  * nodes in contact at the end of the last step (which also stand for the
@@ -196,11 +230,12 @@ int mrn_walls_touch(mrn_walls *ws, const mrn_grid *g, double t_mid, double reach
 /* Impose the walls on vel, as mrn_boundary_apply (which calls it); returns
  * the frictional work (with_friction only) */
 double mrn_walls_apply(mrn_walls *ws, mrn_grid *g, double mass_floor, double *vel, int with_friction);
-/* End of a step of dt: the reactions, the bodies' velocities under gravity,
- * and the walls moved on. `hold_share` is the part of the holds in V that
- * reaches the particles' momentum (1 for PIC-like velocity updates and XPIC,
- * 0 for FLIP, 1 - X for blends). Returns the work the walls of prescribed
- * motion did on the material in the step (a body's is inside the system). */
-double mrn_walls_step_end(mrn_walls *ws, double dt, double hold_share, const double gravity[3]);
+/* End of a step of dt: the reactions (summed over the processes of a
+ * distributed run), the bodies' velocities under gravity, and the walls
+ * moved on. `hold_share` is the part of the holds in V that reaches the
+ * particles' momentum (1 for PIC-like velocity updates and XPIC, 0 for FLIP,
+ * 1 - X for blends). *work: the work the walls of prescribed motion did on
+ * the material in the step (a body's is inside the system). 0 or an error. */
+int mrn_walls_step_end(mrn_walls *ws, double dt, double hold_share, const double gravity[3], double *work);
 
 #endif

@@ -14,6 +14,7 @@
 #include "core/error.h"
 #include "core/parallel.h"
 #include "grid/active.h"
+#include "solver/dist.h"
 #include "solver/point_force.h"
 #include "solver/simulation.h"
 #include "solver/update.h"
@@ -206,7 +207,8 @@ static void body_change(const mrn_contact *c, size_t i, const double *vel, const
 /* The contact law on every node two or more bodies share, on their
  * velocities V or V~ (`with_friction` 0: normal only).
  * Returns the frictional work sum_b m_b dV_b . (V_b - V_cm) after the
- * change (000, Eq. 66, in the frame of the node's centre of mass). */
+ * change (000, Eq. 66, in the frame of the node's centre of mass), of the
+ * nodes whose work this process books (mrn_grid_owns). */
 static double contact_apply(mrn_sim *sim, double *vel, int with_friction) {
   const mrn_contact *c = sim->contact;
   const size_t n = c->nnode;
@@ -229,9 +231,10 @@ static double contact_apply(mrn_sim *sim, double *vel, int with_friction) {
       for (int j = 0; j < count; j++) {
         double *v = vel + 3 * (n * list[j] + i);
         const double m = c->mass[n * list[j] + i];
+        const int books = with_friction && mrn_grid_owns(&sim->grid, i); /* once over the processes */
         for (int d = 0; d < 3; d++) {
           v[d] += dv[j][d];
-          if (with_friction) work += m * dv[j][d] * (v[d] - vcm[d]);
+          if (books) work += m * dv[j][d] * (v[d] - vcm[d]);
         }
       }
     }
@@ -239,6 +242,14 @@ static double contact_apply(mrn_sim *sim, double *vel, int with_friction) {
 }
 
 /* ---- the stages of the step on the per-body fields ----------------------------------- */
+
+/* the contact's work, booked on each process's rows: summed over the
+ * processes, the same on each (the grid stages before it end on an
+ * agreement, and nothing between them fails) */
+static void book_work(mrn_sim *sim, double work) {
+  mrn_dist_reduce(sim, &work, 1, MRN_COMM_SUM);
+  sim->work_contact += work;
+}
 
 /* V_b of every body with its face conditions, then the contact law with
  * friction: the normal impulse a body gets here is part of what holds it,
@@ -248,14 +259,14 @@ static double contact_apply(mrn_sim *sim, double *vel, int with_friction) {
 static void bodies_velocity(mrn_sim *sim) {
   mrn_contact *c = sim->contact;
   for (int b = 0; b < c->nbodies; b++) mrn_grid_velocity_on(sim, &c->view[b]);
-  sim->work_contact += mrn_hold_share(&sim->scheme) * contact_apply(sim, c->vel, 1);
+  book_work(sim, mrn_hold_share(&sim->scheme) * contact_apply(sim, c->vel, 1));
 }
 
 /* V~_b of every body, then the contact law with friction */
 static void bodies_update(mrn_sim *sim, double dt) {
   mrn_contact *c = sim->contact;
   for (int b = 0; b < c->nbodies; b++) mrn_grid_update_on(sim, &c->view[b], dt);
-  sim->work_contact += contact_apply(sim, c->vel_new, 1);
+  book_work(sim, contact_apply(sim, c->vel_new, 1));
 }
 
 static double *gradients(mrn_contact *c, size_t np) {
@@ -338,8 +349,12 @@ static int contact_check(mrn_sim *sim) {
                      "average the volume change across the bodies)", mrn_volumetric_names()[sim->scheme.volumetric]);
   if (mrn_particles_user_field(ps, MRN_POINT_FORCE_FIELD))
     return mrn_error("contact: point forces are not available with contact between bodies");
+  /* a body's particles may all be on other processes */
+  double count[MRN_MAX_BODIES] = {0};
+  for (size_t p = 0; uf && p < ps->n; p++) count[body_of(ps, uf, p)] += 1.0;
+  mrn_dist_reduce(sim, count, MRN_MAX_BODIES, MRN_COMM_SUM);
   unsigned used = 0;
-  for (size_t p = 0; uf && p < ps->n; p++) used |= 1u << body_of(ps, uf, p);
+  for (int b = 0; b < MRN_MAX_BODIES; b++) used |= (count[b] > 0.0 ? 1u : 0u) << b;
   for (int k = 0; k < c->npairs; k++)
     for (int e = 0; e < 2; e++) {
       const int b = e ? c->pair[k].b : c->pair[k].a;
@@ -357,24 +372,36 @@ static int bodies_remap(mrn_sim *sim, mrn_transfer *tr, double dt, double materi
   if (!dx) return mrn_error("contact: out of memory");
   bodies_g2p(sim, tr, dt, dx, NULL);
   bodies_p2g(sim, tr, 1, 0);
+  int rc = mrn_dist_sum_bodies(sim, MRN_CLEAR_MASS_MOM, MRN_OK);
+  if (rc) {
+    free(dx);
+    return rc;
+  }
   bodies_velocity(sim);
-  const int rc = bodies_material(sim, tr, material_dt);
+  rc = bodies_material(sim, tr, material_dt);
   for (size_t i = 0; i < 3 * ps->n; i++) ps->x[i] += dx[i];
   free(dx);
   return rc;
 }
 
+/* In a distributed run each P2G of the bodies' fields is followed by their
+ * halo sum (solver/dist.h), which agrees first on what happened since the
+ * last: a stage that failed passes its code on to it. */
 int mrn_contact_step(mrn_sim *sim, mrn_transfer *tr, double dt) {
-  int rc = contact_check(sim);
-  if (rc || (rc = fields_alloc(sim->contact, &sim->grid))) return rc;
-  mrn_p2g(tr, 1, 0); /* the single field: the active spans, the sorting */
+  int rc = contact_check(sim); /* the same on every process */
+  if (rc) return rc;
   const mrn_stress_update_kind su = sim->scheme.stress_update;
   const int first = su == MRN_STRESS_USF || su == MRN_STRESS_USAVG;
-  bodies_p2g(sim, tr, 1, !first);
+  if ((rc = fields_alloc(sim->contact, &sim->grid)) == MRN_OK) {
+    mrn_p2g(tr, 1, 0); /* the single field: the active spans, the sorting */
+    bodies_p2g(sim, tr, 1, !first);
+  }
+  if ((rc = mrn_dist_sum_bodies(sim, MRN_CLEAR_MASS_MOM | (first ? 0u : MRN_CLEAR_FORCE), rc))) return rc;
   bodies_velocity(sim);
   if (first) {
-    if ((rc = bodies_material(sim, tr, su == MRN_STRESS_USF ? dt : 0.5 * dt))) return rc;
-    bodies_p2g(sim, tr, 0, 1);
+    rc = bodies_material(sim, tr, su == MRN_STRESS_USF ? dt : 0.5 * dt);
+    if (rc == MRN_OK) bodies_p2g(sim, tr, 0, 1);
+    if ((rc = mrn_dist_sum_bodies(sim, MRN_CLEAR_FORCE, rc))) return rc;
   }
   bodies_update(sim, dt);
   total_field(sim);

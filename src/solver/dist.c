@@ -17,8 +17,6 @@ static int refuse(const mrn_sim *sim) {
   const char *what = NULL;
   const int axis = sim->dim - 1;
   if (sim->integrator.step) what = "the implicit integrator (simulation{integrator})";
-  else if (sim->contact && sim->contact->npairs) what = "contact between bodies (sim:add_contact)";
-  else if (sim->boundary.walls) what = "walls and rigid bodies (sim:add_wall)";
   else if (sim->shape == MRN_SHAPE_CPDI) what = "CPDI (shape = \"cpdi\")";
   else if (mrn_boundary_periodic(&sim->boundary, axis)) what = "a periodic face along the last axis (faces)";
   for (int f = 0; !what && f < 2 * sim->dim; f++)
@@ -275,22 +273,51 @@ void mrn_dist_sum_nodal(void *ctx, double *values, int ncomp) {
   (void)mrn_dist_agree(sim, sum_arrays(sim, &arr, 1));
 }
 
-void mrn_dist_touch(mrn_sim *sim) {
+int mrn_dist_sum_bodies(mrn_sim *sim, unsigned what, int rc) {
+  if (!sim->dist || (rc = mrn_dist_agree(sim, rc)) != MRN_OK) return rc;
+  const mrn_contact *c = sim->contact;
+  const size_t n = c->nnode;
+  nodal arr[4 * MRN_MAX_BODIES];
+  int narr = 0;
+  for (size_t b = 0; b < (size_t)c->nbodies; b++) {
+    if (what & MRN_CLEAR_MASS_MOM) {
+      arr[narr++] = (nodal){c->mass + b * n, 1};
+      arr[narr++] = (nodal){c->mom + 3 * b * n, 3};
+      arr[narr++] = (nodal){c->grad + 3 * b * n, 3};
+    }
+    if (what & MRN_CLEAR_FORCE) arr[narr++] = (nodal){c->force + 3 * b * n, 3};
+  }
+  return mrn_dist_agree(sim, sum_arrays(sim, arr, narr));
+}
+
+double mrn_dist_once(const mrn_sim *sim, double value) { return !sim->dist || sim->dist->rank == 0 ? value : 0.0; }
+
+int mrn_dist_or_bands(mrn_sim *sim, unsigned char *bits, unsigned char mask, int (*fresh)(void *arg, size_t node),
+                      void *arg) {
   mrn_dist *d = sim->dist;
-  if (!d) return;
-  int friction = 0;
-  for (int f = 0; f < 2 * sim->dim; f++) friction |= sim->boundary.face[f].kind == MRN_BC_FRICTION;
-  if (!friction) return;
-  int peer[2], cut[2];
+  int peer[2], cut[2], rc = MRN_OK;
   const int n = neighbours(d, peer, cut);
   for (int k = 0; k < n; k++) {
     const band b = band_at(&sim->grid, cut[k]);
-    unsigned char *in = buffer(d, (size_t)b.nodes), *mine = sim->grid.touch + b.first;
-    if (!in) continue; /* out of memory: this band's contacts stay one-sided for a step */
+    unsigned char *in = buffer(d, (size_t)b.nodes), *mine = bits + b.first;
+    if (!in) return mrn_error("parallel: out of memory for the halo exchange");
     mrn_comm_exchange(peer[k], mine, (size_t)b.nodes, in, (size_t)b.nodes);
     d->halo_bytes += (double)b.nodes;
-    for (long i = 0; i < b.nodes; i++) mine[i] |= in[i];
+    for (long i = 0; i < b.nodes; i++) {
+      const unsigned char gain = in[i] & mask & (unsigned char)~mine[i];
+      mine[i] |= gain;
+      if (gain && fresh && rc == MRN_OK) rc = fresh(arg, (size_t)(b.first + i));
+    }
   }
+  return rc;
+}
+
+void mrn_dist_touch(mrn_sim *sim) {
+  if (!sim->dist) return;
+  int friction = 0;
+  for (int f = 0; f < 2 * sim->dim; f++) friction |= sim->boundary.face[f].kind == MRN_BC_FRICTION;
+  /* out of memory: this band's contacts stay one-sided for a step */
+  if (friction) (void)mrn_dist_or_bands(sim, sim->grid.touch, 0xff, NULL, NULL);
 }
 
 /* particles leaving this process: their destinations, the bytes for each
@@ -389,7 +416,8 @@ int mrn_dist_rebalance(mrn_sim *sim) {
   if (!sim->dist) return MRN_OK;
   int rc = cut_by_count(sim, sim->dist, 0);
   if (rc == MRN_OK) sim->dist->rebalances++;
-  return mrn_dist_agree(sim, rc == MRN_OK ? move_particles(sim) : rc);
+  rc = mrn_dist_agree(sim, rc == MRN_OK ? move_particles(sim) : rc);
+  return rc == MRN_OK ? mrn_dist_walls_recut(sim) : rc;
 }
 
 /* a re-cut is due every rebalance_every steps, when the largest particle
@@ -567,6 +595,7 @@ int mrn_dist_gather_begin(const mrn_sim *csim) {
   /* process 0 alone may have failed to assemble: agreed before the grid's sum */
   rc = mrn_dist_agree(sim, rc);
   if (rc == MRN_OK) rc = gather_grid(sim, d);
+  if ((rc = mrn_dist_agree(sim, rc)) == MRN_OK) rc = mrn_dist_walls_gather(sim);
   d->held_books = books_get(sim);
   mrn_books b = d->held_books;
   mrn_comm_allreduce((double *)&b, BOOKS, MRN_COMM_SUM);
@@ -582,6 +611,7 @@ void mrn_dist_gather_end(const mrn_sim *csim) {
   mrn_dist *d = sim->dist;
   if (!d) return;
   gather_grid_end(sim, d);
+  mrn_dist_walls_gather_end(sim);
   books_set(sim, &d->held_books);
   if (!d->held) return;
   mrn_particles_free(&sim->particles);

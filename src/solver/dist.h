@@ -19,6 +19,11 @@
  * - the touch bits of friction faces are combined the same way;
  * - after the step, particles whose cell left the slab go to the process
  *   that owns it, wherever that is (a particle may cross several slabs).
+ * Walls (dist_walls.c): a wall's contact columns may reach beyond a band,
+ * so every process works on the columns of all, whose sums are taken over
+ * the processes (each node by its row's owner), and the reactions are summed
+ * at the end of the step, so that every process moves a rigid body alike.
+ * Contact between bodies halo-sums each body's fields like the single one.
  * Every exchange first agrees on the step's outcome: a process that failed
  * (a particle out of the grid, a bad state) makes every process stop with
  * its message, never one process waiting for another.
@@ -45,6 +50,7 @@
 #include <stdint.h>
 
 #include "core/comm.h"
+#include "grid/wall.h"
 
 struct mrn_sim;
 struct mrn_particles;
@@ -80,6 +86,8 @@ typedef struct mrn_dist {
   mrn_books held_books;
   double *held_mass, *held_vel, *held_force; /* process 0's nodal arrays */
   unsigned char *held_contact;
+  unsigned char **held_walls; /* process 0's walls' node states, while gathered */
+  mrn_walls_share walls;      /* the walls' sums over the processes (grid/wall.h) */
 } mrn_dist;
 
 /* Spread the simulation over the processes if there are several and it
@@ -104,8 +112,29 @@ int mrn_dist_sum_halo(struct mrn_sim *sim, unsigned what, int rc);
  * scattered into (mrn_transfer.sum_nodal: XPIC's smoothing passes); ctx
  * is the simulation */
 void mrn_dist_sum_nodal(void *ctx, double *values, int ncomp);
+/* after a P2G of the bodies' fields (solver/contact.h): every body's mass,
+ * momentum and mass gradient (MRN_CLEAR_MASS_MOM) and force
+ * (MRN_CLEAR_FORCE), as mrn_dist_sum_halo */
+int mrn_dist_sum_bodies(struct mrn_sim *sim, unsigned what, int rc);
 /* the friction faces' touch bits, OR-ed over the bands */
 void mrn_dist_touch(struct mrn_sim *sim);
+/* the `mask` bits of a byte per node OR-ed with the neighbours' over the
+ * bands; fresh(arg, node), when not NULL, for every node that gains a bit
+ * (its first error is returned). Collective; 0 or an error. */
+int mrn_dist_or_bands(struct mrn_sim *sim, unsigned char *bits, unsigned char mask,
+                      int (*fresh)(void *arg, size_t node), void *arg);
+/* a value every process holds alike, as a book of this process's (summed
+ * over the processes, mrn_dist_books): itself on process 0, else 0 */
+double mrn_dist_once(const struct mrn_sim *sim, double value);
+
+/* The walls of a distributed run (solver/dist_walls.c, grid/wall.h): their
+ * sums over the processes, attached before each step's touch; after a
+ * re-cut, every process takes the contacts of all; for a checkpoint,
+ * process 0 holds them (mrn_dist_gather_begin, _end) */
+void mrn_dist_walls_attach(struct mrn_sim *sim);
+int mrn_dist_walls_recut(struct mrn_sim *sim);
+int mrn_dist_walls_gather(struct mrn_sim *sim);
+void mrn_dist_walls_gather_end(struct mrn_sim *sim);
 /* after the step: agree on rc, re-cut if due, send the particles that left */
 int mrn_dist_migrate(struct mrn_sim *sim, int rc);
 /* re-cut the grid by particle count now and move the particles */

@@ -492,6 +492,18 @@ static int cpdi_begin(mrn_sim *sim, double *reach) {
   return MRN_OK;
 }
 
+/* the walls' reactions and works, and the rigid bodies moved on */
+static int walls_step_end(mrn_sim *sim, double dt) {
+  mrn_walls *ws = sim->boundary.walls;
+  double work;
+  ws->cundall = sim->damping_cundall;
+  const int rc = mrn_walls_step_end(ws, dt, mrn_hold_share(&sim->scheme), sim->gravity, &work);
+  sim->work_walls += work;
+  /* the same on every process: a book of one (solver/dist.h) */
+  sim->work_damping += mrn_dist_once(sim, ws->damping_work);
+  return rc;
+}
+
 int mrn_sim_step_dt(mrn_sim *sim, double dt) {
   if (!(dt > 0.0) || !isfinite(dt)) return mrn_error("step %ld: invalid time step %s", sim->step + 1, mrn_num(dt).s);
   sim->dt = dt;
@@ -506,6 +518,7 @@ int mrn_sim_step_dt(mrn_sim *sim, double dt) {
   if (sim->shape == MRN_SHAPE_CPDI && (rc = cpdi_begin(sim, &reach))) return rc;
   mrn_boundary_touch(&sim->boundary, &sim->grid, reach, sim->particles.x, sim->particles.vol0, sim->particles.n);
   mrn_dist_touch(sim);
+  mrn_dist_walls_attach(sim);
   if (sim->boundary.walls && (rc = mrn_walls_touch(sim->boundary.walls, &sim->grid, sim->time + 0.5 * dt, reach,
                                                    sim->particles.x, sim->particles.vol0, sim->particles.n)))
     return rc;
@@ -521,12 +534,10 @@ int mrn_sim_step_dt(mrn_sim *sim, double dt) {
   case MRN_STRESS_MUSL: rc = step_musl(sim, &tr, dt, &end); break;
   }
   mrn_sim_transfer_end(sim, &tr);
+  /* the walls' reactions are summed over the processes: they meet there first */
+  if (sim->boundary.walls) rc = mrn_dist_agree(sim, rc);
+  if (rc == MRN_OK && sim->boundary.walls) rc = walls_step_end(sim, dt);
   if (rc) return mrn_dist_migrate(sim, rc); /* agreed by every process */
-  if (sim->boundary.walls) {
-    sim->boundary.walls->cundall = sim->damping_cundall;
-    sim->work_walls += mrn_walls_step_end(sim->boundary.walls, dt, mrn_hold_share(&sim->scheme), sim->gravity);
-    sim->work_damping += sim->boundary.walls->damping_work;
-  }
   sim->time += dt;
   sim->step++;
   rc = !end.pass ? end_of_step(sim) : end.bad >= 0 ? mrn_sim_particle_error(sim, (size_t)end.bad) : MRN_OK;

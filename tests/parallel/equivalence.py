@@ -13,7 +13,10 @@ compares with the one-process run:
   - every particle field of the final checkpoint (sim:save, particles in
     the order of their ids), the registered ones too, relative to the
     field's largest magnitude; its counters (next_id, particles split,
-    added and deleted) exactly, its sources' books to the bound.
+    added and deleted) exactly, its sources' books to the bound;
+  - each wall's state in it (placement, a rigid body's velocities, the
+    reaction, the impulse and works), relative to the largest magnitude
+    of each, and the nodes in contact with it, exactly.
 The bound is 1e-12 (doc/parallel.md: the sums over processes add the same
 numbers in another order, so the runs agree to round-off, not bitwise).
 Usage: equivalence.py MORAINE DECK WORKDIR CASE STEPS NP... [--rebalance N] [--transfer NAME] [--volumetric NAME]
@@ -29,6 +32,7 @@ import numpy as np
 
 TOL = 1e-12
 FIELDS = ["x", "x0", "v", "mass", "vol0", "F", "affine", "stress", "strain", "e_elastic", "w_plastic", "state"]
+WALL_STATE = ["velocity", "omega", "ref", "rot", "force", "moment", "impulse", "work", "work_friction", "body_work"]
 
 
 def mpirun(np_):
@@ -128,7 +132,33 @@ def compare_states(ref, other, label):
     print(f"{label}: {len(ida)} particles: largest deviation {worst:.3g} ({where})")
     if worst > TOL:
         sys.exit(f"FAIL {label}: particle states deviate by {worst:.3g} > {TOL:g} in {where}")
+    compare_walls(fa, fb, label)
     return worst
+
+
+def compare_walls(fa, fb, label):
+    """Each wall's state in the checkpoints (placement, a body's velocities, the
+    last reaction, the accumulated impulse and works) relative to its largest
+    magnitude, and its contact nodes exactly."""
+    if "walls" not in fa:
+        return
+    worst, where = 0.0, ""
+    for key in fa["walls"]:
+        ga, gb = fa["walls"][key], fb["walls"][key]
+        wall = ga.attrs["name"].decode() if isinstance(ga.attrs["name"], bytes) else ga.attrs["name"]
+        for name in WALL_STATE:
+            if name not in ga.attrs:
+                continue
+            a, b = np.atleast_1d(ga.attrs[name]).astype(float), np.atleast_1d(gb.attrs[name]).astype(float)
+            scale = np.max(np.abs(a))
+            rel = np.max(np.abs(a - b)) / scale if scale > 0 else np.max(np.abs(b))
+            if rel > worst:
+                worst, where = rel, f"{wall}.{name}"
+        if not np.array_equal(ga["contact"][:], gb["contact"][:]):
+            sys.exit(f"FAIL {label}: wall {wall} is in contact at other nodes")
+    print(f"{label}: {len(fa['walls'])} walls: largest deviation {worst:.3g} ({where}), the same contacts")
+    if worst > TOL:
+        sys.exit(f"FAIL {label}: wall states deviate by {worst:.3g} > {TOL:g} in {where}")
 
 
 def main():

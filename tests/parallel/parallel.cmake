@@ -37,6 +37,25 @@ foreach(spec "source 400 2 3 --rebalance 50" "split 400 2 3" "point 600 2 3")
            COMMAND ${Python3_EXECUTABLE} ${MORAINE_PAR_DIR}/equivalence.py $<TARGET_FILE:moraine>
                    ${MORAINE_PAR_PARTICLES} ${MORAINE_TEST_OUT}/mpi_particles ${args})
 endforeach()
+# walls, rigid bodies and contact between bodies with the contact across the cuts (tests/parallel/walls.lua):
+# a block sliding on a moving inclined friction wall (re-cut every 20 steps as well), a box body pushed
+# into a column, two blocks colliding with friction
+set(MORAINE_PAR_WALLS ${MORAINE_PAR_DIR}/walls.lua)
+add_test(NAME mpi.equivalence_incline
+         COMMAND ${Python3_EXECUTABLE} ${MORAINE_PAR_DIR}/equivalence.py $<TARGET_FILE:moraine> ${MORAINE_PAR_WALLS}
+                 ${MORAINE_TEST_OUT}/mpi_equivalence_walls incline 300 2 3 --rebalance 20)
+add_test(NAME mpi.equivalence_push
+         COMMAND ${Python3_EXECUTABLE} ${MORAINE_PAR_DIR}/equivalence.py $<TARGET_FILE:moraine> ${MORAINE_PAR_WALLS}
+                 ${MORAINE_TEST_OUT}/mpi_equivalence_walls push 300 2 3)
+add_test(NAME mpi.equivalence_blocks
+         COMMAND ${Python3_EXECUTABLE} ${MORAINE_PAR_DIR}/equivalence.py $<TARGET_FILE:moraine> ${MORAINE_PAR_WALLS}
+                 ${MORAINE_TEST_OUT}/mpi_equivalence_walls blocks 300 2 3)
+# a wall's and a rigid body's state and contacts saved on 3 processes, continued on 1 and on 2
+foreach(case incline push)
+  add_test(NAME mpi.restart_${case}
+           COMMAND ${Python3_EXECUTABLE} ${MORAINE_PAR_DIR}/restart.py $<TARGET_FILE:moraine> ${MORAINE_PAR_WALLS}
+                   ${MORAINE_TEST_OUT}/mpi_restart_${case} ${case} 150)
+endforeach()
 # the VTK series of the 3-process collapse read by ParaView's readers: a .pvtp per snapshot declaring its
 # pieces' arrays, every particle once, as on one process; the grid snapshots equal the one-process run's
 add_test(NAME mpi.vtk_series
@@ -65,6 +84,7 @@ add_test(NAME mpi.robust COMMAND ${MORAINE_PAR_DIR}/robust.sh $<TARGET_FILE:mora
 # the cases share the two equivalence directories' one-process runs: one at a time
 set_tests_properties(mpi.equivalence_collapse2d mpi.equivalence_cube3d mpi.equivalence_xpic mpi.equivalence_fbar
                      mpi.equivalence_fbar3d mpi.equivalence_late_affine mpi.equivalence_source
-                     mpi.equivalence_split mpi.equivalence_point mpi.vtk_series mpi.restart_collapse2d
-                     mpi.restart_cube3d mpi.restart_source mpi.restart_split mpi.robust
+                     mpi.equivalence_split mpi.equivalence_point mpi.equivalence_incline mpi.equivalence_push
+                     mpi.equivalence_blocks mpi.restart_incline mpi.restart_push mpi.vtk_series
+                     mpi.restart_collapse2d mpi.restart_cube3d mpi.restart_source mpi.restart_split mpi.robust
                      PROPERTIES LABELS mpi RUN_SERIAL TRUE ENVIRONMENT "OMP_NUM_THREADS=1;OMP_WAIT_POLICY=PASSIVE")
