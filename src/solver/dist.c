@@ -13,20 +13,23 @@
 #include "solver/point_force.h"
 #include "solver/simulation.h"
 
+/* the implicit integrator is a limitation of distributed runs, not a
+ * feature still to come to them (doc/implicit.md) */
+static int refuse_implicit(void) {
+  return mrn_error("parallel: the implicit integrator (simulation{integrator}) does not run on several processes: "
+                   "its Newton system is assembled and solved on one process by a sequential solver, a limitation "
+                   "of moraine's implicit integrator; run this deck without mpirun (doc/implicit.md)");
+}
+
 /* what the distributed step does not do yet, by the option that asks for it */
 static int refuse(const mrn_sim *sim) {
   const char *what = NULL;
-  const int axis = sim->dim - 1;
-  if (sim->integrator.step) what = "the implicit integrator (simulation{integrator})";
-  else if (sim->contact && sim->contact->npairs) what = "contact between bodies (sim:add_contact)";
+  if (sim->integrator.step) return refuse_implicit();
+  if (sim->contact && sim->contact->npairs) what = "contact between bodies (sim:add_contact)";
   else if (sim->boundary.walls) what = "walls and rigid bodies (sim:add_wall)";
   else if (sim->nsources) what = "inflow sources (sim:add_source)";
   else if (sim->split_stretch > 0.0) what = "particle splitting (simulation{split})";
-  else if (sim->shape == MRN_SHAPE_CPDI) what = "CPDI (shape = \"cpdi\")";
   else if (mrn_particles_user_field(&sim->particles, MRN_POINT_FORCE_FIELD)) what = "point forces (sim:set_point_force)";
-  else if (mrn_boundary_periodic(&sim->boundary, axis)) what = "a periodic face along the last axis (faces)";
-  for (int f = 0; !what && f < 2 * sim->dim; f++)
-    if (sim->boundary.face[f].gap_check) what = "gap_check on a friction face (faces)";
   if (!what) return MRN_OK;
   return mrn_error("parallel: %s runs on one process only; run this deck without mpirun (doc/parallel.md, "
                    "\"What runs in parallel\")", what);
@@ -54,10 +57,18 @@ static void set_own(mrn_sim *sim, const mrn_dist *d) {
   g->own_hi = d->rank == d->size - 1 ? g->ncell[d->axis] + g->pad + 1 : d->cut[d->rank + 1];
 }
 
+/* the thinnest slab a cut makes: MRN_DIST_MIN_CELLS, or as many as the
+ * band width needs between two bands (mrn_dist_halo) where the grid has
+ * room for it */
+static int slab_min(const mrn_grid *g, const mrn_dist *d) {
+  const int need = 2 * d->halo + 1;
+  return need > MRN_DIST_MIN_CELLS && need * d->size <= g->ncell[d->axis] ? need : MRN_DIST_MIN_CELLS;
+}
+
 /* Cuts at the particle-count quantiles along the axis, then pushed apart
- * to MRN_DIST_MIN_CELLS rows: neighbouring bands must not overlap, so that
- * no node row is reached by three processes. `replicated`: every process
- * holds every particle (the count is not summed). */
+ * to slab_min rows: neighbouring bands must not overlap, so that no node
+ * row is reached by three processes. `replicated`: every process holds
+ * every particle (the count is not summed). */
 static int cut_by_count(mrn_sim *sim, mrn_dist *d, int replicated) {
   const mrn_grid *g = &sim->grid;
   const int nc = g->ncell[d->axis];
@@ -76,10 +87,11 @@ static int cut_by_count(mrn_sim *sim, mrn_dist *d, int replicated) {
     d->cut[r] = j;
   }
   free(count);
+  const int min = slab_min(g, d);
   for (int r = 1; r < d->size; r++)
-    if (d->cut[r] < d->cut[r - 1] + MRN_DIST_MIN_CELLS) d->cut[r] = d->cut[r - 1] + MRN_DIST_MIN_CELLS;
+    if (d->cut[r] < d->cut[r - 1] + min) d->cut[r] = d->cut[r - 1] + min;
   for (int r = d->size - 1; r > 0; r--)
-    if (d->cut[r] > d->cut[r + 1] - MRN_DIST_MIN_CELLS) d->cut[r] = d->cut[r + 1] - MRN_DIST_MIN_CELLS;
+    if (d->cut[r] > d->cut[r + 1] - min) d->cut[r] = d->cut[r + 1] - min;
   set_own(sim, d);
   return MRN_OK;
 }
@@ -97,6 +109,8 @@ int mrn_dist_adopt(mrn_sim *sim, size_t first) {
   if (sim->blocks) mrn_blocks_forget(sim->blocks);
   return MRN_OK;
 }
+
+static int reserve(mrn_sim *sim); /* room for the halo exchanges (below) */
 
 int mrn_dist_start(mrn_sim *sim) {
   if (sim->dist || mrn_comm_size() < 2) return MRN_OK;
@@ -118,8 +132,9 @@ int mrn_dist_start(mrn_sim *sim) {
   d->rank = mrn_comm_rank();
   d->size = mrn_comm_size();
   d->axis = axis;
+  d->halo = 1;
   sim->dist = d;
-  if ((rc = cut_by_count(sim, d, 1)) || (rc = mrn_dist_adopt(sim, 0))) return rc;
+  if ((rc = reserve(sim)) || (rc = cut_by_count(sim, d, 1)) || (rc = mrn_dist_adopt(sim, 0))) return rc;
   /* the books of work done so far are process 0's; the others start at 0 */
   if (d->rank != 0) {
     sim->work_friction = sim->work_damping = sim->energy_outflow = sim->outflow_mass = 0.0;
@@ -171,31 +186,51 @@ static unsigned char *buffer(mrn_dist *d, size_t bytes) {
   return d->buf;
 }
 
-/* The band around cut c: node rows [c - 1, c + 1] along the cut axis, as a
- * linear node range and as rows of the active spans (grid/active.h) */
+/* 1 when the cut axis is periodic: the last slab and the first then meet
+ * at cut 0, through the wrap (the faces may change between steps) */
+static int wraps(const mrn_sim *sim) { return mrn_boundary_periodic(&sim->boundary, sim->dist->axis); }
+
+/* The band around cut c: the node planes [c - h, c + h] across the cut
+ * axis, h = d->halo, wrapped around a periodic axis (the band of cut 0 is
+ * then the last h planes and the first h + 1: a kernel wraps node ncell
+ * onto node 0, so no process touches plane ncell). A plane is `nodes`
+ * consecutive nodes and `rows` rows of the active spans (grid/active.h). */
 typedef struct band {
-  long first, nodes;   /* linear node indices [first, first + nodes) */
-  size_t row0, nrows;  /* active-span rows */
+  int first, count; /* planes first .. first + count - 1, domain numbering */
+  int period;       /* ncell along a periodic cut axis, else 0 */
+  long nodes;
+  size_t rows;
 } band;
 
-static band band_at(const mrn_grid *g, int c) {
-  const int axis = g->dim - 1;
-  const long slow0 = c - 1 + g->pad; /* storage index of the band's first row */
-  const size_t rows_per = g->dim == 3 ? (size_t)g->nnode[1] : 1;
-  band b = {slow0 * g->stride[axis], 3 * g->stride[axis], (size_t)slow0 * rows_per, 3 * rows_per};
+static band band_at(const mrn_sim *sim, int c) {
+  const mrn_grid *g = &sim->grid;
+  const mrn_dist *d = sim->dist;
+  const band b = {c - d->halo, 2 * d->halo + 1, wraps(sim) ? g->ncell[d->axis] : 0, g->stride[d->axis],
+                  g->dim == 3 ? (size_t)g->nnode[1] : 1};
   return b;
 }
 
-/* one nodal array's band into the message, or the message's added to it */
-static double *put(double *m, const double *a, const band *b, int nc) {
-  memcpy(m, a + nc * b->first, sizeof(double) * (size_t)(nc * b->nodes));
-  return m + nc * b->nodes;
+/* the storage index of the band's k-th plane */
+static long band_plane(const band *b, const mrn_grid *g, int k) {
+  int j = b->first + k;
+  if (b->period) j = (j % b->period + b->period) % b->period;
+  return j + g->pad;
 }
 
-static const double *add(const double *m, double *a, const band *b, int nc) {
-  double *t = a + nc * b->first;
-  for (long i = 0; i < nc * b->nodes; i++) t[i] += m[i]; /* a + b == b + a: both sides hold the same sum */
-  return m + nc * b->nodes;
+/* one nodal array's band into the message, or the message's added to it */
+static double *put(double *m, const double *a, const mrn_grid *g, const band *b, int nc) {
+  const size_t n = (size_t)nc * (size_t)b->nodes;
+  for (int k = 0; k < b->count; k++, m += n) memcpy(m, a + nc * band_plane(b, g, k) * b->nodes, n * sizeof *m);
+  return m;
+}
+
+static const double *add(const double *m, double *a, const mrn_grid *g, const band *b, int nc) {
+  const long n = nc * b->nodes;
+  for (int k = 0; k < b->count; k++, m += n) {
+    double *t = a + band_plane(b, g, k) * n;
+    for (long i = 0; i < n; i++) t[i] += m[i]; /* a + b == b + a: both sides hold the same sum */
+  }
+  return m;
 }
 
 /* a nodal array and its values per node */
@@ -204,6 +239,17 @@ typedef struct nodal {
   int nc;
 } nodal;
 
+/* Room for the exchanges of this band width, made before they start so
+ * that none fails halfway (a process leaving one would leave its peer
+ * waiting): the largest message, the spans and the mass, momentum and
+ * force, sent and received. 0 or an error code. */
+static int reserve(mrn_sim *sim) {
+  const band b = band_at(sim, 0);
+  const size_t bytes = (size_t)b.count * (b.rows * 2 * sizeof(int) + 7 * (size_t)b.nodes * sizeof(double));
+  if (buffer(sim->dist, 2 * bytes)) return MRN_OK;
+  return mrn_error("parallel: out of memory for the halo exchange (%d node rows around each cut)", b.count);
+}
+
 /* Sum the band around cut c with process `peer`: the message holds the
  * spans of its rows, then the arrays. A node the peer's span covers and
  * this one's did not held zero here, so the span widens to it before the
@@ -211,33 +257,41 @@ typedef struct nodal {
 static int exchange_band(mrn_sim *sim, int peer, int c, const nodal *arr, int narr) {
   mrn_grid *g = &sim->grid;
   mrn_dist *d = sim->dist;
-  const band b = band_at(g, c);
+  const band b = band_at(sim, c);
   int nd = 0;
   for (int k = 0; k < narr; k++) nd += arr[k].nc;
-  const size_t bytes = b.nrows * 2 * sizeof(int) + (size_t)nd * (size_t)b.nodes * sizeof(double);
+  const size_t rows = (size_t)b.count * b.rows;
+  const size_t bytes = rows * 2 * sizeof(int) + (size_t)nd * (size_t)b.count * (size_t)b.nodes * sizeof(double);
   unsigned char *out = buffer(d, 2 * bytes), *in = out + bytes;
   if (!out) return mrn_error("parallel: out of memory for the halo exchange");
   const mrn_grid_active *a = g->active;
   int *span = (int *)out;
-  for (size_t r = 0; r < b.nrows; r++) {
-    span[2 * r] = a->lo[b.row0 + r];
-    span[2 * r + 1] = a->hi[b.row0 + r];
-  }
-  double *m = (double *)(out + b.nrows * 2 * sizeof(int));
-  for (int k = 0; k < narr; k++) m = put(m, arr[k].a, &b, arr[k].nc);
+  for (int k = 0; k < b.count; k++)
+    for (size_t r = 0, row = (size_t)band_plane(&b, g, k) * b.rows; r < b.rows; r++, row++, span += 2) {
+      span[0] = a->lo[row];
+      span[1] = a->hi[row];
+    }
+  double *m = (double *)(out + rows * 2 * sizeof(int));
+  for (int k = 0; k < narr; k++) m = put(m, arr[k].a, g, &b, arr[k].nc);
   mrn_comm_exchange(peer, out, bytes, in, bytes);
   d->halo_bytes += (double)bytes;
   const int *theirs = (const int *)in;
-  for (size_t r = 0; r < b.nrows; r++) mrn_grid_active_widen(g, b.row0 + r, theirs[2 * r], theirs[2 * r + 1]);
+  for (int k = 0; k < b.count; k++)
+    for (size_t r = 0, row = (size_t)band_plane(&b, g, k) * b.rows; r < b.rows; r++, row++, theirs += 2)
+      mrn_grid_active_widen(g, row, theirs[0], theirs[1]);
   mrn_grid_active_refresh(g);
-  const double *q = (const double *)(in + b.nrows * 2 * sizeof(int));
-  for (int k = 0; k < narr; k++) q = add(q, arr[k].a, &b, arr[k].nc);
+  const double *q = (const double *)(in + rows * 2 * sizeof(int));
+  for (int k = 0; k < narr; k++) q = add(q, arr[k].a, g, &b, arr[k].nc);
   return MRN_OK;
 }
 
-/* the cuts this process shares, ordered so that pairs of processes meet
- * at once: even ranks first up, odd ranks first down */
-static int neighbours(const mrn_dist *d, int peer[2], int cut[2]) {
+/* The cuts this process shares, ordered so that pairs of processes meet
+ * at once: even ranks first up, odd ranks first down; then, on a periodic
+ * cut axis, the wrap between the last slab and the first (cut 0), which
+ * both do last. With two processes the same peer is met twice, at its cut
+ * and at the wrap, in that order on both. */
+static int neighbours(const mrn_sim *sim, int peer[2], int cut[2]) {
+  const mrn_dist *d = sim->dist;
   int n = 0;
   const int up = d->rank + 1 < d->size, down = d->rank > 0;
   for (int pass = 0; pass < 2; pass++) {
@@ -250,12 +304,16 @@ static int neighbours(const mrn_dist *d, int peer[2], int cut[2]) {
       cut[n++] = d->cut[d->rank];
     }
   }
+  if (wraps(sim) && (!up || !down)) {
+    peer[n] = up ? d->size - 1 : 0;
+    cut[n++] = 0;
+  }
   return n;
 }
 
 static int sum_arrays(mrn_sim *sim, const nodal *arr, int narr) {
   int peer[2], cut[2], rc = MRN_OK;
-  const int n = neighbours(sim->dist, peer, cut);
+  const int n = neighbours(sim, peer, cut);
   for (int k = 0; k < n && rc == MRN_OK; k++) rc = exchange_band(sim, peer[k], cut[k], arr, narr);
   return rc;
 }
@@ -280,22 +338,99 @@ void mrn_dist_sum_nodal(void *ctx, double *values, int ncomp) {
   (void)mrn_dist_agree(sim, sum_arrays(sim, &arr, 1));
 }
 
-void mrn_dist_touch(mrn_sim *sim) {
+/* OR `narrays` arrays of one byte per node (g->n each, one after another)
+ * over the bands; the room was reserved with the step's band width */
+static void or_bands(mrn_sim *sim, unsigned char *bits, int narrays) {
   mrn_dist *d = sim->dist;
-  if (!d) return;
+  const mrn_grid *g = &sim->grid;
+  int peer[2], cut[2];
+  const int n = neighbours(sim, peer, cut);
+  for (int k = 0; k < n; k++) {
+    const band b = band_at(sim, cut[k]);
+    const size_t plane = (size_t)b.nodes, bytes = (size_t)narrays * (size_t)b.count * plane;
+    unsigned char *out = buffer(d, 2 * bytes), *in = out + bytes, *m = out;
+    if (!out) continue; /* not reached: reserve() made the room for larger messages */
+    for (int a = 0; a < narrays; a++)
+      for (int j = 0; j < b.count; j++, m += plane) memcpy(m, bits + a * g->n + band_plane(&b, g, j) * b.nodes, plane);
+    mrn_comm_exchange(peer[k], out, bytes, in, bytes);
+    d->halo_bytes += (double)bytes;
+    m = in;
+    for (int a = 0; a < narrays; a++)
+      for (int j = 0; j < b.count; j++, m += plane) {
+        unsigned char *t = bits + a * g->n + band_plane(&b, g, j) * b.nodes;
+        for (size_t i = 0; i < plane; i++) t[i] |= m[i];
+      }
+  }
+}
+
+void mrn_dist_touch(mrn_sim *sim) {
+  if (!sim->dist) return;
   int friction = 0;
   for (int f = 0; f < 2 * sim->dim; f++) friction |= sim->boundary.face[f].kind == MRN_BC_FRICTION;
-  if (!friction) return;
-  int peer[2], cut[2];
-  const int n = neighbours(d, peer, cut);
-  for (int k = 0; k < n; k++) {
-    const band b = band_at(&sim->grid, cut[k]);
-    unsigned char *in = buffer(d, (size_t)b.nodes), *mine = sim->grid.touch + b.first;
-    if (!in) continue; /* out of memory: this band's contacts stay one-sided for a step */
-    mrn_comm_exchange(peer[k], mine, (size_t)b.nodes, in, (size_t)b.nodes);
-    d->halo_bytes += (double)b.nodes;
-    for (long i = 0; i < b.nodes; i++) mine[i] |= in[i];
+  if (friction) or_bands(sim, sim->grid.touch, 1);
+}
+
+int mrn_dist_or_marks(void *ctx, unsigned char *marks, int narrays, int rc) {
+  mrn_sim *sim = ctx;
+  if (!sim->dist || (rc = mrn_dist_agree(sim, rc)) != MRN_OK) return rc;
+  or_bands(sim, marks, narrays);
+  return MRN_OK;
+}
+
+/* CPDI's farthest reach, in cells, of a domain corner from its particle
+ * along the cut axis: the domains A (9 per particle) the step froze */
+static double cpdi_reach(const mrn_sim *sim) {
+  const int axis = sim->dist->axis;
+  double reach = 0.0;
+  for (size_t p = 0; p < sim->particles.n; p++) {
+    const double *a = sim->domain + 9 * p + 3 * axis;
+    double r = 0.0;
+    for (int k = 0; k < sim->dim; k++) r += fabs(a[k]);
+    reach = fmax(reach, r);
   }
+  return reach * sim->grid.inv_cell;
+}
+
+/* the cells slab r needs for bands of half width h: 2 h + 1 between two
+ * bands, so that no node row is in two of them (a row three processes
+ * reach would miss one's share); h + 1 at an end of the axis that does
+ * not wrap */
+static int slab_need(const mrn_sim *sim, int r, int h) {
+  const mrn_dist *d = sim->dist;
+  return (r == 0 || r == d->size - 1) && !wraps(sim) ? h + 1 : 2 * h + 1;
+}
+
+/* The half width for domains reaching `reach` cells: a corner within it
+ * of its particle's cell row j reaches node rows j - ceil(reach) to
+ * j + 1 + ceil(reach) (the linear hat adds one); the margin takes the
+ * corners' round-off. Beyond the grid (or NaN) no slab holds it, as
+ * mrn_dist_halo then says. */
+static int cpdi_halo(const mrn_sim *sim, double reach) {
+  const double rows = ceil(reach + 1e-9), most = sim->grid.ncell[sim->dist->axis] + 1;
+  return rows <= most ? (int)fmax(1.0, rows) : (int)most;
+}
+
+int mrn_dist_halo(mrn_sim *sim, int rc) {
+  mrn_dist *d = sim->dist;
+  if (!d || sim->shape != MRN_SHAPE_CPDI) { /* the width the first step reserved */
+    if (d) d->halo = 1;
+    return rc;
+  }
+  double reach = rc == MRN_OK ? cpdi_reach(sim) : 0.0;
+  if ((rc = mrn_dist_agree(sim, rc)) != MRN_OK) return rc;
+  mrn_comm_allreduce(&reach, 1, MRN_COMM_MAX);
+  const int h = cpdi_halo(sim, reach);
+  for (int r = 0; r < d->size; r++) {
+    const int have = d->cut[r + 1] - d->cut[r];
+    if (have >= slab_need(sim, r, h)) continue;
+    mrn_comm_set_shared_error(1); /* every process finds it alike */
+    return mrn_error("parallel: step %ld: CPDI's particle domains reach %s cells along %c from their particles: "
+                     "the halo bands take node rows [cut - %d, cut + %d], and the slabs at least %d cells (%d at an "
+                     "end of the axis); process %d's slab has %d: run on fewer processes (doc/parallel.md)",
+                     sim->step + 1, mrn_num(reach).s, "xyz"[d->axis], h, h, 2 * h + 1, h + 1, r, have);
+  }
+  d->halo = h;
+  return mrn_dist_agree(sim, reserve(sim));
 }
 
 /* particles leaving this process: their destinations, the bytes for each
