@@ -23,6 +23,20 @@ add_test(NAME mpi.equivalence_fbar
 add_test(NAME mpi.equivalence_fbar3d
          COMMAND ${Python3_EXECUTABLE} ${MORAINE_PAR_DIR}/equivalence.py $<TARGET_FILE:moraine> ${MORAINE_PAR_DECK}
                  ${MORAINE_TEST_OUT}/mpi_equivalence_fbar3d cube3d 300 3 --volumetric fbar)
+# periodic along y: the last slab and the first sum their band through the wrap (with 2 processes the
+# same peer on both sides), particles wrap from one to the other
+add_test(NAME mpi.equivalence_periodic
+         COMMAND ${Python3_EXECUTABLE} ${MORAINE_PAR_DIR}/equivalence.py $<TARGET_FILE:moraine> ${MORAINE_PAR_DECK}
+                 ${MORAINE_TEST_OUT}/mpi_equivalence_periodic periodic2d 1000 2 3)
+# CPDI: a bar stretching along y, its domains widening the halo band to h = 2 (asserted by the deck)
+add_test(NAME mpi.equivalence_cpdi
+         COMMAND ${Python3_EXECUTABLE} ${MORAINE_PAR_DIR}/equivalence.py $<TARGET_FILE:moraine> ${MORAINE_PAR_DECK}
+                 ${MORAINE_TEST_OUT}/mpi_equivalence_cpdi cpdi2d 250 2 3)
+# gap_check on a friction wall along the cut axis: a disk rolling down it across the cuts (the deck
+# asserts that gap_check changes the run)
+add_test(NAME mpi.equivalence_gap_check
+         COMMAND ${Python3_EXECUTABLE} ${MORAINE_PAR_DIR}/equivalence.py $<TARGET_FILE:moraine> ${MORAINE_PAR_DECK}
+                 ${MORAINE_TEST_OUT}/mpi_equivalence_gap_check rolling2d 1000 2 3)
 # the VTK series of the 3-process collapse read by ParaView's reader: every particle once, as on one process
 add_test(NAME mpi.vtk_series
          COMMAND ${Python3_EXECUTABLE} ${MORAINE_PAR_DIR}/check_vtk.py
@@ -37,10 +51,11 @@ foreach(case collapse2d cube3d)
 endforeach()
 # crossing two slabs in a step, empty processes, a particle leaving (a stop; a deletion booked as
 # outflow), a Lua error on one process,
-# a grid too thin, SIGINT to mpirun
+# a grid too thin, CPDI domains too wide for the slabs, SIGINT to mpirun
 add_test(NAME mpi.robust COMMAND ${MORAINE_PAR_DIR}/robust.sh $<TARGET_FILE:moraine> ${MORAINE_TEST_OUT}/mpi_robust)
 # the cases share the two equivalence directories' one-process runs: one at a time
 set_tests_properties(mpi.equivalence_collapse2d mpi.equivalence_cube3d mpi.equivalence_xpic mpi.equivalence_fbar
-                     mpi.equivalence_fbar3d mpi.vtk_series mpi.restart_collapse2d
+                     mpi.equivalence_fbar3d mpi.equivalence_periodic mpi.equivalence_cpdi
+                     mpi.equivalence_gap_check mpi.vtk_series mpi.restart_collapse2d
                      mpi.restart_cube3d mpi.robust
                      PROPERTIES LABELS mpi RUN_SERIAL TRUE ENVIRONMENT "OMP_NUM_THREADS=1;OMP_WAIT_POLICY=PASSIVE")
