@@ -377,20 +377,6 @@ int mrn_dist_or_marks(void *ctx, unsigned char *marks, int narrays, int rc) {
   return MRN_OK;
 }
 
-/* CPDI's farthest reach, in cells, of a domain corner from its particle
- * along the cut axis: the domains A (9 per particle) the step froze */
-static double cpdi_reach(const mrn_sim *sim) {
-  const int axis = sim->dist->axis;
-  double reach = 0.0;
-  for (size_t p = 0; p < sim->particles.n; p++) {
-    const double *a = sim->domain + 9 * p + 3 * axis;
-    double r = 0.0;
-    for (int k = 0; k < sim->dim; k++) r += fabs(a[k]);
-    reach = fmax(reach, r);
-  }
-  return reach * sim->grid.inv_cell;
-}
-
 /* the cells slab r needs for bands of half width h: 2 h + 1 between two
  * bands, so that no node row is in two of them (a row three processes
  * reach would miss one's share); h + 1 at an end of the axis that does
@@ -400,34 +386,38 @@ static int slab_need(const mrn_sim *sim, int r, int h) {
   return (r == 0 || r == d->size - 1) && !wraps(sim) ? h + 1 : 2 * h + 1;
 }
 
-/* The half width for domains reaching `reach` cells: a corner within it
- * of its particle's cell row j reaches node rows j - ceil(reach) to
- * j + 1 + ceil(reach) (the linear hat adds one); the margin takes the
- * corners' round-off. Beyond the grid (or NaN) no slab holds it, as
+/* The half width h for shape functions that reach `reach` cells from a
+ * particle: one in cell row j reaches, strictly within it, node rows
+ * j + 1 - ceil(reach) to j + ceil(reach) (the friction faces' touch marks
+ * those too), so the rows of a cut c that both sides reach are c - h to
+ * c + h with h = ceil(reach) - 1, at least 1. CPDI's corners come with
+ * round-off: a margin. Beyond the grid (or NaN) no slab holds it, as
  * mrn_dist_halo then says. */
-static int cpdi_halo(const mrn_sim *sim, double reach) {
-  const double rows = ceil(reach + 1e-9), most = sim->grid.ncell[sim->dist->axis] + 1;
+static int halo_for(const mrn_sim *sim, double reach) {
+  const double margin = sim->shape == MRN_SHAPE_CPDI ? 1e-9 : 0.0;
+  const double rows = ceil(reach + margin) - 1.0, most = sim->grid.ncell[sim->dist->axis] + 1;
   return rows <= most ? (int)fmax(1.0, rows) : (int)most;
 }
 
-int mrn_dist_halo(mrn_sim *sim, int rc) {
+int mrn_dist_halo(mrn_sim *sim, double reach, int rc) {
   mrn_dist *d = sim->dist;
-  if (!d || sim->shape != MRN_SHAPE_CPDI) { /* the width the first step reserved */
-    if (d) d->halo = 1;
+  if (!d) return rc;
+  if (sim->shape != MRN_SHAPE_CPDI) { /* the same on every process: 1, the room mrn_dist_start reserved */
+    d->halo = halo_for(sim, reach);
     return rc;
   }
-  double reach = rc == MRN_OK ? cpdi_reach(sim) : 0.0;
+  /* CPDI's grows with each process's domains */
   if ((rc = mrn_dist_agree(sim, rc)) != MRN_OK) return rc;
   mrn_comm_allreduce(&reach, 1, MRN_COMM_MAX);
-  const int h = cpdi_halo(sim, reach);
+  const int h = halo_for(sim, reach);
   for (int r = 0; r < d->size; r++) {
     const int have = d->cut[r + 1] - d->cut[r];
     if (have >= slab_need(sim, r, h)) continue;
     mrn_comm_set_shared_error(1); /* every process finds it alike */
-    return mrn_error("parallel: step %ld: CPDI's particle domains reach %s cells along %c from their particles: "
-                     "the halo bands take node rows [cut - %d, cut + %d], and the slabs at least %d cells (%d at an "
-                     "end of the axis); process %d's slab has %d: run on fewer processes (doc/parallel.md)",
-                     sim->step + 1, mrn_num(reach).s, "xyz"[d->axis], h, h, 2 * h + 1, h + 1, r, have);
+    return mrn_error("parallel: step %ld: CPDI's domains have stretched until its shape functions reach %s cells "
+                     "from their particles: the halo bands take node rows [cut - %d, cut + %d], and the slabs at "
+                     "least %d cells (%d at an end of the axis); process %d's slab has %d: run on fewer processes "
+                     "(doc/parallel.md)", sim->step + 1, mrn_num(reach).s, h, h, 2 * h + 1, h + 1, r, have);
   }
   d->halo = h;
   return mrn_dist_agree(sim, reserve(sim));

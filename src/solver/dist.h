@@ -14,9 +14,9 @@
  *   are summed with that neighbour's: both then hold the same nodal values
  *   there, and the grid update, run by both on those rows, gives both the
  *   same velocities for G2P. h is 1 (a kernel of support up to 4 cells
- *   reaches one row below its cell and two above), or with CPDI the
- *   farthest reach of a particle domain's corners along the cut axis,
- *   agreed by every process each step (mrn_dist_halo). A periodic cut axis
+ *   reaches one row below its cell and two above), or with CPDI as far as
+ *   its stretched domains make the shape functions reach, agreed by every
+ *   process each step (mrn_dist_halo). A periodic cut axis
  *   makes the last slab and the first neighbours through the wrap: their
  *   band, around cut 0, is the last h node rows and the first h + 1. The
  *   work done on a node (damping, friction) is booked by the process that
@@ -99,11 +99,12 @@ void mrn_dist_touch(struct mrn_sim *sim);
  * node, one after another at `marks`, over the bands (gap_check's marks:
  * grid/boundary.h, mrn_boundary_touch); ctx is the simulation */
 int mrn_dist_or_marks(void *ctx, unsigned char *marks, int narrays, int rc);
-/* The band's half width h for this step, given the outcome so far: 1, or
- * with CPDI the farthest reach along the cut axis of the domains the step
- * froze (sim->domain), agreed by every process; an error when a slab is
- * too thin for it. */
-int mrn_dist_halo(struct mrn_sim *sim, int rc);
+/* The band's half width h for this step, given the outcome so far, for
+ * shape functions that reach `reach` cells from their particles (this
+ * process's; CPDI's grow with the domains the step froze, and the largest
+ * is agreed by every process): 1, more for CPDI's stretched domains; an
+ * error when a slab is too thin for it. */
+int mrn_dist_halo(struct mrn_sim *sim, double reach, int rc);
 /* after the step: agree on rc, re-cut if due, send the particles that left */
 int mrn_dist_migrate(struct mrn_sim *sim, int rc);
 /* re-cut the grid by particle count now and move the particles */

@@ -9,8 +9,9 @@
 --                    process that holds it, and every process books its energy as outflow
 --   case=small_grid  8 cells along y for 3 processes (4 each at least)
 --   case=cpdi_thin   a CPDI bar stretching along y on 3 slabs of 4 cells: its
---                    domains come to reach a cell from their particles, which
---                    takes bands of 5 node rows and slabs of 5 cells between two
+--                    domains come to reach a cell from their particles (the
+--                    shape functions two), which takes bands of 5 node rows and
+--                    slabs of 5 cells between two
 --   case=sigint      a long run that the driver interrupts (SIGINT to mpirun)
 local case = mpm.param("case", "crossing")
 local steel = mpm.material.linear_elastic{ density = 7800, E = 2e8, nu = 0.3 }

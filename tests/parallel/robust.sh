@@ -62,10 +62,10 @@ say "small_grid: exit $s; $expect"
 # cpdi_thin: stopped when the domains outgrow the slabs, with the numbers, once
 run3 cpdi_thin; s=$?
 [ $s -ne 0 ] || bad "cpdi_thin exited 0"
-expect="cells along y from their particles: the halo bands take node rows [cut - 2, cut + 2], and the slabs at least 5 cells (3 at an end of the axis); process 1's slab has 4"
+expect="cells from their particles: the halo bands take node rows [cut - 2, cut + 2], and the slabs at least 5 cells (3 at an end of the axis); process 1's slab has 4"
 n=$(grep -c -F "$expect" "$out/cpdi_thin.out")
 [ "$n" -eq 1 ] || { bad "cpdi_thin: the message printed $n times"; cat "$out/cpdi_thin.out"; }
-say "cpdi_thin: exit $s; $(grep -o "parallel: step [0-9]*: CPDI's[^:]*" "$out/cpdi_thin.out")"
+say "cpdi_thin: exit $s; $(grep -o "parallel: step [0-9]*: CPDI's domains[^:]*" "$out/cpdi_thin.out")"
 
 # sigint: SIGINT to mpirun; every process finishes its step, one checkpoint
 # --foreground: timeout passes a signal it gets to mpirun alone (without it,
