@@ -200,11 +200,10 @@ static int face_over(const mrn_grid *g, const double *x, double r, int axis, int
 /* Visit the face nodes of face `face` within `reach` cells of a particle at
  * x, of half side r, whose columns its momentum lands in. A particle on the
  * face (`on`) marks them touched (with `held_only`, only those whose column
- * ended the last step in contact), and in `over` those whose patch it lies
- * over. A particle above the face unmarks those whose patch it lies over
- * unless material on the face lies over it too: that point of the face has
- * material standing clear of it (see doc/numerics.md, "Rolling"). */
-static void touch_visit(mrn_grid *g, unsigned char *over, const double *x, double r, int face, double reach, int on,
+ * ended the last step in contact), and in `marks` (may be NULL) those whose
+ * patch it lies over. A particle above the face marks in `marks` those
+ * whose patch it lies over. */
+static void touch_visit(mrn_grid *g, unsigned char *marks, const double *x, double r, int face, double reach, int on,
                         int held_only) {
   const int axis = face / 2;
   const unsigned char bit = (unsigned char)(1u << face);
@@ -218,21 +217,42 @@ static void touch_visit(mrn_grid *g, unsigned char *over, const double *x, doubl
         const int above = face_over(g, x, r, axis, i, j, k);
         if (on && (!held_only || (g->contact[n] & bit))) {
           g->touch[n] |= bit;
-          if (above && over) over[n] |= bit;
-        } else if (!on && above && !(over[n] & bit)) {
-          g->touch[n] &= (unsigned char)~bit;
+          if (above && marks) marks[n] |= bit;
+        } else if (!on && above) {
+          marks[n] |= bit;
         }
       }
+}
+
+/* the index box [lo, hi] of one face's face nodes */
+static void face_nodes(const mrn_grid *g, int face, int lo[3], int hi[3]) {
+  face_layers(g, face / 2, face % 2, lo, hi);
+  lo[face / 2] = hi[face / 2] = face % 2 == 0 ? 0 : g->ncell[face / 2];
 }
 
 /* clear the touch bits of one face's face nodes */
 static void touch_clear(mrn_grid *g, int face) {
   int lo[3], hi[3];
-  face_layers(g, face / 2, face % 2, lo, hi);
-  lo[face / 2] = hi[face / 2] = face % 2 == 0 ? 0 : g->ncell[face / 2];
+  face_nodes(g, face, lo, hi);
   for (int k = lo[2]; k <= hi[2]; k++)
     for (int j = lo[1]; j <= hi[1]; j++)
       for (int i = lo[0]; i <= hi[0]; i++) g->touch[mrn_grid_index(g, i, j, k)] &= (unsigned char)~(1u << face);
+}
+
+/* gap_check's release on one face: a column whose patch material above the
+ * face lies over (`clear`), and no material on the face (`over`), has
+ * material standing clear of it and is not touched (doc/numerics.md,
+ * "Rolling") */
+static void touch_release(mrn_grid *g, int face, const unsigned char *over, const unsigned char *clear) {
+  const unsigned char bit = (unsigned char)(1u << face);
+  int lo[3], hi[3];
+  face_nodes(g, face, lo, hi);
+  for (int k = lo[2]; k <= hi[2]; k++)
+    for (int j = lo[1]; j <= hi[1]; j++)
+      for (int i = lo[0]; i <= hi[0]; i++) {
+        const size_t n = mrn_grid_index(g, i, j, k);
+        if (clear[n] & ~over[n] & bit) g->touch[n] &= (unsigned char)~bit;
+      }
 }
 
 /* How far, in initial half sides, a particle's extent may stand off a face
@@ -252,31 +272,35 @@ static double face_gap(const mrn_grid *g, const double *x, int face, double r) {
   return (face % 2 == 0 ? x[axis] - lo : hi - x[axis]) - r;
 }
 
-void mrn_boundary_touch(const mrn_boundary *bc, mrn_grid *g, double reach, const double *x, const double *vol0,
-                        size_t n) {
+int mrn_boundary_touch(const mrn_boundary *bc, mrn_grid *g, double reach, const double *x, const double *vol0, size_t n,
+                       mrn_marks_share share, void *ctx) {
   int faces[MRN_FACE_COUNT], nf = 0;
   for (int f = 0; f < 2 * g->dim; f++)
     if (bc->face[f].kind == MRN_BC_FRICTION) faces[nf++] = f;
-  if (!nf) return;
+  if (!nf) return MRN_OK;
   for (int k = 0; k < nf; k++) touch_clear(g, faces[k]);
-  /* bit 1 << face: material on the face lies over the column; needed by the
-   * faces with gap_check only (without the memory they release nothing) */
+  /* bit 1 << face of over[]: material on the face lies over the column, of
+   * clear[]: material above the face does; for the faces with gap_check */
   int check = 0;
   for (int k = 0; k < nf; k++) check |= bc->face[faces[k]].gap_check;
-  unsigned char *over = check ? calloc(g->n, 1) : NULL;
-  for (int pass = 0; pass < (over ? 2 : 1); pass++)
-    for (size_t p = 0; p < n; p++) {
-      /* half the particle's initial side, as uGIMP's (transfer/stencil.h) */
-      const double r = 0.5 * (g->dim == 2 ? sqrt(vol0[p]) : cbrt(vol0[p]));
-      for (int k = 0; k < nf; k++) {
-        const double gap = face_gap(g, x + 3 * p, faces[k], r);
-        if (pass == 0 && gap <= MRN_TOUCH_SLACK * r)
-          touch_visit(g, over, x + 3 * p, r, faces[k], reach, 1, gap > 0.0);
-        else if (pass == 1 && bc->face[faces[k]].gap_check && gap > 0.0 && gap + r < reach * g->cell)
-          touch_visit(g, over, x + 3 * p, r, faces[k], reach, 0, 0);
-      }
+  unsigned char *over = check ? calloc(2 * g->n, 1) : NULL, *clear = over ? over + g->n : NULL;
+  int rc = check && !over ? mrn_error("friction faces: out of memory for gap_check") : MRN_OK;
+  for (size_t p = 0; p < n && rc == MRN_OK; p++) {
+    /* half the particle's initial side, as uGIMP's (transfer/stencil.h) */
+    const double r = 0.5 * (g->dim == 2 ? sqrt(vol0[p]) : cbrt(vol0[p]));
+    for (int k = 0; k < nf; k++) {
+      const double gap = face_gap(g, x + 3 * p, faces[k], r);
+      if (gap <= MRN_TOUCH_SLACK * r) touch_visit(g, over, x + 3 * p, r, faces[k], reach, 1, gap > 0.0);
+      if (clear && bc->face[faces[k]].gap_check && gap > 0.0 && gap + r < reach * g->cell)
+        touch_visit(g, clear, x + 3 * p, r, faces[k], reach, 0, 0);
     }
+  }
+  /* the release needs every particle's marks */
+  if (check && share) rc = share(ctx, over, 2, rc);
+  for (int k = 0; k < nf && rc == MRN_OK; k++)
+    if (bc->face[faces[k]].gap_check) touch_release(g, faces[k], over, clear);
   free(over);
+  return rc;
 }
 
 /* one friction face, column by column: the face node and the ghost nodes

@@ -122,6 +122,12 @@ int mrn_boundary_validate(const mrn_boundary *bc, int dim);
  * nodes are empty). `dt` only enters the work through F * V * dt = m dV . V.
  * The walls of bc->walls follow the faces (grid/wall.h, mrn_walls_apply). */
 double mrn_boundary_apply(const mrn_boundary *bc, mrn_grid *g, double mass_floor, double *vel, int with_friction);
+/* Given the outcome so far, combines `narrays` arrays of one byte per node
+ * (g->n each, one after another at `marks`) with those of the other
+ * processes that hold particles near the same nodes, and returns the
+ * outcome every process agreed (solver/dist.h, mrn_dist_or_marks) */
+typedef int (*mrn_marks_share)(void *ctx, unsigned char *marks, int narrays, int rc);
+
 /* Mark in g->touch the face nodes of friction faces where the material
  * touches the face: for each particle (positions x, initial volumes vol0, 3
  * and 1 values per particle) whose initial half side reaches a friction
@@ -129,8 +135,12 @@ double mrn_boundary_apply(const mrn_boundary *bc, mrn_grid *g, double mass_floor
  * of its shape functions, where its momentum lands) whose cell-sized patch
  * of the face its extent covers (mrn_contact_over_patch). A column not
  * in contact is touched only by material on the face; one in contact stays
- * touched while material is within a slack of it (see boundary.c). */
-void mrn_boundary_touch(const mrn_boundary *bc, mrn_grid *g, double reach, const double *x, const double *vol0,
-                        size_t n);
+ * touched while material is within a slack of it (see boundary.c). With
+ * gap_check, a column whose patch material above the face lies over, and
+ * none on the face, is released; those marks are first combined by `share`
+ * (NULL on one process) with the other processes' (ctx is passed to it).
+ * 0 or an error code (out of memory, or another process's error). */
+int mrn_boundary_touch(const mrn_boundary *bc, mrn_grid *g, double reach, const double *x, const double *vol0, size_t n,
+                       mrn_marks_share share, void *ctx);
 
 #endif

@@ -39,12 +39,12 @@ static void set_integer(lua_State *L, const char *key, lua_Integer v) {
   lua_setfield(L, -2, key);
 }
 
-/* sim:parallel() -> {rank, size, particles (this process's), cuts, halo_bytes,
- * migrate_bytes, migrated, rebalances} */
+/* sim:parallel() -> {rank, size, particles (this process's), cuts, halo,
+ * halo_bytes, migrate_bytes, migrated, rebalances} */
 int l_sim_parallel(lua_State *L) {
   sim_box *b = mrn_lua_sim_check(L, 1);
   const mrn_dist *d = b->sim->dist;
-  lua_createtable(L, 0, 8);
+  lua_createtable(L, 0, 10);
   set_integer(L, "rank", mrn_comm_rank());
   set_integer(L, "size", mrn_comm_size());
   set_integer(L, "particles", (lua_Integer)b->sim->particles.n);
@@ -57,6 +57,7 @@ int l_sim_parallel(lua_State *L) {
     lua_rawseti(L, -2, r + 1);
   }
   lua_setfield(L, -2, "cuts");
+  set_integer(L, "halo", d->halo);
   set_number(L, "halo_bytes", d->halo_bytes);
   set_number(L, "migrate_bytes", d->migrate_bytes);
   set_integer(L, "migrated", d->migrated);

@@ -12,18 +12,15 @@
 #include "solver/contact.h"
 #include "solver/simulation.h"
 
-/* what the distributed step does not do yet, by the option that asks for it */
+/* the implicit integrator is a limitation of distributed runs, not a
+ * feature still to come to them (doc/implicit.md) */
+/* what the distributed step does not do: the implicit integrator, a
+ * limitation named (doc/implicit.md) */
 static int refuse(const mrn_sim *sim) {
-  const char *what = NULL;
-  const int axis = sim->dim - 1;
-  if (sim->integrator.step) what = "the implicit integrator (simulation{integrator})";
-  else if (sim->shape == MRN_SHAPE_CPDI) what = "CPDI (shape = \"cpdi\")";
-  else if (mrn_boundary_periodic(&sim->boundary, axis)) what = "a periodic face along the last axis (faces)";
-  for (int f = 0; !what && f < 2 * sim->dim; f++)
-    if (sim->boundary.face[f].gap_check) what = "gap_check on a friction face (faces)";
-  if (!what) return MRN_OK;
-  return mrn_error("parallel: %s runs on one process only; run this deck without mpirun (doc/parallel.md, "
-                   "\"What runs in parallel\")", what);
+  if (!sim->integrator.step) return MRN_OK;
+  return mrn_error("parallel: the implicit integrator (simulation{integrator}) does not run on several processes: "
+                   "its Newton system is assembled and solved on one process by a sequential solver, a limitation "
+                   "of moraine's implicit integrator; run this deck without mpirun (doc/implicit.md)");
 }
 
 /* the cell row along the cut axis of a position, clamped to the grid */
@@ -48,10 +45,18 @@ static void set_own(mrn_sim *sim, const mrn_dist *d) {
   g->own_hi = d->rank == d->size - 1 ? g->ncell[d->axis] + g->pad + 1 : d->cut[d->rank + 1];
 }
 
+/* the thinnest slab a cut makes: MRN_DIST_MIN_CELLS, or as many as the
+ * band width needs between two bands (mrn_dist_halo) where the grid has
+ * room for it */
+static int slab_min(const mrn_grid *g, const mrn_dist *d) {
+  const int need = 2 * d->halo + 1;
+  return need > MRN_DIST_MIN_CELLS && need * d->size <= g->ncell[d->axis] ? need : MRN_DIST_MIN_CELLS;
+}
+
 /* Cuts at the particle-count quantiles along the axis, then pushed apart
- * to MRN_DIST_MIN_CELLS rows: neighbouring bands must not overlap, so that
- * no node row is reached by three processes. `replicated`: every process
- * holds every particle (the count is not summed). */
+ * to slab_min rows: neighbouring bands must not overlap, so that no node
+ * row is reached by three processes. `replicated`: every process holds
+ * every particle (the count is not summed). */
 static int cut_by_count(mrn_sim *sim, mrn_dist *d, int replicated) {
   const mrn_grid *g = &sim->grid;
   const int nc = g->ncell[d->axis];
@@ -70,10 +75,11 @@ static int cut_by_count(mrn_sim *sim, mrn_dist *d, int replicated) {
     d->cut[r] = j;
   }
   free(count);
+  const int min = slab_min(g, d);
   for (int r = 1; r < d->size; r++)
-    if (d->cut[r] < d->cut[r - 1] + MRN_DIST_MIN_CELLS) d->cut[r] = d->cut[r - 1] + MRN_DIST_MIN_CELLS;
+    if (d->cut[r] < d->cut[r - 1] + min) d->cut[r] = d->cut[r - 1] + min;
   for (int r = d->size - 1; r > 0; r--)
-    if (d->cut[r] > d->cut[r + 1] - MRN_DIST_MIN_CELLS) d->cut[r] = d->cut[r + 1] - MRN_DIST_MIN_CELLS;
+    if (d->cut[r] > d->cut[r + 1] - min) d->cut[r] = d->cut[r + 1] - min;
   set_own(sim, d);
   return MRN_OK;
 }
@@ -93,6 +99,7 @@ int mrn_dist_adopt(mrn_sim *sim, size_t first) {
 }
 
 static void books_set(mrn_sim *sim, const mrn_books *b);
+static int reserve(mrn_sim *sim); /* room for the halo exchanges (below) */
 
 int mrn_dist_start(mrn_sim *sim) {
   if (sim->dist || mrn_comm_size() < 2) return MRN_OK;
@@ -114,8 +121,9 @@ int mrn_dist_start(mrn_sim *sim) {
   d->rank = mrn_comm_rank();
   d->size = mrn_comm_size();
   d->axis = axis;
+  d->halo = 1;
   sim->dist = d;
-  if ((rc = cut_by_count(sim, d, 1)) || (rc = mrn_dist_adopt(sim, 0))) return rc;
+  if ((rc = reserve(sim)) || (rc = cut_by_count(sim, d, 1)) || (rc = mrn_dist_adopt(sim, 0))) return rc;
   /* the books kept so far are process 0's; the others start at 0 */
   if (d->rank != 0) books_set(sim, &(mrn_books){0});
   return MRN_OK;
@@ -164,31 +172,51 @@ static unsigned char *buffer(mrn_dist *d, size_t bytes) {
   return d->buf;
 }
 
-/* The band around cut c: node rows [c - 1, c + 1] along the cut axis, as a
- * linear node range and as rows of the active spans (grid/active.h) */
+/* 1 when the cut axis is periodic: the last slab and the first then meet
+ * at cut 0, through the wrap (the faces may change between steps) */
+static int wraps(const mrn_sim *sim) { return mrn_boundary_periodic(&sim->boundary, sim->dist->axis); }
+
+/* The band around cut c: the node planes [c - h, c + h] across the cut
+ * axis, h = d->halo, wrapped around a periodic axis (the band of cut 0 is
+ * then the last h planes and the first h + 1: a kernel wraps node ncell
+ * onto node 0, so no process touches plane ncell). A plane is `nodes`
+ * consecutive nodes and `rows` rows of the active spans (grid/active.h). */
 typedef struct band {
-  long first, nodes;   /* linear node indices [first, first + nodes) */
-  size_t row0, nrows;  /* active-span rows */
+  int first, count; /* planes first .. first + count - 1, domain numbering */
+  int period;       /* ncell along a periodic cut axis, else 0 */
+  long nodes;
+  size_t rows;
 } band;
 
-static band band_at(const mrn_grid *g, int c) {
-  const int axis = g->dim - 1;
-  const long slow0 = c - 1 + g->pad; /* storage index of the band's first row */
-  const size_t rows_per = g->dim == 3 ? (size_t)g->nnode[1] : 1;
-  band b = {slow0 * g->stride[axis], 3 * g->stride[axis], (size_t)slow0 * rows_per, 3 * rows_per};
+static band band_at(const mrn_sim *sim, int c) {
+  const mrn_grid *g = &sim->grid;
+  const mrn_dist *d = sim->dist;
+  const band b = {c - d->halo, 2 * d->halo + 1, wraps(sim) ? g->ncell[d->axis] : 0, g->stride[d->axis],
+                  g->dim == 3 ? (size_t)g->nnode[1] : 1};
   return b;
 }
 
-/* one nodal array's band into the message, or the message's added to it */
-static double *put(double *m, const double *a, const band *b, int nc) {
-  memcpy(m, a + nc * b->first, sizeof(double) * (size_t)(nc * b->nodes));
-  return m + nc * b->nodes;
+/* the storage index of the band's k-th plane */
+static long band_plane(const band *b, const mrn_grid *g, int k) {
+  int j = b->first + k;
+  if (b->period) j = (j % b->period + b->period) % b->period;
+  return j + g->pad;
 }
 
-static const double *add(const double *m, double *a, const band *b, int nc) {
-  double *t = a + nc * b->first;
-  for (long i = 0; i < nc * b->nodes; i++) t[i] += m[i]; /* a + b == b + a: both sides hold the same sum */
-  return m + nc * b->nodes;
+/* one nodal array's band into the message, or the message's added to it */
+static double *put(double *m, const double *a, const mrn_grid *g, const band *b, int nc) {
+  const size_t n = (size_t)nc * (size_t)b->nodes;
+  for (int k = 0; k < b->count; k++, m += n) memcpy(m, a + nc * band_plane(b, g, k) * b->nodes, n * sizeof *m);
+  return m;
+}
+
+static const double *add(const double *m, double *a, const mrn_grid *g, const band *b, int nc) {
+  const long n = nc * b->nodes;
+  for (int k = 0; k < b->count; k++, m += n) {
+    double *t = a + band_plane(b, g, k) * n;
+    for (long i = 0; i < n; i++) t[i] += m[i]; /* a + b == b + a: both sides hold the same sum */
+  }
+  return m;
 }
 
 /* a nodal array and its values per node */
@@ -197,6 +225,17 @@ typedef struct nodal {
   int nc;
 } nodal;
 
+/* Room for the exchanges of this band width, made before they start so
+ * that none fails halfway (a process leaving one would leave its peer
+ * waiting): the largest message, the spans and the mass, momentum and
+ * force, sent and received. 0 or an error code. */
+static int reserve(mrn_sim *sim) {
+  const band b = band_at(sim, 0);
+  const size_t bytes = (size_t)b.count * (b.rows * 2 * sizeof(int) + 7 * (size_t)b.nodes * sizeof(double));
+  if (buffer(sim->dist, 2 * bytes)) return MRN_OK;
+  return mrn_error("parallel: out of memory for the halo exchange (%d node rows around each cut)", b.count);
+}
+
 /* Sum the band around cut c with process `peer`: the message holds the
  * spans of its rows, then the arrays. A node the peer's span covers and
  * this one's did not held zero here, so the span widens to it before the
@@ -204,33 +243,41 @@ typedef struct nodal {
 static int exchange_band(mrn_sim *sim, int peer, int c, const nodal *arr, int narr) {
   mrn_grid *g = &sim->grid;
   mrn_dist *d = sim->dist;
-  const band b = band_at(g, c);
+  const band b = band_at(sim, c);
   int nd = 0;
   for (int k = 0; k < narr; k++) nd += arr[k].nc;
-  const size_t bytes = b.nrows * 2 * sizeof(int) + (size_t)nd * (size_t)b.nodes * sizeof(double);
+  const size_t rows = (size_t)b.count * b.rows;
+  const size_t bytes = rows * 2 * sizeof(int) + (size_t)nd * (size_t)b.count * (size_t)b.nodes * sizeof(double);
   unsigned char *out = buffer(d, 2 * bytes), *in = out + bytes;
   if (!out) return mrn_error("parallel: out of memory for the halo exchange");
   const mrn_grid_active *a = g->active;
   int *span = (int *)out;
-  for (size_t r = 0; r < b.nrows; r++) {
-    span[2 * r] = a->lo[b.row0 + r];
-    span[2 * r + 1] = a->hi[b.row0 + r];
-  }
-  double *m = (double *)(out + b.nrows * 2 * sizeof(int));
-  for (int k = 0; k < narr; k++) m = put(m, arr[k].a, &b, arr[k].nc);
+  for (int k = 0; k < b.count; k++)
+    for (size_t r = 0, row = (size_t)band_plane(&b, g, k) * b.rows; r < b.rows; r++, row++, span += 2) {
+      span[0] = a->lo[row];
+      span[1] = a->hi[row];
+    }
+  double *m = (double *)(out + rows * 2 * sizeof(int));
+  for (int k = 0; k < narr; k++) m = put(m, arr[k].a, g, &b, arr[k].nc);
   mrn_comm_exchange(peer, out, bytes, in, bytes);
   d->halo_bytes += (double)bytes;
   const int *theirs = (const int *)in;
-  for (size_t r = 0; r < b.nrows; r++) mrn_grid_active_widen(g, b.row0 + r, theirs[2 * r], theirs[2 * r + 1]);
+  for (int k = 0; k < b.count; k++)
+    for (size_t r = 0, row = (size_t)band_plane(&b, g, k) * b.rows; r < b.rows; r++, row++, theirs += 2)
+      mrn_grid_active_widen(g, row, theirs[0], theirs[1]);
   mrn_grid_active_refresh(g);
-  const double *q = (const double *)(in + b.nrows * 2 * sizeof(int));
-  for (int k = 0; k < narr; k++) q = add(q, arr[k].a, &b, arr[k].nc);
+  const double *q = (const double *)(in + rows * 2 * sizeof(int));
+  for (int k = 0; k < narr; k++) q = add(q, arr[k].a, g, &b, arr[k].nc);
   return MRN_OK;
 }
 
-/* the cuts this process shares, ordered so that pairs of processes meet
- * at once: even ranks first up, odd ranks first down */
-static int neighbours(const mrn_dist *d, int peer[2], int cut[2]) {
+/* The cuts this process shares, ordered so that pairs of processes meet
+ * at once: even ranks first up, odd ranks first down; then, on a periodic
+ * cut axis, the wrap between the last slab and the first (cut 0), which
+ * both do last. With two processes the same peer is met twice, at its cut
+ * and at the wrap, in that order on both. */
+static int neighbours(const mrn_sim *sim, int peer[2], int cut[2]) {
+  const mrn_dist *d = sim->dist;
   int n = 0;
   const int up = d->rank + 1 < d->size, down = d->rank > 0;
   for (int pass = 0; pass < 2; pass++) {
@@ -243,12 +290,16 @@ static int neighbours(const mrn_dist *d, int peer[2], int cut[2]) {
       cut[n++] = d->cut[d->rank];
     }
   }
+  if (wraps(sim) && (!up || !down)) {
+    peer[n] = up ? d->size - 1 : 0;
+    cut[n++] = 0;
+  }
   return n;
 }
 
 static int sum_arrays(mrn_sim *sim, const nodal *arr, int narr) {
   int peer[2], cut[2], rc = MRN_OK;
-  const int n = neighbours(sim->dist, peer, cut);
+  const int n = neighbours(sim, peer, cut);
   for (int k = 0; k < n && rc == MRN_OK; k++) rc = exchange_band(sim, peer[k], cut[k], arr, narr);
   return rc;
 }
@@ -295,18 +346,24 @@ double mrn_dist_once(const mrn_sim *sim, double value) { return !sim->dist || si
 int mrn_dist_or_bands(mrn_sim *sim, unsigned char *bits, unsigned char mask, int (*fresh)(void *arg, size_t node),
                       void *arg) {
   mrn_dist *d = sim->dist;
+  const mrn_grid *g = &sim->grid;
   int peer[2], cut[2], rc = MRN_OK;
-  const int n = neighbours(d, peer, cut);
+  const int n = neighbours(sim, peer, cut);
   for (int k = 0; k < n; k++) {
-    const band b = band_at(&sim->grid, cut[k]);
-    unsigned char *in = buffer(d, (size_t)b.nodes), *mine = bits + b.first;
-    if (!in) return mrn_error("parallel: out of memory for the halo exchange");
-    mrn_comm_exchange(peer[k], mine, (size_t)b.nodes, in, (size_t)b.nodes);
-    d->halo_bytes += (double)b.nodes;
-    for (long i = 0; i < b.nodes; i++) {
-      const unsigned char gain = in[i] & mask & (unsigned char)~mine[i];
-      mine[i] |= gain;
-      if (gain && fresh && rc == MRN_OK) rc = fresh(arg, (size_t)(b.first + i));
+    const band b = band_at(sim, cut[k]);
+    const size_t plane = (size_t)b.nodes, bytes = (size_t)b.count * plane;
+    unsigned char *out = buffer(d, 2 * bytes), *in = out + bytes;
+    if (!out) return mrn_error("parallel: out of memory for the halo exchange");
+    for (int j = 0; j < b.count; j++) memcpy(out + j * plane, bits + band_plane(&b, g, j) * b.nodes, plane);
+    mrn_comm_exchange(peer[k], out, bytes, in, bytes);
+    d->halo_bytes += (double)bytes;
+    for (int j = 0; j < b.count; j++) {
+      const size_t first = band_plane(&b, g, j) * (size_t)b.nodes;
+      for (size_t i = 0; i < plane; i++) {
+        const unsigned char gain = in[j * plane + i] & mask & (unsigned char)~bits[first + i];
+        bits[first + i] |= gain;
+        if (gain && fresh && rc == MRN_OK) rc = fresh(arg, first + i);
+      }
     }
   }
   return rc;
@@ -318,6 +375,60 @@ void mrn_dist_touch(mrn_sim *sim) {
   for (int f = 0; f < 2 * sim->dim; f++) friction |= sim->boundary.face[f].kind == MRN_BC_FRICTION;
   /* out of memory: this band's contacts stay one-sided for a step */
   if (friction) (void)mrn_dist_or_bands(sim, sim->grid.touch, 0xff, NULL, NULL);
+}
+
+int mrn_dist_or_marks(void *ctx, unsigned char *marks, int narrays, int rc) {
+  mrn_sim *sim = ctx;
+  if (!sim->dist || (rc = mrn_dist_agree(sim, rc)) != MRN_OK) return rc;
+  const size_t n = sim->grid.n;
+  for (int a = 0; a < narrays && rc == MRN_OK; a++) rc = mrn_dist_or_bands(sim, marks + (size_t)a * n, 0xff, NULL, NULL);
+  return rc;
+}
+
+/* the cells slab r needs for bands of half width h: 2 h + 1 between two
+ * bands, so that no node row is in two of them (a row three processes
+ * reach would miss one's share); h + 1 at an end of the axis that does
+ * not wrap */
+static int slab_need(const mrn_sim *sim, int r, int h) {
+  const mrn_dist *d = sim->dist;
+  return (r == 0 || r == d->size - 1) && !wraps(sim) ? h + 1 : 2 * h + 1;
+}
+
+/* The half width h for shape functions that reach `reach` cells from a
+ * particle: one in cell row j reaches, strictly within it, node rows
+ * j + 1 - ceil(reach) to j + ceil(reach) (the friction faces' touch marks
+ * those too), so the rows of a cut c that both sides reach are c - h to
+ * c + h with h = ceil(reach) - 1, at least 1. CPDI's corners come with
+ * round-off: a margin. Beyond the grid (or NaN) no slab holds it, as
+ * mrn_dist_halo then says. */
+static int halo_for(const mrn_sim *sim, double reach) {
+  const double margin = sim->shape == MRN_SHAPE_CPDI ? 1e-9 : 0.0;
+  const double rows = ceil(reach + margin) - 1.0, most = sim->grid.ncell[sim->dist->axis] + 1;
+  return rows <= most ? (int)fmax(1.0, rows) : (int)most;
+}
+
+int mrn_dist_halo(mrn_sim *sim, double reach, int rc) {
+  mrn_dist *d = sim->dist;
+  if (!d) return rc;
+  if (sim->shape != MRN_SHAPE_CPDI) { /* the same on every process: 1, the room mrn_dist_start reserved */
+    d->halo = halo_for(sim, reach);
+    return rc;
+  }
+  /* CPDI's grows with each process's domains */
+  if ((rc = mrn_dist_agree(sim, rc)) != MRN_OK) return rc;
+  mrn_comm_allreduce(&reach, 1, MRN_COMM_MAX);
+  const int h = halo_for(sim, reach);
+  for (int r = 0; r < d->size; r++) {
+    const int have = d->cut[r + 1] - d->cut[r];
+    if (have >= slab_need(sim, r, h)) continue;
+    mrn_comm_set_shared_error(1); /* every process finds it alike */
+    return mrn_error("parallel: step %ld: CPDI's domains have stretched until its shape functions reach %s cells "
+                     "from their particles: the halo bands take node rows [cut - %d, cut + %d], and the slabs at "
+                     "least %d cells (%d at an end of the axis); process %d's slab has %d: run on fewer processes "
+                     "(doc/parallel.md)", sim->step + 1, mrn_num(reach).s, h, h, 2 * h + 1, h + 1, r, have);
+  }
+  d->halo = h;
+  return mrn_dist_agree(sim, reserve(sim));
 }
 
 /* particles leaving this process: their destinations, the bytes for each

@@ -2,23 +2,32 @@
  *
  * The grid is cut into slabs along its last axis (y in 2D, z in 3D), one
  * per process, at cell rows chosen so that each slab holds about the same
- * number of particles, and at least MRN_DIST_MIN_CELLS cells thick. Every
+ * number of particles, and at least MRN_DIST_MIN_CELLS cells thick (2h + 1
+ * when CPDI's wider bands need more, below). Every
  * process keeps the whole grid's arrays but only the particles whose cell
  * lies in its slab (the last row of cells and anything beyond belong to
  * the last slab, anything below the first to the first).
  *
  * A step runs as on one process, with three exchanges:
  * - after each P2G (mass, momentum, force) the node rows a neighbour's
- *   particles reach as well, the band [cut - 1, cut + 1] around each cut
- *   (a kernel of support up to 4 cells reaches one row below its cell and
- *   two above), are summed with that neighbour's: both then hold the same
- *   nodal values there, and the grid update, run by both on those rows,
- *   gives both the same velocities for G2P. The work done on a node
- *   (damping, friction) is booked by the process that owns its row
- *   (grid.own_lo, own_hi) so that the sums over processes count it once.
- * - the touch bits of friction faces are combined the same way;
+ *   particles reach as well, the band [cut - h, cut + h] around each cut,
+ *   are summed with that neighbour's: both then hold the same nodal values
+ *   there, and the grid update, run by both on those rows, gives both the
+ *   same velocities for G2P. h is 1 (a kernel of support up to 4 cells
+ *   reaches one row below its cell and two above), or with CPDI as far as
+ *   its stretched domains make the shape functions reach, agreed by every
+ *   process each step (mrn_dist_halo). A periodic cut axis
+ *   makes the last slab and the first neighbours through the wrap: their
+ *   band, around cut 0, is the last h node rows and the first h + 1. The
+ *   work done on a node (damping, friction) is booked by the process that
+ *   owns its row (grid.own_lo, own_hi) so that the sums over processes
+ *   count it once.
+ * - the touch bits of friction faces are combined the same way (OR), and
+ *   before them the marks from which gap_check releases a column (material
+ *   on the face, and material above it, over the column's patch);
  * - after the step, particles whose cell left the slab go to the process
- *   that owns it, wherever that is (a particle may cross several slabs).
+ *   that owns it, wherever that is (a particle may cross several slabs, or
+ *   wrap around a periodic axis).
  * Walls (dist_walls.c): a wall's contact columns may reach beyond a band,
  * so every process works on the columns of all, whose sums are taken over
  * the processes (each node by its row's owner), and the reactions are summed
@@ -74,6 +83,7 @@ typedef struct mrn_dist {
   int rank, size;
   int axis;          /* the cut axis: the grid's last */
   int *cut;          /* size + 1 cell rows: process r holds cells [cut[r], cut[r + 1]) */
+  int halo;          /* h: the band around a cut is the node rows [cut - h, cut + h] */
   /* bytes this process sent, since the start: halo sums, particles */
   double halo_bytes, migrate_bytes;
   long migrated;     /* particles sent */
@@ -135,6 +145,16 @@ void mrn_dist_walls_attach(struct mrn_sim *sim);
 int mrn_dist_walls_recut(struct mrn_sim *sim);
 int mrn_dist_walls_gather(struct mrn_sim *sim);
 void mrn_dist_walls_gather_end(struct mrn_sim *sim);
+/* given the outcome so far: agree, then OR `narrays` arrays of one byte per
+ * node, one after another at `marks`, over the bands (gap_check's marks:
+ * grid/boundary.h, mrn_boundary_touch); ctx is the simulation */
+int mrn_dist_or_marks(void *ctx, unsigned char *marks, int narrays, int rc);
+/* The band's half width h for this step, given the outcome so far, for
+ * shape functions that reach `reach` cells from their particles (this
+ * process's; CPDI's grow with the domains the step froze, and the largest
+ * is agreed by every process): 1, more for CPDI's stretched domains; an
+ * error when a slab is too thin for it. */
+int mrn_dist_halo(struct mrn_sim *sim, double reach, int rc);
 /* after the step: agree on rc, re-cut if due, send the particles that left */
 int mrn_dist_migrate(struct mrn_sim *sim, int rc);
 /* re-cut the grid by particle count now and move the particles */

@@ -515,8 +515,11 @@ int mrn_sim_step_dt(mrn_sim *sim, double dt) {
   const mrn_particle_pass end_pass = {end_chunk, &e};
   step_end end = {sim->on_leave == MRN_LEAVE_DELETE ? NULL : &end_pass, -1};
   double reach = 0.5 * mrn_shape_support(sim->shape); /* cells from a particle its shape functions reach */
-  if (sim->shape == MRN_SHAPE_CPDI && (rc = cpdi_begin(sim, &reach))) return rc;
-  mrn_boundary_touch(&sim->boundary, &sim->grid, reach, sim->particles.x, sim->particles.vol0, sim->particles.n);
+  if (sim->shape == MRN_SHAPE_CPDI) rc = cpdi_begin(sim, &reach);
+  if ((rc = mrn_dist_halo(sim, reach, rc)) != MRN_OK) return rc; /* the halo bands that reach needs */
+  if ((rc = mrn_boundary_touch(&sim->boundary, &sim->grid, reach, sim->particles.x, sim->particles.vol0,
+                               sim->particles.n, sim->dist ? mrn_dist_or_marks : NULL, sim)) != MRN_OK)
+    return rc;
   mrn_dist_touch(sim);
   mrn_dist_walls_attach(sim);
   if (sim->boundary.walls && (rc = mrn_walls_touch(sim->boundary.walls, &sim->grid, sim->time + 0.5 * dt, reach,

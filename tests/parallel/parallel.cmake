@@ -56,6 +56,20 @@ foreach(case incline push)
            COMMAND ${Python3_EXECUTABLE} ${MORAINE_PAR_DIR}/restart.py $<TARGET_FILE:moraine> ${MORAINE_PAR_WALLS}
                    ${MORAINE_TEST_OUT}/mpi_restart_${case} ${case} 150)
 endforeach()
+# periodic along y: the last slab and the first sum their band through the wrap (with 2 processes the
+# same peer on both sides), particles wrap from one to the other
+add_test(NAME mpi.equivalence_periodic
+         COMMAND ${Python3_EXECUTABLE} ${MORAINE_PAR_DIR}/equivalence.py $<TARGET_FILE:moraine> ${MORAINE_PAR_DECK}
+                 ${MORAINE_TEST_OUT}/mpi_equivalence_periodic periodic2d 1000 2 3)
+# CPDI: a bar stretching along y, its domains widening the halo band to h = 2 (asserted by the deck)
+add_test(NAME mpi.equivalence_cpdi
+         COMMAND ${Python3_EXECUTABLE} ${MORAINE_PAR_DIR}/equivalence.py $<TARGET_FILE:moraine> ${MORAINE_PAR_DECK}
+                 ${MORAINE_TEST_OUT}/mpi_equivalence_cpdi cpdi2d 250 2 3)
+# gap_check on a friction wall along the cut axis: a disk rolling down it across the cuts (the deck
+# asserts that gap_check changes the run)
+add_test(NAME mpi.equivalence_gap_check
+         COMMAND ${Python3_EXECUTABLE} ${MORAINE_PAR_DIR}/equivalence.py $<TARGET_FILE:moraine> ${MORAINE_PAR_DECK}
+                 ${MORAINE_TEST_OUT}/mpi_equivalence_gap_check rolling2d 1000 2 3)
 # the VTK series of the 3-process collapse read by ParaView's readers: a .pvtp per snapshot declaring its
 # pieces' arrays, every particle once, as on one process; the grid snapshots equal the one-process run's
 add_test(NAME mpi.vtk_series
@@ -77,14 +91,16 @@ foreach(case source split)
 endforeach()
 # crossing two slabs in a step, empty processes, a particle leaving (a stop; a deletion booked as
 # outflow), a Lua error on one process,
-# a grid too thin, SIGINT to mpirun; the crossing's VTK pieces, empty ones among them; a VTK series
-# saved on 3 processes and continued on 2 from an earlier checkpoint (the later pieces replaced)
+# a grid too thin, CPDI domains too wide for the slabs, SIGINT to mpirun; the crossing's VTK pieces, empty
+# ones among them; a VTK series saved on 3 processes and continued on 2 from an earlier checkpoint (the later
+# pieces replaced)
 add_test(NAME mpi.robust COMMAND ${MORAINE_PAR_DIR}/robust.sh $<TARGET_FILE:moraine> ${MORAINE_TEST_OUT}/mpi_robust
                                  ${Python3_EXECUTABLE})
 # the cases share the two equivalence directories' one-process runs: one at a time
 set_tests_properties(mpi.equivalence_collapse2d mpi.equivalence_cube3d mpi.equivalence_xpic mpi.equivalence_fbar
                      mpi.equivalence_fbar3d mpi.equivalence_late_affine mpi.equivalence_source
                      mpi.equivalence_split mpi.equivalence_point mpi.equivalence_incline mpi.equivalence_push
-                     mpi.equivalence_blocks mpi.restart_incline mpi.restart_push mpi.vtk_series
+                     mpi.equivalence_blocks mpi.restart_incline mpi.restart_push mpi.equivalence_periodic
+                     mpi.equivalence_cpdi mpi.equivalence_gap_check mpi.vtk_series
                      mpi.restart_collapse2d mpi.restart_cube3d mpi.restart_source mpi.restart_split mpi.robust
                      PROPERTIES LABELS mpi RUN_SERIAL TRUE ENVIRONMENT "OMP_NUM_THREADS=1;OMP_WAIT_POLICY=PASSIVE")

@@ -8,6 +8,10 @@
 --   case=outflow     as leave with on_leave = "delete": the block is deleted on the
 --                    process that holds it, and every process books its energy as outflow
 --   case=small_grid  8 cells along y for 3 processes (4 each at least)
+--   case=cpdi_thin   a CPDI bar stretching along y on 3 slabs of 4 cells: its
+--                    domains come to reach a cell from their particles (the
+--                    shape functions two), which takes bands of 5 node rows and
+--                    slabs of 5 cells between two
 --   case=sigint      a long run that the driver interrupts (SIGINT to mpirun)
 --   case=vtk_resume  a VTK snapshot every 10 steps and a checkpoint every 15, for 40 steps:
 --                    robust.sh continues it from its first checkpoint on another process count
@@ -133,6 +137,16 @@ elseif case == "small_grid" then
   local sim = mpm.simulation{ dim = 2, grid = { size = { 1.0, 0.8 }, cell = 0.1 }, thermo = 0 }
   sim:add_particles(mpm.box{ min = { 0.2, 0 }, max = { 0.8, 0.5 } }, { material = steel, per_axis = 2 })
   sim:run{ steps = 5 }
+elseif case == "cpdi_thin" then
+  -- one particle per cell (domains of half a cell), the stretch F_yy = 1 + 4 t
+  -- reaches 2 at t = 0.25 s
+  mpm.warnings{ ignore = { "one_particle_per_cell" } }
+  local sim = mpm.simulation{ dim = 2, grid = { size = { 0.4, 1.2 }, cell = 0.1 }, gravity = { 0, 0 }, shape = "cpdi",
+    scheme = { transfer = "FLIP", stress_update = "USL" }, dt = { fixed = 0.01 }, thermo = 0, name = case }
+  sim:add_particles(mpm.box{ min = { 0.1, 0.5 }, max = { 0.3, 0.7 } },
+                    { material = mpm.material.neo_hookean{ density = 1000, E = 10, nu = 0.3 }, per_axis = 1,
+                      velocity = function(x, y) return 0, 4 * (y - 0.6) end })
+  sim:run{ steps = 100 }
 else
   error("unknown case " .. tostring(case))
 end

@@ -3,10 +3,10 @@
 # (tests/parallel/robust.lua): a block crossing two slabs in one step with
 # two processes empty, a particle leaving the grid (stopping the run, or
 # deleted with its energy booked as outflow), a Lua error on one
-# process, the deck's own files, a grid too thin for the processes, and
-# SIGINT to mpirun. Each
-# must end (no hang: every run has a time limit) with its message once and,
-# where the state is kept, one checkpoint.
+# process, the deck's own files, a grid too thin for the processes, CPDI
+# domains grown too wide for the slabs, and SIGINT to mpirun. Each must end
+# (no hang: every run has a time limit) with its message once and, where
+# the state is kept, one checkpoint.
 # The crossing's VTK series, a piece per process, two of them empty at each
 # snapshot, is read back with ParaView's reader (check_vtk.py); so are the
 # leave case's gathered series (output{gather = true}) and a series saved on
@@ -81,6 +81,14 @@ n=$(grep -c -F "$expect" "$out/small_grid.out")
 [ "$n" -eq 1 ] || { bad "small_grid: the message printed $n times"; cat "$out/small_grid.out"; }
 say "small_grid: exit $s; $expect"
 
+# cpdi_thin: stopped when the domains outgrow the slabs, with the numbers, once
+run3 cpdi_thin; s=$?
+[ $s -ne 0 ] || bad "cpdi_thin exited 0"
+expect="cells from their particles: the halo bands take node rows [cut - 2, cut + 2], and the slabs at least 5 cells (3 at an end of the axis); process 1's slab has 4"
+n=$(grep -c -F "$expect" "$out/cpdi_thin.out")
+[ "$n" -eq 1 ] || { bad "cpdi_thin: the message printed $n times"; cat "$out/cpdi_thin.out"; }
+say "cpdi_thin: exit $s; $(grep -o "parallel: step [0-9]*: CPDI's domains[^:]*" "$out/cpdi_thin.out")"
+
 # vtk_resume: 40 steps on 3 processes, a snapshot every 10, checkpoints at 15 and 30; continued on 2
 # processes from the one at 15: the 3 later snapshots (their .pvtp and 3 pieces each) are replaced
 run3 vtk_resume; s=$?
@@ -110,5 +118,5 @@ n=$(grep -c "interrupted by signal" "$out/sigint.out")
 [ -z "$(find "$out" -name '.*.tmp.*')" ] || bad "temporary files left"
 say "sigint: exit $s; $(grep -o 'interrupted by signal [0-9]* after step [0-9]*' "$out/sigint.out")"
 
-if [ $fail -eq 0 ]; then echo "8 passed, 0 failed"; else echo "some failed"; fi
+if [ $fail -eq 0 ]; then echo "9 passed, 0 failed"; else echo "some failed"; fi
 exit $fail
