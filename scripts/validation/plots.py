@@ -109,6 +109,39 @@ def rotating_cube_scaling(case, run, records, runs, path):
            f"{value.get('spin10_ratio', float('nan')):.0f} (000: 95)", "t (s)", "1 - L / L0 (%)")
 
 
+def bouncing_disk(case, run, records, runs, path):
+    fig, ax = plt.subplots(figsize=(8, 4.5))
+    for s in ("PIC", "FLIP", "APIC"):
+        f = os.path.join(run, f"disk_{s}.csv")
+        if os.path.isfile(f):
+            c = read_csv(f)
+            ax.plot(c["time"], c["E_total"] / c["E_total"][0], label=s)
+    finish(fig, ax, path, "Bouncing disk (000 App. B.1, Fig. 24): total energy, USL", "t (s)", "E_tot / E0")
+
+
+def spinning_disk_apic(case, run, records, runs, path):
+    fig, (a, b) = plt.subplots(1, 2, figsize=(11, 4.2))
+    for i, s in enumerate(("PIC", "FLIP", "APIC")):  # 000 Fig. 25: a_tau = 0.2
+        for h, ls in (("0.0625", "-"), ("0.03125", "--")):
+            f = os.path.join(run, f"disk_{s}_{h}_0.2.csv")
+            if os.path.isfile(f):
+                c = read_csv(f)
+                a.plot(c["time"], c["L_centroid"] / c["L_centroid"][0], ls, color=f"C{i}", label=f"{s}, l_cell {h}")
+    a.set_title("a_tau = 0.2 (000 Fig. 25)", fontsize=10)
+    a.set_xlabel("t (s)")
+    a.set_ylabel("L / L0")
+    a.grid(True, alpha=0.3)
+    a.legend(fontsize=8)
+    for i, a_tau in enumerate(("0.2", "0.1", "0.05", "0.01")):  # 000 Fig. 26: FLIP against dt and l_cell
+        for h, ls in (("0.0625", "-"), ("0.03125", "--")):
+            f = os.path.join(run, f"disk_FLIP_{h}_{a_tau}.csv")
+            if os.path.isfile(f):
+                c = read_csv(f)
+                b.plot(c["time"], c["L_centroid"] / c["L_centroid"][0], ls, color=f"C{i}",
+                       label=f"a_tau {a_tau}, l_cell {h}")
+    finish(fig, b, path, "FLIP against a_tau and l_cell (000 Fig. 26)", "t (s)", "L / L0")
+
+
 def pic_wmpm_collapse(case, run, records, runs, path):
     drop = next(r["value"] for r in records if r["id"].endswith(".drop"))
     spread = next(r["value"] for r in records if r["id"].endswith(".spread"))
@@ -235,8 +268,9 @@ def collapse_picture(run, path, ratio="2.4"):
 
 
 PLOTTERS = {f.__name__: f for f in (settling_energy, axial_bar, bouncing_cube_energy, bouncing_cube_updates,
-                                    rotating_cube_L, rotating_cube_scaling, pic_wmpm_collapse, strip_footing,
-                                    prandtl_footing, channel_convergence, dam_break, sand_column, lube)}
+                                    rotating_cube_L, rotating_cube_scaling, bouncing_disk, spinning_disk_apic,
+                                    pic_wmpm_collapse, strip_footing, prandtl_footing, channel_convergence, dam_break,
+                                    sand_column, lube)}
 
 
 def draw(name, case, out, records, runs, figures):
