@@ -29,11 +29,10 @@ static int writes_here(lua_State *L) {
   return every;
 }
 
-/* io.open(path [, mode]): upvalue 1 is the function it replaces */
-static int open_once(lua_State *L) {
-  const char *mode = luaL_optstring(L, 2, "r");
-  const int writes = strpbrk(mode, "wa+") != NULL;
-  if (writes && !writes_here(L)) {
+/* the replaced function (upvalue 1) on the arguments, the first one the
+ * null device when `discard`: its results */
+static int call_replaced(lua_State *L, int discard) {
+  if (discard) {
     lua_pushstring(L, NULL_DEVICE);
     lua_replace(L, 1);
   }
@@ -43,17 +42,14 @@ static int open_once(lua_State *L) {
   return lua_gettop(L);
 }
 
-/* io.output([file]): a file name opens it for writing */
-static int output_once(lua_State *L) {
-  if (lua_type(L, 1) == LUA_TSTRING && !writes_here(L)) {
-    lua_pushstring(L, NULL_DEVICE);
-    lua_replace(L, 1);
-  }
-  lua_pushvalue(L, lua_upvalueindex(1));
-  lua_insert(L, 1);
-  lua_call(L, lua_gettop(L) - 1, LUA_MULTRET);
-  return lua_gettop(L);
+/* io.open(path [, mode]) */
+static int open_once(lua_State *L) {
+  const int writes = strpbrk(luaL_optstring(L, 2, "r"), "wa+") != NULL;
+  return call_replaced(L, writes && !writes_here(L));
 }
+
+/* io.output([file]): a file name opens it for writing */
+static int output_once(lua_State *L) { return call_replaced(L, lua_type(L, 1) == LUA_TSTRING && !writes_here(L)); }
 
 /* os.remove, os.rename: done by the writing process only */
 static int file_op_once(lua_State *L) {
@@ -61,10 +57,7 @@ static int file_op_once(lua_State *L) {
     lua_pushboolean(L, 1);
     return 1;
   }
-  lua_pushvalue(L, lua_upvalueindex(1));
-  lua_insert(L, 1);
-  lua_call(L, lua_gettop(L) - 1, LUA_MULTRET);
-  return lua_gettop(L);
+  return call_replaced(L, 0);
 }
 
 /* table[name] = fn with the old table[name] as its upvalue */

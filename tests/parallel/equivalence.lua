@@ -123,16 +123,7 @@ if late > 0 then
                     end })
 end
 sim:run{ steps = steps - late }
-sim:save(name .. ".h5")
-local d = sim:diagnostics()
-print(string.format("%s: %d steps, %d particles, E_total %.12g, W_MPM %.6g", name, sim:step(), d.particles, d.E_total,
-                    d.W_MPM))
-local par = sim:parallel()
-if par.cuts then
-  print(string.format("%d processes, slabs cut at cell rows %s along the last axis; %d re-cuts, %d particles sent, " ..
-                      "%.3g MB of halo sums", par.size, table.concat(par.cuts, " "), par.rebalances, par.migrated,
-                      par.halo_bytes / 1e6))
-end
+local par = dofile(mpm.deck_dir .. "/finish.lua")(sim, name)
 
 -- what makes the cases say something: CPDI's domains stretched beyond the
 -- standard band, and gap_check changing the rolling disk's run by far more
@@ -143,7 +134,7 @@ end
 if case == "rolling2d" and par.size == 1 then
   local plain = rolling2d(false)
   plain:run{ steps = steps }
-  local a, b = d.momentum, plain:diagnostics().momentum
+  local a, b = sim:diagnostics().momentum, plain:diagnostics().momentum
   local change = math.sqrt((a[1] - b[1]) ^ 2 + (a[2] - b[2]) ^ 2) / math.sqrt(a[1] ^ 2 + a[2] ^ 2)
   print(string.format("rolling2d: gap_check changes the disk's final momentum by %.3g (relative)", change))
   if not (change > 1e-6) then error("rolling2d: gap_check released no column of the wall: the case tests nothing") end

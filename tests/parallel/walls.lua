@@ -64,12 +64,4 @@ else
 end
 if rebalance > 0 then sim:set_parallel{ rebalance_every = rebalance, imbalance = 1.0 } end
 sim:run{ steps = steps }
-sim:save(name .. ".h5")
-local d = sim:diagnostics()
-print(string.format("%s: %d steps, %d particles, E_total %.12g, W_MPM %.6g", name, sim:step(), d.particles, d.E_total,
-                    d.W_MPM))
-local par = sim:parallel()
-if par.cuts then
-  print(string.format("%d processes, slabs cut at cell rows %s along the last axis; %d re-cuts, %d particles sent",
-                      par.size, table.concat(par.cuts, " "), par.rebalances, par.migrated))
-end
+local par = dofile(mpm.deck_dir .. "/finish.lua")(sim, name)
