@@ -82,7 +82,6 @@ moraine_deck_test(bouncing_disk_dt bouncing_disk.lua ARGS --set a_tau=0.05 LABEL
 # 000 App. B.2: the rotating disk of Jiang et al., PIC, FLIP, APIC on two meshes (0.25 s at two steps; the
 # 4 s and a_tau = 0.2 to 0.01 under `long`)
 moraine_deck_test(spinning_disk_apic spinning_disk_apic.lua ARGS --set time=0.25 --set a_tau=0.2,0.1)
-moraine_deck_test(spinning_disk_apic_full spinning_disk_apic.lua LABELS long)
 moraine_deck_test(simple_shear simple_shear.lua)
 moraine_deck_test(settling settling.lua)
 moraine_deck_test(disks_cfl disks_cfl.lua)
