@@ -736,29 +736,38 @@ static int by_key(const void *a, const void *b) {
   return (x > y) - (x < y);
 }
 
-/* every process's keys, on every process, in the order of rank; *rc
- * agreed before each exchange */
-static int64_t *all_keys(const mrn_sim *sim, const int64_t *keys, size_t n, int64_t *total, int *rc) {
-  const size_t P = (size_t)sim->dist->size;
+int mrn_dist_allgather(const mrn_sim *sim, const void *mine, size_t bytes, unsigned char **all, size_t *total,
+                       int rc) {
+  *all = NULL, *total = 0;
+  const size_t P = sim->dist ? (size_t)sim->dist->size : 1;
   /* bytes from each process and where they go; bytes to each and where
-   * they come from: the same keys to each, from the start */
-  size_t *cnt = calloc(4 * P, sizeof *cnt), *displ = cnt + P, *scnt = cnt + 2 * P, *sdispl = cnt + 3 * P;
-  if (!cnt) *rc = mrn_error("parallel: out of memory");
-  int64_t *all = NULL;
-  if ((*rc = mrn_dist_agree(sim, *rc)) == MRN_OK) {
-    mrn_comm_allgather_size(n * sizeof *keys, cnt);
-    size_t bytes = 0;
-    for (size_t r = 0; r < P; r++) {
-      displ[r] = bytes;
-      bytes += cnt[r];
-      scnt[r] = n * sizeof *keys;
-    }
-    *total = (int64_t)(bytes / sizeof *keys);
-    if (bytes && !(all = malloc(bytes))) *rc = mrn_error("parallel: out of memory for %lld keys", (long long)*total);
-    if (bytes && (*rc = mrn_dist_agree(sim, *rc)) == MRN_OK) mrn_comm_alltoallv(keys, scnt, sdispl, all, cnt, displ);
+   * they come from: the same bytes to each, from the start */
+  size_t *cnt = calloc(4 * P, sizeof *cnt);
+  if (!cnt && rc == MRN_OK) rc = mrn_error("parallel: out of memory");
+  if ((rc = mrn_dist_agree(sim, rc)) != MRN_OK) {
+    free(cnt);
+    return rc;
   }
+  size_t *displ = cnt + P, *scnt = cnt + 2 * P, *sdispl = cnt + 3 * P, sum = 0;
+  if (sim->dist) mrn_comm_allgather_size(bytes, cnt);
+  else cnt[0] = bytes;
+  for (size_t r = 0; r < P; r++) {
+    displ[r] = sum;
+    sum += cnt[r];
+    scnt[r] = bytes;
+  }
+  unsigned char *buf = malloc(sum + 1);
+  rc = mrn_dist_agree(sim, buf ? MRN_OK : mrn_error("parallel: out of memory gathering %zu bytes", sum));
+  if (rc == MRN_OK && sim->dist) mrn_comm_alltoallv(mine, scnt, sdispl, buf, cnt, displ);
+  else if (rc == MRN_OK && bytes) memcpy(buf, mine, bytes);
   free(cnt);
-  return all;
+  if (rc != MRN_OK) {
+    free(buf);
+    return rc;
+  }
+  *all = buf;
+  *total = sum;
+  return MRN_OK;
 }
 
 int mrn_dist_key_places(const mrn_sim *sim, const int64_t *keys, size_t n, int64_t *place, int64_t *total, int rc) {
@@ -767,7 +776,11 @@ int mrn_dist_key_places(const mrn_sim *sim, const int64_t *keys, size_t n, int64
     *total = (int64_t)n;
     return rc;
   }
-  int64_t *all = all_keys(sim, keys, n, total, &rc);
+  unsigned char *bytes = NULL;
+  size_t got = 0;
+  rc = mrn_dist_allgather(sim, keys, n * sizeof *keys, &bytes, &got, rc);
+  int64_t *all = (int64_t *)bytes;
+  *total = (int64_t)(got / sizeof *keys);
   if (rc == MRN_OK && *total > 0) {
     qsort(all, (size_t)*total, sizeof *all, by_key);
     /* a key's place: the keys below it, found by bisection */
@@ -826,31 +839,14 @@ static int sort_records(unsigned char *buf, size_t total, size_t rec) {
 
 int mrn_dist_gather_by_id(const mrn_sim *sim, const unsigned char *mine, size_t n, size_t rec, unsigned char **all,
                           size_t *total) {
-  const mrn_dist *d = sim->dist;
-  const int np = d ? d->size : 1;
-  size_t *count = calloc((size_t)np, sizeof *count), *displ = calloc((size_t)np, sizeof *displ);
-  int rc = count && displ ? MRN_OK : mrn_error("parallel: out of memory");
-  if (rc == MRN_OK && d) mrn_comm_allgather_size(n * rec, count);
-  else if (rc == MRN_OK) count[0] = n * rec;
   size_t bytes = 0;
-  for (int r = 0; rc == MRN_OK && r < np; r++) displ[r] = bytes, bytes += count[r];
-  unsigned char *buf = rc == MRN_OK ? malloc(bytes + 1) : NULL;
-  if (rc == MRN_OK && !buf) rc = mrn_error("parallel: out of memory gathering %zu bytes", bytes);
-  rc = mrn_dist_agree(sim, rc);
-  if (rc == MRN_OK && d) {
-    mrn_comm_gatherv(mine, n * rec, buf, count, displ, 0);
-    mrn_comm_bcast(buf, bytes, 0);
-  } else if (rc == MRN_OK && n) {
-    memcpy(buf, mine, n * rec);
-  }
-  if (rc == MRN_OK) rc = sort_records(buf, bytes / rec, rec);
-  free(count);
-  free(displ);
+  int rc = mrn_dist_allgather(sim, mine, n * rec, all, &bytes, MRN_OK);
+  if (rc == MRN_OK) rc = sort_records(*all, bytes / rec, rec);
   if (rc != MRN_OK) {
-    free(buf);
+    free(*all);
+    *all = NULL;
     return rc;
   }
-  *all = buf;
   *total = bytes / rec;
   return MRN_OK;
 }

@@ -196,6 +196,11 @@ void mrn_dist_gather_end(const struct mrn_sim *sim);
 int mrn_dist_gather_grid_begin(const struct mrn_sim *sim);
 void mrn_dist_gather_grid_end(const struct mrn_sim *sim);
 
+/* Every process's `bytes` of `mine` on every process, in the order of the
+ * ranks: *all (to free) holds *total bytes. Agrees on rc (the outcome so
+ * far) first, and on having the room; collective. 0 or an error code. */
+int mrn_dist_allgather(const struct mrn_sim *sim, const void *mine, size_t bytes, unsigned char **all, size_t *total,
+                       int rc);
 /* Every process's n records of rec bytes (`mine`), each ending with the
  * int64 id of its particle, on every process in the order of the ids:
  * *all (to free) holds *total records. Undistributed, this process's alone,

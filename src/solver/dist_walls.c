@@ -38,23 +38,12 @@ static int by_key(const void *a, const void *b) {
   return 0;
 }
 
-/* every process's keys sent to every process, then sorted and made unique */
+/* every process's keys on every process, sorted and made unique */
 static long long *share_union_keys(void *ctx, const long long *keys, size_t n, size_t *total) {
-  const mrn_sim *sim = ctx;
-  const size_t P = (size_t)sim->dist->size, bytes = 3 * n * sizeof *keys;
-  size_t *cnt = calloc(4 * P, sizeof *cnt), all = 0;
-  if (!cnt) return mrn_error("parallel: out of memory for a wall's contacts"), NULL;
-  size_t *sdispl = cnt + P, *rcnt = cnt + 2 * P, *rdispl = cnt + 3 * P;
-  mrn_comm_allgather_size(bytes, rcnt);
-  for (size_t r = 0; r < P; r++) {
-    cnt[r] = bytes; /* the same keys to each, from the same place */
-    rdispl[r] = all;
-    all += rcnt[r];
-  }
-  long long *out = malloc(all + sizeof *out);
-  if (out) mrn_comm_alltoallv(keys, cnt, sdispl, out, rcnt, rdispl);
-  free(cnt);
-  if (!out) return mrn_error("parallel: out of memory for a wall's contacts"), NULL;
+  unsigned char *bytes = NULL;
+  size_t all = 0;
+  if (mrn_dist_allgather(ctx, keys, 3 * n * sizeof *keys, &bytes, &all, MRN_OK) != MRN_OK) return NULL;
+  long long *out = (long long *)bytes;
   const size_t k = all / (3 * sizeof *out);
   qsort(out, k, 3 * sizeof *out, by_key);
   size_t m = 0;
