@@ -22,3 +22,9 @@ if(COMMAND moraine_deck_test)
   moraine_deck_test(collapse_s3 collapse_s3.lua ARGS --set quick=true LABELS collapse)
   moraine_deck_test(collapse_s3_full collapse_s3.lua LABELS "collapse;slow;long")
 endif()
+
+# 000's series S2 (l_cell 10 to 5 cm, AR 1); the quick variant 10 and 5 cm
+# only (about 20 s of CPU), the four cells in the validation report
+if(COMMAND moraine_deck_test)
+  moraine_deck_test(collapse_s2 collapse_s2.lua ARGS --set quick=true LABELS collapse)
+endif()

@@ -236,6 +236,31 @@ def lube(case, run, records, runs, path):
     collapse_picture(run, os.path.join(os.path.dirname(path), "column_collapse.png"))
 
 
+def collapse_s2(case, run, records, runs, path):
+    c = read_csv(os.path.join(run, "collapse_s2.csv"))
+    fig, ax = plt.subplots(figsize=(7, 4.2))
+    cm = 100 * c["l_cell"]
+    ax.plot(cm, c["L_x"], "o-", label="moraine, L_x (000, Eq. 70)")
+    ax.plot(cm, c["max_x"], "s--", ms=4, label="moraine, furthest particle")
+    coarse = c["L_x"][np.argmax(cm)]
+    ax.axhline(1.07 * coarse, color="k", lw=0.8, ls=":", label="000: about +7 % below 10 cm")
+    ax.invert_xaxis()
+    finish(fig, ax, path, "Series S2 (000 Table 4): AR 1, FLIP, N_mppc 4", "l_cell (cm)", "final width (m)")
+
+
+def collapse_s3(case, run, records, runs, path):
+    c = read_csv(os.path.join(run, "collapse_s3.csv"))
+    fig, ax = plt.subplots(figsize=(7, 4.2))
+    n = c["N_mppc"]
+    for key, label in (("L_x", "standard"), ("L_x_split", "splitting"), ("L_x_cpdi", "CPDI")):
+        keep = c[key] > 0
+        if keep.any():
+            ax.plot(n[keep], c[key][keep], "o-", label=label)
+    ax.plot([n[0], n[-1]], [c["L_x"][0], 1.25 * c["L_x"][0]], "k:", lw=0.8, label="000: +25 % from 1 to 49")
+    ax.set_xscale("log")
+    finish(fig, ax, path, "Series S3 (000 Table 5): AR 1, FLIP, l_cell 10 cm", "N_mppc", "final L_x (m)")
+
+
 def collapse_picture(run, path, ratio="2.4"):
     """the picture of the README: particles of the AR 2.4 FLIP collapse at
     three times, coloured by speed (read back with VTK's own reader)"""
@@ -270,7 +295,7 @@ def collapse_picture(run, path, ratio="2.4"):
 PLOTTERS = {f.__name__: f for f in (settling_energy, axial_bar, bouncing_cube_energy, bouncing_cube_updates,
                                     rotating_cube_L, rotating_cube_scaling, bouncing_disk, spinning_disk_apic,
                                     pic_wmpm_collapse, strip_footing, prandtl_footing, channel_convergence, dam_break,
-                                    sand_column, lube)}
+                                    sand_column, lube, collapse_s2, collapse_s3)}
 
 
 def draw(name, case, out, records, runs, figures):

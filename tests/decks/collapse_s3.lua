@@ -37,21 +37,50 @@ local a_tau = mpm.param("a_tau", 0.2)
 local counts = T.list(mpm.param("per_axis", quick and "1,2" or "1,2,3,4,5,7"))
 local SPLIT = { stretch = mpm.param("stretch", 1.5), max_level = math.tointeger(mpm.param("max_level", 4)) }
 
+-- --set cpdi=true adds a third run of each count: CPDI (`shape = "cpdi"`,
+-- doc/numerics.md) as the domain-tracking remedy 000 §5.3 describes ("if one
+-- was to attribute an initial domain to each material point"), settled and
+-- collapsed with it, at a_tau = cpdi_a_tau (0.05; at 0.2 the collapse grows
+-- unstable sooner). The flowing sand comes apart, F records the separation
+-- as stretch and the domains grow over several cells (doc/numerics.md, "CPDI
+-- in a granular flow"): its spread, |W_MPM| and the counts whose run the
+-- engine stopped are reported, not asserted.
+local with_cpdi = mpm.param("cpdi", false)
+local cpdi_a_tau = mpm.param("cpdi_a_tau", 0.05)
+local cpdi_stopped = {}
+
 local rows = {}
+local csv = assert(io.open(mpm.outdir .. "/collapse_s3.csv", "w"))
+csv:write("N_mppc,L_x,L_x_split,L_x_cpdi,max_x,max_x_split,max_x_cpdi\n")
 for _, text in ipairs(counts) do
   local n = math.tointeger(tonumber(text)) or error("per_axis: '" .. text .. "' is not a whole number")
   local base = collapse.run{ aspect_ratio = 1, strategy = "FLIP", a_tau = a_tau, per_axis = n, stop_at_rest = true,
                              name = "standard_N" .. n * n }
   local split = collapse.run{ aspect_ratio = 1, strategy = "FLIP", a_tau = a_tau, per_axis = n, stop_at_rest = true,
                               settled = base.files.settled, split = SPLIT, name = "split_N" .. n * n }
-  for _, r in ipairs{ base, split } do print(collapse.summary(r) .. string.format("  N_mppc %d, %d particles", n * n, r.particles)) end
+  local cpdi
+  if with_cpdi then -- a run the engine stops (a particle leaving the grid) is reported, not fatal
+    local ok, r = pcall(collapse.run, { aspect_ratio = 1, strategy = "FLIP", a_tau = cpdi_a_tau, per_axis = n,
+                                        stop_at_rest = true, shape = "cpdi", shape_boundary = "extended",
+                                        name = "cpdi_N" .. n * n })
+    if ok then cpdi = r else cpdi_stopped[#cpdi_stopped + 1] = n * n; print("N_mppc " .. n * n .. " with CPDI: " .. tostring(r)) end
+  end
+  for _, r in ipairs{ base, split, cpdi } do print(collapse.summary(r) .. string.format("  N_mppc %d, %d particles", n * n, r.particles)) end
   T.check(split.t_rest ~= nil, "N_mppc %d with splitting: not at rest after %.2f s", n * n, split.time)
   T.check(split.particles > base.particles, "N_mppc %d: no particle was split", n * n)
   T.expect{ id = string.format("collapse_s3.W_MPM_split_N%d", n * n),
             what = string.format("N_mppc = %d with splitting: |W_MPM| / |dE_p^stable| (000, Eq. 69)", n * n),
             value = 100 * split.W_MPM_ratio, max = 1, unit = "%" }
-  rows[#rows + 1] = { n = n * n, base = base, split = split }
+  if cpdi then
+    T.expect{ id = string.format("collapse_s3.W_MPM_cpdi_N%d", n * n),
+              what = string.format("N_mppc = %d with CPDI: |W_MPM| / |dE_p^stable| (000, Eq. 69)", n * n),
+              value = 100 * cpdi.W_MPM_ratio, max = 1, unit = "%", asserted = false }
+  end
+  csv:write(string.format("%d,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g\n", n * n, base.L_x, split.L_x, cpdi and cpdi.L_x or -1,
+                          base.max_x, split.max_x, cpdi and cpdi.max_x or -1))
+  rows[#rows + 1] = { n = n * n, base = base, split = split, cpdi = cpdi }
 end
+csv:close()
 
 local first, last = rows[1], rows[#rows]
 local function spread(key, what) return (last[key][what] - first[key][what]) / first[key][what] end
@@ -71,6 +100,15 @@ T.expect{ id = "collapse_s3.spread_max_x_split", what = range .. ": furthest-par
           value = 100 * spread("split", "max_x"), unit = "%", asserted = false }
 T.expect{ id = "collapse_s3.spread_ratio", what = range .. ": L_x spread with splitting / without (target: at most 0.5)",
           value = s1 / s0, reference = 0.5, asserted = false }
+if with_cpdi then
+  T.expect{ id = "collapse_s3.cpdi_stopped", what = "CPDI runs stopped by the engine (N_mppc " ..
+            (#cpdi_stopped > 0 and table.concat(cpdi_stopped, ", ") or "none") .. ")",
+            value = #cpdi_stopped, max = 0, asserted = false }
+  if first.cpdi and last.cpdi then
+    T.expect{ id = "collapse_s3.spread_cpdi", what = range .. ": L_x spread with CPDI (a_tau " .. cpdi_a_tau .. ")",
+              value = 100 * spread("cpdi", "L_x"), unit = "%", asserted = false }
+  end
+end
 T.check(math.abs(s1) < math.abs(s0), "%s: splitting did not narrow the spread (%.1f %% with, %.1f %% without)", range,
         100 * s1, 100 * s0)
 T.check(math.abs(spread("split", "max_x")) < math.abs(spread("base", "max_x")),
