@@ -13,9 +13,12 @@ static const mrn_shape_info shapes[MRN_SHAPE_KIND_COUNT] = {
      "cubic B-spline, C2, support of 4 cells per axis (000 §2.3; 002 Fig. 4)"},
     {MRN_SHAPE_CPDI, "cpdi", 2,
      "CPDI: linear hat functions averaged over the particle's domain, tracked from F (Sadeghirad et al. 2011)"},
+    {MRN_SHAPE_CPDI2, "cpdi2", 2,
+     "CPDI2 (2D): linear hat functions averaged over a quadrilateral whose corners move with the grid "
+     "(Sadeghirad et al. 2013)"},
 };
 
-static const char *const names[] = {"linear", "gimp", "quadratic_bspline", "cubic_bspline", "cpdi", NULL};
+static const char *const names[] = {"linear", "gimp", "quadratic_bspline", "cubic_bspline", "cpdi", "cpdi2", NULL};
 static const char *const boundary_names[] = {"extended", "truncated", "modified", "wls", NULL};
 
 const char *const *mrn_kernel_boundary_names(void) { return boundary_names; }

@@ -19,6 +19,7 @@ typedef enum {
   MRN_SHAPE_QUADRATIC_BSPLINE,
   MRN_SHAPE_CUBIC_BSPLINE,
   MRN_SHAPE_CPDI, /* CPDI: linear hat functions averaged over the particle's domain (transfer/cpdi.h) */
+  MRN_SHAPE_CPDI2, /* CPDI2 (2D): as CPDI over a quadrilateral with tracked corners (transfer/cpdi2.h) */
   MRN_SHAPE_KIND_COUNT
 } mrn_shape_kind;
 
@@ -68,10 +69,16 @@ int mrn_shape_from_name(const char *name, mrn_shape_kind *out);
 /* NULL-terminated list of names */
 const char *const *mrn_shape_names(void);
 
+/* CPDI or CPDI2: the domain-averaged kernels, all run by transfer/cpdi.c */
+static inline int mrn_shape_is_cpdi(mrn_shape_kind k) { return k == MRN_SHAPE_CPDI || k == MRN_SHAPE_CPDI2; }
+
+/* whether shape k works in dimension dim: CPDI2's quadrilaterals are 2D only */
+static inline int mrn_shape_takes_dim(mrn_shape_kind k, int dim) { return k != MRN_SHAPE_CPDI2 || dim == 2; }
+
 /* nodes per axis around a point; CPDI's grid basis is the linear one, and
  * its particles reach further, as far as their domains (transfer/cpdi.h) */
 static inline int mrn_shape_support(mrn_shape_kind k) {
-  return k == MRN_SHAPE_LINEAR || k == MRN_SHAPE_CPDI ? 2 : k == MRN_SHAPE_CUBIC_BSPLINE ? 4 : 3;
+  return k == MRN_SHAPE_LINEAR || mrn_shape_is_cpdi(k) ? 2 : k == MRN_SHAPE_CUBIC_BSPLINE ? 4 : 3;
 }
 
 /* linear hat functions, support 2 */
@@ -160,7 +167,8 @@ static inline int mrn_shape_gimp_1d(double xi, double lp, double *w, double *dw)
 static inline int mrn_shape_weights_1d(mrn_shape_kind k, double xi, double lp, double *w, double *dw) {
   switch (k) {
   case MRN_SHAPE_LINEAR:
-  case MRN_SHAPE_CPDI: return mrn_shape_linear_1d(xi, w, dw);
+  case MRN_SHAPE_CPDI:
+  case MRN_SHAPE_CPDI2: return mrn_shape_linear_1d(xi, w, dw);
   case MRN_SHAPE_GIMP: return mrn_shape_gimp_1d(xi, lp, w, dw);
   case MRN_SHAPE_CUBIC_BSPLINE: return mrn_shape_cubic_1d(xi, w, dw);
   default: return mrn_shape_quadratic_1d(xi, w, dw);

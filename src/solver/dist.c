@@ -402,7 +402,7 @@ static int slab_need(const mrn_sim *sim, int r, int h) {
  * round-off: a margin. Beyond the grid (or NaN) no slab holds it, as
  * mrn_dist_halo then says. */
 static int halo_for(const mrn_sim *sim, double reach) {
-  const double margin = sim->shape == MRN_SHAPE_CPDI ? 1e-9 : 0.0;
+  const double margin = mrn_shape_is_cpdi(sim->shape) ? 1e-9 : 0.0;
   const double rows = ceil(reach + margin) - 1.0, most = sim->grid.ncell[sim->dist->axis] + 1;
   return rows <= most ? (int)fmax(1.0, rows) : (int)most;
 }
@@ -410,7 +410,7 @@ static int halo_for(const mrn_sim *sim, double reach) {
 int mrn_dist_halo(mrn_sim *sim, double reach, int rc) {
   mrn_dist *d = sim->dist;
   if (!d) return rc;
-  if (sim->shape != MRN_SHAPE_CPDI) { /* the same on every process: 1, the room mrn_dist_start reserved */
+  if (!mrn_shape_is_cpdi(sim->shape)) { /* the same on every process: 1, the room mrn_dist_start reserved */
     d->halo = halo_for(sim, reach);
     return rc;
   }

@@ -29,6 +29,11 @@ mrn_sim *mrn_sim_new(const mrn_sim_config *cfg) {
     mrn_error("simulation: out of memory");
     return NULL;
   }
+  if (!mrn_shape_takes_dim(cfg->shape, cfg->dim)) {
+    mrn_error("shape = 'cpdi2' is 2D only (its domains are quadrilaterals); use shape = 'cpdi' in %dD", cfg->dim);
+    free(sim);
+    return NULL;
+  }
   if (mrn_grid_init(&sim->grid, cfg->dim, cfg->origin, cfg->size, cfg->cell) != MRN_OK) {
     free(sim);
     return NULL;

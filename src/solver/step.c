@@ -27,6 +27,7 @@
 #include "grid/active.h"
 #include "grid/wall.h"
 #include "transfer/cpdi.h"
+#include "transfer/cpdi2.h"
 #include "transfer/kernels.h"
 #include "transfer/profile.h"
 #include "transfer/xpic.h"
@@ -470,23 +471,34 @@ static int step_usavg(mrn_sim *sim, mrn_transfer *tr, double dt, step_end *end) 
   return move_remap_update(sim, tr, dt, 0.5 * dt, end);
 }
 
-/* CPDI: refuse what it does not combine with, then freeze the domains for
- * every transfer of the step (P2G, force and G2P see the same S_ip, so
- * mass and momentum are conserved to round-off), and widen *reach (cells)
- * by their extent for the walls and friction faces */
+/* CPDI and CPDI2: refuse what they do not combine with, then freeze the
+ * domains (CPDI2: the corners) for every transfer of the step (P2G, force
+ * and G2P see the same S_ip, so mass and momentum are conserved to
+ * round-off), and widen *reach (cells) by their extent for the walls and
+ * friction faces */
 static int cpdi_begin(mrn_sim *sim, double *reach) {
+  const char *name = mrn_shape_info_of(sim->shape)->name;
   if (sim->kernel_boundary != MRN_KERNEL_EXTENDED)
-    return mrn_error("shape = 'cpdi' takes shape_boundary = 'extended' only, not '%s'",
+    return mrn_error("shape = '%s' takes shape_boundary = 'extended' only, not '%s'", name,
                      mrn_kernel_boundary_names()[sim->kernel_boundary]);
   if (sim->scheme.mls_gradient)
-    return mrn_error("shape = 'cpdi' does not take scheme gradient = 'mls' (its gradients are domain averages)");
+    return mrn_error("shape = '%s' does not take scheme gradient = 'mls' (its gradients are domain averages)", name);
   if (sim->contact && sim->contact->npairs)
-    return mrn_error("shape = 'cpdi' does not take contact between bodies (sim:add_contact)");
+    return mrn_error("shape = '%s' does not take contact between bodies (sim:add_contact)", name);
+  if (sim->shape == MRN_SHAPE_CPDI2 && sim->split_stretch > 0.0)
+    return mrn_error("shape = 'cpdi2' does not take split (splitting halves the parallelogram F U0, not the "
+                     "tracked corners): use shape = 'cpdi' with split, or cpdi2 without");
   const size_t need = 9 * sim->particles.n;
   if (need > sim->domain_cap) {
     double *d = realloc(sim->domain, need * sizeof(double));
     if (!d) return mrn_error("step: out of memory for the CPDI domains");
     sim->domain = d, sim->domain_cap = need;
+  }
+  if (sim->shape == MRN_SHAPE_CPDI2) {
+    double r;
+    const int rc = mrn_cpdi2_begin(&sim->particles, sim->grid.inv_cell, sim->domain, &r);
+    *reach += r;
+    return rc;
   }
   *reach += mrn_cpdi_domains(&sim->particles, sim->dim, sim->grid.inv_cell, sim->domain);
   return MRN_OK;
@@ -515,7 +527,7 @@ int mrn_sim_step_dt(mrn_sim *sim, double dt) {
   const mrn_particle_pass end_pass = {end_chunk, &e};
   step_end end = {sim->on_leave == MRN_LEAVE_DELETE ? NULL : &end_pass, -1};
   double reach = 0.5 * mrn_shape_support(sim->shape); /* cells from a particle its shape functions reach */
-  if (sim->shape == MRN_SHAPE_CPDI) rc = cpdi_begin(sim, &reach);
+  if (mrn_shape_is_cpdi(sim->shape)) rc = cpdi_begin(sim, &reach);
   if ((rc = mrn_dist_halo(sim, reach, rc)) != MRN_OK) return rc; /* the halo bands that reach needs */
   if ((rc = mrn_boundary_touch(&sim->boundary, &sim->grid, reach, sim->particles.x, sim->particles.vol0,
                                sim->particles.n, sim->dist ? mrn_dist_or_marks : NULL, sim)) != MRN_OK)
@@ -526,7 +538,7 @@ int mrn_sim_step_dt(mrn_sim *sim, double dt) {
                                                    sim->particles.x, sim->particles.vol0, sim->particles.n)))
     return rc;
   mrn_transfer tr = mrn_sim_transfer(sim);
-  if (sim->shape == MRN_SHAPE_CPDI) tr.domain = sim->domain;
+  if (mrn_shape_is_cpdi(sim->shape)) tr.domain = sim->domain;
   if (sim->contact && sim->contact->npairs) {
     rc = mrn_contact_step(sim, &tr, dt);
     end.pass = NULL; /* the contact step's G2P has no end-of-step stage */
@@ -536,6 +548,8 @@ int mrn_sim_step_dt(mrn_sim *sim, double dt) {
   case MRN_STRESS_USAVG: rc = step_usavg(sim, &tr, dt, &end); break;
   case MRN_STRESS_MUSL: rc = step_musl(sim, &tr, dt, &end); break;
   }
+  /* CPDI2's corners move with this step's V~ (transfer/cpdi2.h) */
+  if (rc == MRN_OK && sim->shape == MRN_SHAPE_CPDI2) mrn_cpdi2_move_corners(&tr, sim->domain, dt);
   mrn_sim_transfer_end(sim, &tr);
   /* the walls' reactions are summed over the processes: they meet there first */
   if (sim->boundary.walls) rc = mrn_dist_agree(sim, rc);

@@ -1,4 +1,4 @@
-/* moraine: CPDI (see cpdi.h). */
+/* moraine: CPDI and CPDI2 (see cpdi.h, cpdi2.h). */
 #include "transfer/cpdi.h"
 
 #include <math.h>
@@ -8,6 +8,7 @@
 #include "core/tensor.h"
 #include "grid/active.h"
 #include "particles/domain.h"
+#include "transfer/cpdi2.h"
 
 /* ---- the stencil ---------------------------------------------------------------- */
 
@@ -38,10 +39,33 @@ static void corner_axis(const mrn_transfer *t, int d, double xi, int *base, int 
     node[e] = periodic ? ((*base + e) % ncell + ncell) % ncell : *base + e;
 }
 
-/* S_ip = (1/2^d) sum_c N_i(x_c), grad S_ip = (1/2^d) sum_c N_i(x_c) J^-T xi_c
- * (cpdi.h), corner by corner, the nodes of a corner with x fastest */
-void mrn_cpdi_stencil(const mrn_transfer *t, size_t p, mrn_ref_stencil *s) {
+/* One corner x_c's entries, its 2^d nodes with x fastest: the hat
+ * functions N_i(x_c) times `share` (the weights) and times `gshare` grad
+ * (the gradients); x the particle's centre, for the branch vectors */
+static void corner_entries(const mrn_transfer *t, const double *x, const double xc[3], double share, double gshare,
+                           const double grad[3], mrn_ref_stencil *s) {
   const mrn_grid *g = t->grid;
+  const int dim = t->dim;
+  double w[3][2] = {{1, 1}, {1, 1}, {1, 1}};
+  int base[3] = {0, 0, 0}, node[3][2] = {{0, 0}, {0, 0}, {0, 0}};
+  for (int a = 0; a < dim; a++) corner_axis(t, a, (xc[a] - g->origin[a]) * g->inv_cell, &base[a], node[a], w[a]);
+  for (int n = 0; n < (1 << dim); n++) {
+    const int idx[3] = {n & 1, (n >> 1) & 1, (n >> 2) & 1};
+    double N = share, G = gshare;
+    for (int d = 0; d < dim; d++) N *= w[d][idx[d]], G *= w[d][idx[d]];
+    const int at = s->count++;
+    for (int d = 0; d < dim; d++) {
+      s->dN[dim * at + d] = G * grad[d];
+      s->off[dim * at + d] = g->origin[d] + (base[d] + idx[d]) * g->cell - x[d];
+    }
+    s->N[at] = N;
+    s->node[at] = mrn_grid_index(g, node[0][idx[0]], node[1][idx[1]], dim == 3 ? node[2][idx[2]] : 0);
+  }
+}
+
+/* CPDI1: S_ip = (1/2^d) sum_c N_i(x_c), grad S_ip = (1/2^d) sum_c N_i(x_c)
+ * J^-T xi_c (cpdi.h), corner by corner */
+static void parallelogram(const mrn_transfer *t, size_t p, mrn_ref_stencil *s) {
   const int dim = t->dim, corners = 1 << dim;
   const double *x = t->particles->x + 3 * p, share = 1.0 / corners;
   double A[9], Ji[9];
@@ -49,29 +73,58 @@ void mrn_cpdi_stencil(const mrn_transfer *t, size_t p, mrn_ref_stencil *s) {
   if (dim == 2) A[8] = 1.0; /* the plane block's inverse */
   if (mat_inverse(A, Ji))
     for (int e = 0; e < 9; e++) Ji[e] = NAN;
-  s->count = 0;
   for (int c = 0; c < corners; c++) {
-    double xi_c[3], grad[3] = {0, 0, 0}, w[3][2] = {{1, 1}, {1, 1}, {1, 1}};
-    int base[3] = {0, 0, 0}, node[3][2] = {{0, 0}, {0, 0}, {0, 0}};
+    double xi_c[3], xc[3] = {0, 0, 0}, grad[3] = {0, 0, 0};
     for (int k = 0; k < dim; k++) xi_c[k] = (c >> k) & 1 ? 1.0 : -1.0;
     for (int a = 0; a < dim; a++) {
-      double xc = x[a]; /* the corner x_p + sum_k xi_ck r_k, r_k the columns of A */
-      for (int k = 0; k < dim; k++) xc += xi_c[k] * A[3 * a + k];
-      corner_axis(t, a, (xc - g->origin[a]) * g->inv_cell, &base[a], node[a], w[a]);
+      xc[a] = x[a]; /* the corner x_p + sum_k xi_ck r_k, r_k the columns of A */
+      for (int k = 0; k < dim; k++) xc[a] += xi_c[k] * A[3 * a + k];
       for (int k = 0; k < dim; k++) grad[a] += Ji[3 * k + a] * xi_c[k]; /* (J^-T xi_c)_a */
     }
-    for (int n = 0; n < (1 << dim); n++) {
-      const int idx[3] = {n & 1, (n >> 1) & 1, (n >> 2) & 1};
-      double N = share;
-      for (int d = 0; d < dim; d++) N *= w[d][idx[d]];
-      const int at = s->count++;
-      for (int d = 0; d < dim; d++) {
-        s->dN[dim * at + d] = N * grad[d];
-        s->off[dim * at + d] = g->origin[d] + (base[d] + idx[d]) * g->cell - x[d];
-      }
-      s->N[at] = N;
-      s->node[at] = mrn_grid_index(g, node[0][idx[0]], node[1][idx[1]], dim == 3 ? node[2][idx[2]] : 0);
-    }
+    corner_entries(t, x, xc, share, share, grad, s);
+  }
+}
+
+/* CPDI2: S_ip = (1/V_p) sum_c N_i(x_c) w_c, grad S_ip = (1/V_p) sum_c
+ * N_i(x_c) g_c (cpdi2.h), over the corners the step froze or, outside a
+ * step, the stored ones; the integrals from the offsets about x_p, which
+ * they do not depend on, for the round-off */
+static void quadrilateral(const mrn_transfer *t, size_t p, mrn_ref_stencil *s) {
+  const double *x = t->particles->x + 3 * p;
+  double q[4][2], w[4], gc[4][2];
+  if (t->domain)
+    for (int c = 0; c < 4; c++)
+      for (int a = 0; a < 2; a++) q[c][a] = t->domain[8 * p + 2 * c + a] - x[a];
+  else
+    mrn_cpdi2_offsets(t->particles, p, q);
+  const double V = mrn_cpdi2_integrals(q, w, gc), inv = V > 0.0 ? 1.0 / V : NAN; /* an inverted domain: NaN */
+  for (int c = 0; c < 4; c++) {
+    const double xc[3] = {x[0] + q[c][0], x[1] + q[c][1], 0.0}, grad[3] = {gc[c][0], gc[c][1], 0.0};
+    corner_entries(t, x, xc, w[c] * inv, inv, grad, s);
+  }
+}
+
+/* CPDI's stencil: 2^d corners x 2^d nodes, a node reached from several
+ * corners listed once per corner */
+void mrn_cpdi_stencil(const mrn_transfer *t, size_t p, mrn_ref_stencil *s) {
+  s->count = 0;
+  if (t->kernel.shape == MRN_SHAPE_CPDI2) quadrilateral(t, p, s);
+  else parallelogram(t, p, s);
+}
+
+void mrn_cpdi_point_velocity(const mrn_transfer *t, const double xc[3], const double *gvel, double v[3]) {
+  const int dim = t->dim;
+  double w[3][2] = {{1, 1}, {1, 1}, {1, 1}};
+  int base[3] = {0, 0, 0}, node[3][2] = {{0, 0}, {0, 0}, {0, 0}};
+  for (int a = 0; a < dim; a++)
+    corner_axis(t, a, (xc[a] - t->grid->origin[a]) * t->grid->inv_cell, &base[a], node[a], w[a]);
+  for (int d = 0; d < 3; d++) v[d] = 0.0;
+  for (int n = 0; n < (1 << dim); n++) {
+    const int idx[3] = {n & 1, (n >> 1) & 1, (n >> 2) & 1};
+    double N = 1.0;
+    for (int d = 0; d < dim; d++) N *= w[d][idx[d]];
+    const size_t i = mrn_grid_index(t->grid, node[0][idx[0]], node[1][idx[1]], dim == 3 ? node[2][idx[2]] : 0);
+    for (int d = 0; d < dim; d++) v[d] += N * gvel[3 * i + d];
   }
 }
 

@@ -25,7 +25,9 @@
  * parallel chunks; the fast kernels hand every call over to them
  * (kernels_impl.h). Only the `extended` face treatment, without the MLS
  * gradient (the step refuses the rest); periodic axes wrap. A corner beyond
- * the grid's ghost layers is taken back onto the last ghost node. */
+ * the grid's ghost layers is taken back onto the last ghost node. CPDI2
+ * (transfer/cpdi2.h) runs through the same kernels, its stencil formed
+ * from the tracked quadrilateral. */
 #ifndef MRN_TRANSFER_CPDI_H
 #define MRN_TRANSFER_CPDI_H
 
@@ -34,9 +36,13 @@
 #include "transfer/kernels.h"
 #include "transfer/reference.h"
 
-/* particle p's CPDI stencil: 2^d corners x 2^d nodes, a node reached from
- * several corners listed once per corner */
+/* particle p's CPDI (or CPDI2, transfer/cpdi2.h) stencil: 2^d corners x
+ * 2^d nodes, a node reached from several corners listed once per corner */
 void mrn_cpdi_stencil(const mrn_transfer *t, size_t p, mrn_ref_stencil *s);
+
+/* the velocity gvel interpolated at the point xc by the hat functions, as
+ * at a corner (beyond the ghost layers taken back onto the last of them) */
+void mrn_cpdi_point_velocity(const mrn_transfer *t, const double xc[3], const double *gvel, double v[3]);
 
 /* the domains A = F U0 (9 per particle) of every particle into A, as the
  * step freezes them for all its transfers (mrn_transfer.domain); returns

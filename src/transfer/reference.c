@@ -82,7 +82,7 @@ static int axis_stencil(const mrn_transfer *t, int d, double x, double lp, int *
  * kernel was cut (002, Eqs. 58, 61) and of the gradients (002, Eq. 62) there
  * or, with the MLS gradient, everywhere (002 Remark 4). */
 void mrn_ref_stencil_build(const mrn_transfer *t, size_t p, mrn_ref_stencil *s) {
-  if (t->kernel.shape == MRN_SHAPE_CPDI) { /* the domain's corners (cpdi.h) */
+  if (mrn_shape_is_cpdi(t->kernel.shape)) { /* the domain's corners (cpdi.h) */
     mrn_cpdi_stencil(t, p, s);
     return;
   }

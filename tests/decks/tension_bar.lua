@@ -32,13 +32,15 @@ end
 -- (two cells in from each) that hold no particle (`empty`) and that no
 -- particle's domain reaches (`unreached`: the bounding box of the
 -- parallelogram spanned by the columns of F times half the particle's
--- initial side, the domain CPDI and splitting track, overlaps the cell);
+-- initial side, the domain CPDI and splitting track, overlaps the cell;
+-- with `corners`, a CPDI2 run, the box of the quadrilateral it tracks);
 -- the bar's length and mean axial stress, and its particles' smallest and
 -- largest axial stretch F_xx away from the grips (|x| < 1.2 m).
-function B.inspect(sim)
+function B.inspect(sim, corners)
   local CELL = B.CELL
   local n = sim:particle_count()
   local F, vol = sim:field("deformation_gradient"), sim:field("volume")
+  local q = corners and sim:field("cpdi2_corners")
   local cells, boxes, sxx, v = {}, {}, 0, 0
   local grip_lo, grip_hi, lo, hi = -math.huge, math.huge, math.huge, -math.huge
   local fmin, fmax = math.huge, -math.huge
@@ -54,7 +56,16 @@ function B.inspect(sim)
       local fxx, fxy, fyx, fyy = F[k + 1], F[k + 2], F[k + 4], F[k + 5]
       local r = 0.5 * math.sqrt(vol[i] / (fxx * fyy - fxy * fyx))
       local ex, ey = r * (math.abs(fxx) + math.abs(fxy)), r * (math.abs(fyx) + math.abs(fyy))
-      boxes[#boxes + 1] = { p.x[1] - ex, p.x[1] + ex, p.x[2] - ey, p.x[2] + ey }
+      local box = { p.x[1] - ex, p.x[1] + ex, p.x[2] - ey, p.x[2] + ey }
+      if q then
+        local c = 8 * (i - 1)
+        box = { math.huge, -math.huge, math.huge, -math.huge }
+        for k = 0, 3 do
+          local cx, cy = p.x[1] + q[c + 2 * k + 1], p.x[2] + q[c + 2 * k + 2]
+          box = { math.min(box[1], cx), math.max(box[2], cx), math.min(box[3], cy), math.max(box[4], cy) }
+        end
+      end
+      boxes[#boxes + 1] = box
       if math.abs(p.x[1]) < 1.2 then fmin, fmax = math.min(fmin, fxx), math.max(fmax, fxx) end
     end
   end

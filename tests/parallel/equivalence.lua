@@ -4,7 +4,8 @@
 -- APIC/USL elastic cube, spinning, dropped on a slip floor with viscous
 -- damping, or one of the 2D cases below for the features whose exchanges
 -- differ (periodic2d: the periodic cut axis; cpdi2d: CPDI's wider halo
--- band; rolling2d: gap_check's marks).
+-- band, --set shape=cpdi2 for CPDI2's, whose corners are a particle field
+-- that migrates; rolling2d: gap_check's marks).
 -- Writes the diagnostics every step (NAME.csv) and the final state
 -- (NAME.h5, sim:save: every particle, in the order of their ids); the 2D
 -- case also a VTK series every 250 steps (NAME.pvd, with grid snapshots in
@@ -27,6 +28,7 @@ local load = mpm.param("load", "")
 local transfer = mpm.param("transfer", (case == "collapse2d" or case == "cpdi2d") and "FLIP" or "APIC")
 local volumetric = mpm.param("volumetric", "standard")
 local late = mpm.param("late", 0)
+local cpdi_shape = mpm.param("shape", "cpdi") -- cpdi2d's: cpdi or cpdi2
 
 -- an elastic block pressed by gravity on a friction wall (x = 0), spinning
 -- and sliding along it (-y) through the periodic faces y = 0 and y = 1,
@@ -51,7 +53,7 @@ end
 -- along y, and the halo band widens to h = 2 as the run goes
 local function cpdi2d()
   local s = mpm.simulation{ dim = 2, grid = { origin = { 0, -1.0 }, size = { 0.25, 2.4 }, cell = 0.025 },
-    shape = "cpdi", scheme = { transfer = transfer, stress_update = "USL" }, dt = { fixed = 2.5e-3 },
+    shape = cpdi_shape, scheme = { transfer = transfer, stress_update = "USL" }, dt = { fixed = 2.5e-3 },
     thermo = 0, diagnostics = name .. ".csv", diagnostics_every = 1 }
   mpm.warnings{ ignore = { "one_particle_per_cell" } } -- CPDI's domains cover the cells between the particles
   local bar = mpm.material.neo_hookean{ density = 1000, E = 10, nu = 0.3 }

@@ -20,7 +20,21 @@
  * - Whole explicit steps (PIC, FLIP, APIC, TPIC x USF, USL, MUSL, USAVG,
  *   no gravity, free faces, deformed domains): the total momentum stays to
  *   1e-12 of sum m |v|, since every transfer of a step uses the domains the
- *   step froze. */
+ *   step froze; likewise with CPDI2 in 2D, whose quadrilaterals are
+ *   recentred on the particles after each step.
+ * CPDI2 (transfer/cpdi2.h), 2D, on quadrilaterals that are not
+ * parallelograms:
+ * - w_c and g_c against a 3 x 3 Gauss quadrature of M_c det J and of
+ *   adj(J)^T grad_xi M_c over the reference square (exact for these
+ *   polynomials), and V_p against the shoelace area: 1e-12.
+ * - Partition of unity, gradients summing to zero, sum x_i (x) grad S = I,
+ *   and sum S_ip x_i = the polygon's centroid (its own formula) for a
+ *   particle placed anywhere in its domain: 1e-12.
+ * - A parallelogram (corners unset, or stored as A xi_c) gives CPDI1's
+ *   weights and gradients node by node: 1e-12.
+ * - The corner update under an affine grid velocity V~ = v0 + L x moves the
+ *   offsets to (I + dt L) off exactly (1e-12), so that a homogeneous
+ *   deformation keeps the parallelogram of CPDI1's (I + dt L) F U0. */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -30,6 +44,7 @@
 #include "material/material.h"
 #include "solver/simulation.h"
 #include "transfer/cpdi.h"
+#include "transfer/cpdi2.h"
 #include "transfer/kernels.h"
 #include "transfer/reference.h"
 
@@ -265,12 +280,12 @@ static void kernels(int dim) {
 }
 
 /* total momentum through steps of each strategy and stress update */
-static void steps(int dim) {
+static void steps(int dim, mrn_shape_kind shape) {
   static const char *const presets[] = {"PIC", "FLIP", "APIC", "TPIC"};
   double worst = 0.0;
   for (int k = 0; k < 4; k++)
     for (int u = MRN_STRESS_USF; u <= MRN_STRESS_USAVG; u++) {
-      mrn_sim *sim = make_sim(dim, MRN_SHAPE_CPDI);
+      mrn_sim *sim = make_sim(dim, shape);
       for (int d = 0; d < 3; d++) sim->gravity[d] = 0.0;
       CHECK(mrn_scheme_from_preset(presets[k], &sim->scheme) == 0);
       sim->scheme.stress_update = (mrn_stress_update_kind)u;
@@ -300,8 +315,222 @@ static void steps(int dim) {
       for (int a = 0; a < dim; a++) worst = fmax(worst, fabs(d1.momentum[a] - d0.momentum[a]) / scale);
       mrn_sim_free(sim);
     }
-  printf("%dD steps, every strategy and stress update: worst momentum change %.2e of sum m |v|\n", dim, worst);
+  printf("%dD %s steps, every strategy and stress update: worst momentum change %.2e of sum m |v|\n", dim,
+         mrn_shape_info_of(shape)->name, worst);
   CHECK(worst < TOL);
+}
+
+/* ---- CPDI2 ------------------------------------------------------------------------ */
+
+/* a convex quadrilateral about the origin (offsets, counter-clockwise from
+ * (-1,-1)): a random parallelogram A xi_c of about `size` with each corner
+ * moved by up to a fifth of it */
+static void random_quad(double size, double q[4][2]) {
+  double F[4];
+  random_F(2, F);
+  for (int c = 0; c < 4; c++)
+    for (int a = 0; a < 2; a++)
+      q[c][a] = size * (0.5 * (F[2 * a] * mrn_cpdi2_xi[c][0] + F[2 * a + 1] * mrn_cpdi2_xi[c][1]) +
+                        0.2 * (rnd() - 0.5));
+}
+
+/* the shoelace area and the polygon's centroid */
+static double polygon(const double q[4][2], double centroid[2]) {
+  double area = 0.0;
+  centroid[0] = centroid[1] = 0.0;
+  for (int c = 0; c < 4; c++) {
+    const double *u = q[c], *v = q[(c + 1) % 4], k = u[0] * v[1] - v[0] * u[1];
+    area += 0.5 * k;
+    for (int a = 0; a < 2; a++) centroid[a] += (u[a] + v[a]) * k / 6.0;
+  }
+  for (int a = 0; a < 2; a++) centroid[a] /= area;
+  return area;
+}
+
+/* w_c, g_c and V_p against quadrature over the reference square */
+static void cpdi2_integrals(void) {
+  static const double gx[3] = {-0.7745966692414834, 0.0, 0.7745966692414834}, gw[3] = {5.0 / 9, 8.0 / 9, 5.0 / 9};
+  double worst = 0.0;
+  for (int k = 0; k < 200; k++) {
+    double q[4][2], w[4], g[4][2], cen[2], wq[4] = {0}, gq[4][2] = {{0}};
+    random_quad(0.5 + rnd(), q);
+    const double V = mrn_cpdi2_integrals(q, w, g), area = polygon(q, cen);
+    for (int i = 0; i < 3; i++)
+      for (int j = 0; j < 3; j++) {
+        const double xi = gx[i], eta = gx[j];
+        double J[2][2] = {{0, 0}, {0, 0}}; /* dx_a / d(xi, eta)_b */
+        for (int c = 0; c < 4; c++) {
+          const double xc = mrn_cpdi2_xi[c][0], ec = mrn_cpdi2_xi[c][1];
+          for (int a = 0; a < 2; a++) {
+            J[a][0] += 0.25 * xc * (1 + ec * eta) * q[c][a];
+            J[a][1] += 0.25 * ec * (1 + xc * xi) * q[c][a];
+          }
+        }
+        const double det = J[0][0] * J[1][1] - J[0][1] * J[1][0];
+        for (int c = 0; c < 4; c++) {
+          const double xc = mrn_cpdi2_xi[c][0], ec = mrn_cpdi2_xi[c][1];
+          const double M = 0.25 * (1 + xc * xi) * (1 + ec * eta), dM[2] = {0.25 * xc * (1 + ec * eta),
+                                                                             0.25 * ec * (1 + xc * xi)};
+          wq[c] += gw[i] * gw[j] * M * det;
+          /* grad M det J = adj(J)^T grad_xi M */
+          gq[c][0] += gw[i] * gw[j] * (J[1][1] * dM[0] - J[1][0] * dM[1]);
+          gq[c][1] += gw[i] * gw[j] * (-J[0][1] * dM[0] + J[0][0] * dM[1]);
+        }
+      }
+    worst = fmax(worst, fabs(V - area) / area);
+    for (int c = 0; c < 4; c++) {
+      worst = fmax(worst, fabs(w[c] - wq[c]) / area);
+      for (int a = 0; a < 2; a++) worst = fmax(worst, fabs(g[c][a] - gq[c][a]) / sqrt(area));
+    }
+  }
+  printf("CPDI2 w_c, g_c, V_p against quadrature and the shoelace area: worst %.2e\n", worst);
+  CHECK(worst < TOL);
+}
+
+/* particle p's corner offsets stored in the CPDI2 field */
+static void store_quad(mrn_sim *sim, size_t p, const double q[4][2]) {
+  mrn_particles *ps = &sim->particles;
+  const mrn_user_field *u = mrn_particles_user_field(ps, MRN_CPDI2_FIELD);
+  if (!u) {
+    CHECK(mrn_particles_add_user_field(ps, MRN_CPDI2_FIELD, 8, 0.0, "m") == 0);
+    u = mrn_particles_user_field(ps, MRN_CPDI2_FIELD);
+  }
+  memcpy(ps->user + p * (size_t)ps->user_stride + (size_t)u->offset, q, 8 * sizeof(double));
+}
+
+/* the stencil's sums on quadrilaterals, the particle anywhere inside */
+static void cpdi2_consistency(void) {
+  mrn_sim *sim = make_sim(2, MRN_SHAPE_CPDI2);
+  double cen[40][2];
+  for (int k = 0; k < 40; k++) {
+    double xi[3] = {5.0 + 6.0 * rnd(), 5.0 + 6.0 * rnd(), 0}, q[4][2], shift[2] = {rnd() - 0.5, rnd() - 0.5};
+    random_quad(0.1 + 0.15 * rnd(), q);
+    polygon(q, cen[k]);
+    for (int c = 0; c < 4; c++) /* the particle off the centroid by up to a tenth of the domain */
+      for (int a = 0; a < 2; a++) q[c][a] -= cen[k][a] + 0.2 * shift[a] * (q[2][a] - q[0][a]);
+    polygon(q, cen[k]);
+    store_quad(sim, add(sim, xi, 1.0, NULL), q);
+  }
+  mrn_transfer t = mrn_sim_transfer(sim);
+  mrn_ref_stencil s;
+  double worst = 0.0;
+  for (size_t p = 0; p < sim->particles.n; p++) {
+    mrn_ref_stencil_build(&t, p, &s);
+    double sum = 0.0, gsum[2] = {0, 0}, xs[2] = {0, 0}, G[2][2] = {{0}};
+    for (int c = 0; c < s.count; c++) {
+      sum += s.N[c];
+      for (int a = 0; a < 2; a++) {
+        gsum[a] += s.dN[2 * c + a];
+        xs[a] += s.N[c] * s.off[2 * c + a];
+        for (int b = 0; b < 2; b++) G[a][b] += s.off[2 * c + a] * s.dN[2 * c + b];
+      }
+    }
+    worst = fmax(worst, fabs(sum - 1.0));
+    for (int a = 0; a < 2; a++) {
+      worst = fmax(worst, fabs(gsum[a]) * sim->grid.cell);
+      worst = fmax(worst, fabs(xs[a] - cen[p][a]) / sim->grid.cell); /* sum S x_i = the centroid */
+      for (int b = 0; b < 2; b++) worst = fmax(worst, fabs(G[a][b] - (a == b)));
+    }
+  }
+  printf("CPDI2 quadrilaterals: worst partition of unity / gradient sum / centroid / linear gradient error %.2e\n",
+         worst);
+  CHECK(worst < TOL);
+  mrn_sim_free(sim);
+}
+
+/* particle p's per-node (N, dN) under CPDI and under CPDI2, the largest difference */
+static double against_cpdi1(mrn_sim *sim, size_t p, double *a, double *b) {
+  const size_t n = 3 * sim->grid.n;
+  memset(a, 0, n * sizeof(double));
+  memset(b, 0, n * sizeof(double));
+  mrn_transfer t = mrn_sim_transfer(sim);
+  mrn_ref_stencil s;
+  t.kernel.shape = MRN_SHAPE_CPDI;
+  mrn_ref_stencil_build(&t, p, &s);
+  per_node(&s, 2, a);
+  t.kernel.shape = MRN_SHAPE_CPDI2;
+  mrn_ref_stencil_build(&t, p, &s);
+  per_node(&s, 2, b);
+  double worst = 0.0;
+  for (size_t k = 0; k < n; k++) worst = fmax(worst, fabs(a[k] - b[k]) * (k % 3 ? sim->grid.cell : 1.0));
+  return worst;
+}
+
+/* a parallelogram, unset or stored: CPDI1's stencil */
+static void cpdi2_parallelogram(void) {
+  mrn_sim *sim = make_sim(2, MRN_SHAPE_CPDI2);
+  double *a = calloc(3 * sim->grid.n, sizeof(double)), *b = calloc(3 * sim->grid.n, sizeof(double));
+  double worst = 0.0;
+  for (int k = 0; k < 40; k++) {
+    double xi[3] = {5.0 + 6.0 * rnd(), 5.0 + 6.0 * rnd(), 0}, F[4], q[4][2];
+    random_F(2, F);
+    const size_t p = add(sim, xi, 0.3 + 1.2 * rnd(), F);
+    worst = fmax(worst, against_cpdi1(sim, p, a, b)); /* unset: formed from F */
+    const double r = 0.5 * sqrt(sim->particles.vol0[p]);
+    for (int c = 0; c < 4; c++)
+      for (int d = 0; d < 2; d++) q[c][d] = r * (F[2 * d] * mrn_cpdi2_xi[c][0] + F[2 * d + 1] * mrn_cpdi2_xi[c][1]);
+    store_quad(sim, p, q);
+    worst = fmax(worst, against_cpdi1(sim, p, a, b)); /* stored */
+  }
+  printf("CPDI2 on parallelograms against CPDI1: worst difference %.2e\n", worst);
+  CHECK(worst < TOL);
+  free(a);
+  free(b);
+  mrn_sim_free(sim);
+}
+
+/* the corners under an affine V~ = v0 + L x: offsets (I + dt L) off, and
+ * the parallelogram CPDI1 forms from (I + dt L) F */
+static void cpdi2_affine_update(void) {
+  mrn_sim *sim = make_sim(2, MRN_SHAPE_CPDI2);
+  mrn_grid *g = &sim->grid;
+  const double dt = 0.05, v0[2] = {0.3, -0.2}, L[2][2] = {{0.4, 1.1}, {-0.7, -0.3}};
+  for (size_t i = 0; i < g->n; i++)
+    for (int a = 0; a < 2; a++) g->vel_new[3 * i + a] = v0[a] + L[a][0] * node_x(sim, i, 0) + L[a][1] * node_x(sim, i, 1);
+  double F[40][4], before[40][4][2];
+  for (int k = 0; k < 40; k++) {
+    double xi[3] = {5.0 + 6.0 * rnd(), 5.0 + 6.0 * rnd(), 0};
+    random_F(2, F[k]);
+    const size_t p = add(sim, xi, 0.3 + 1.2 * rnd(), F[k]);
+    if (k % 2) { /* every other one a quadrilateral, about its centroid */
+      double cen[2];
+      random_quad(0.05 + 0.1 * rnd(), before[k]);
+      polygon(before[k], cen);
+      for (int c = 0; c < 4; c++)
+        for (int a = 0; a < 2; a++) before[k][c][a] -= cen[a];
+      store_quad(sim, p, before[k]);
+    }
+  }
+  double *corners = malloc(8 * sim->particles.n * sizeof(double)), reach;
+  CHECK(mrn_cpdi2_begin(&sim->particles, g->inv_cell, corners, &reach) == 0);
+  for (size_t p = 0; p < sim->particles.n; p++) mrn_cpdi2_offsets(&sim->particles, p, before[p]);
+  mrn_transfer t = mrn_sim_transfer(sim);
+  mrn_cpdi2_move_corners(&t, corners, dt);
+  double worst = 0.0, worst1 = 0.0;
+  double *a = calloc(3 * g->n, sizeof(double)), *b = calloc(3 * g->n, sizeof(double));
+  const int ts = mrn_tensor_stride(2);
+  for (size_t p = 0; p < sim->particles.n; p++) {
+    double after[4][2];
+    mrn_cpdi2_offsets(&sim->particles, p, after);
+    for (int c = 0; c < 4; c++)
+      for (int d = 0; d < 2; d++) {
+        const double want = before[p][c][d] + dt * (L[d][0] * before[p][c][0] + L[d][1] * before[p][c][1]);
+        worst = fmax(worst, fabs(after[c][d] - want) / g->cell);
+      }
+    if (p % 2) continue;
+    double *Fp = sim->particles.F + (size_t)ts * p; /* F <- (I + dt L) F, the homogeneous deformation */
+    for (int c = 0; c < 2; c++)
+      for (int d = 0; d < 2; d++) Fp[2 * d + c] = F[p][2 * d + c] + dt * (L[d][0] * F[p][c] + L[d][1] * F[p][2 + c]);
+    worst1 = fmax(worst1, against_cpdi1(sim, p, a, b));
+  }
+  printf("CPDI2 corners under an affine velocity: worst offset error %.2e cells; against CPDI1's (I + dt L) F "
+         "%.2e\n", worst, worst1);
+  CHECK(worst < TOL);
+  CHECK(worst1 < TOL);
+  free(a);
+  free(b);
+  free(corners);
+  mrn_sim_free(sim);
 }
 
 int main(void) {
@@ -310,8 +539,13 @@ int main(void) {
     consistency(dim, 1);
     gimp(dim);
     kernels(dim);
-    steps(dim);
+    steps(dim, MRN_SHAPE_CPDI);
   }
   divergence_2d();
+  cpdi2_integrals();
+  cpdi2_consistency();
+  cpdi2_parallelogram();
+  cpdi2_affine_update();
+  steps(2, MRN_SHAPE_CPDI2);
   CHECK_DONE();
 }

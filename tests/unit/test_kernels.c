@@ -74,7 +74,7 @@ int main(void) {
   static const char *modes[] = {"extended", "truncated", "modified", "wls"};
   for (int dim = 2; dim <= 3; dim++)
     for (int shape = 0; shape < MRN_SHAPE_KIND_COUNT; shape++)
-      for (int mode = 0; mode < MRN_KERNEL_BOUNDARY_COUNT; mode++) {
+      for (int mode = 0; mode < MRN_KERNEL_BOUNDARY_COUNT && mrn_shape_takes_dim(shape, dim); mode++) {
         errors e = sweep(dim, (mrn_shape_kind)shape, (mrn_kernel_boundary)mode, 0);
         double worst = fmax(fmax(e.unity, e.linear / 0.1), fmax(e.grad_sum * 0.1, e.grad_linear));
         printf("%dD %-18s %-9s  |sum N - 1| %.1e  |sum N x - x_p|/h %.1e  |sum grad N| h %.1e  |sum x grad N - I| %.1e\n",

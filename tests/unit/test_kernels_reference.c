@@ -541,7 +541,7 @@ int main(void) {
          fused_ ? FUSED_ULP : 0.0, BOUND_ULP, fused_ ? "; this build fuses multiply-adds" : "");
   for (int dim = 2; dim <= 3; dim++)
     for (int shape = 0; shape < MRN_SHAPE_KIND_COUNT; shape++)
-      for (int face = 0; face < MRN_KERNEL_BOUNDARY_COUNT; face++)
+      for (int face = 0; face < MRN_KERNEL_BOUNDARY_COUNT && mrn_shape_takes_dim(shape, dim); face++)
         for (int extra = 0; extra < EXTRA_COUNT; extra++) {
           tally tp = {0}, tg = {0};
           char where[96];

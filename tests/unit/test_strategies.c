@@ -195,7 +195,7 @@ int main(void) {
   single_particle("TPIC", 1);
   for (int dim = 2; dim <= 3; dim++) {
     for (int shape = 0; shape < MRN_SHAPE_KIND_COUNT; shape++)
-      for (double start = 0.5; start < 0.6; start += 0.05) {
+      for (double start = 0.5; start < 0.6 && mrn_shape_takes_dim(shape, dim); start += 0.05) {
         double e_apic = affine_field(dim, "APIC", shape, start), e_tpic = affine_field(dim, "TPIC", shape, start);
         double e_pic = affine_field(dim, "PIC", shape, start);
         printf("%dD %-17s from %.2f affine field: APIC error %.2e, TPIC error %.2e, PIC error %.2e\n", dim,
