@@ -13,9 +13,11 @@ static const mrn_shape_info shapes[MRN_SHAPE_KIND_COUNT] = {
      "cubic B-spline, C2, support of 4 cells per axis (000 §2.3; 002 Fig. 4)"},
     {MRN_SHAPE_CPDI, "cpdi", 2,
      "CPDI: linear hat functions averaged over the particle's domain, tracked from F (Sadeghirad et al. 2011)"},
+    {MRN_SHAPE_CPGIMP, "cpgimp", 3,
+     "cpGIMP: uGIMP with the particle's axis-aligned box stretched by the diagonal of F (Wallstedt & Guilkey 2008)"},
 };
 
-static const char *const names[] = {"linear", "gimp", "quadratic_bspline", "cubic_bspline", "cpdi", NULL};
+static const char *const names[] = {"linear", "gimp", "quadratic_bspline", "cubic_bspline", "cpdi", "cpgimp", NULL};
 static const char *const boundary_names[] = {"extended", "truncated", "modified", "wls", NULL};
 
 const char *const *mrn_kernel_boundary_names(void) { return boundary_names; }

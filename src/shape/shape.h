@@ -19,6 +19,7 @@ typedef enum {
   MRN_SHAPE_QUADRATIC_BSPLINE,
   MRN_SHAPE_CUBIC_BSPLINE,
   MRN_SHAPE_CPDI, /* CPDI: linear hat functions averaged over the particle's domain (transfer/cpdi.h) */
+  MRN_SHAPE_CPGIMP, /* cpGIMP: uGIMP with the particle's box sized from its tracked domain (transfer/cpgimp.h) */
   MRN_SHAPE_KIND_COUNT
 } mrn_shape_kind;
 
@@ -68,10 +69,19 @@ int mrn_shape_from_name(const char *name, mrn_shape_kind *out);
 /* NULL-terminated list of names */
 const char *const *mrn_shape_names(void);
 
-/* nodes per axis around a point; CPDI's grid basis is the linear one, and
- * its particles reach further, as far as their domains (transfer/cpdi.h) */
+/* nodes per axis around a point; CPDI's grid basis is the linear one,
+ * cpGIMP's at a point is uGIMP's, and their particles reach further, as far
+ * as their domains (transfer/cpdi.h, transfer/cpgimp.h) */
 static inline int mrn_shape_support(mrn_shape_kind k) {
   return k == MRN_SHAPE_LINEAR || k == MRN_SHAPE_CPDI ? 2 : k == MRN_SHAPE_CUBIC_BSPLINE ? 4 : 3;
+}
+
+/* whether the shape follows each particle's domain A = F U0
+ * (particles/domain.h): its support grows with the domain, so its kernels
+ * run through the reference stencil with the domains the step froze
+ * (transfer/cpdi.h) */
+static inline int mrn_shape_tracks_domain(mrn_shape_kind k) {
+  return k == MRN_SHAPE_CPDI || k == MRN_SHAPE_CPGIMP;
 }
 
 /* linear hat functions, support 2 */
@@ -156,12 +166,13 @@ static inline int mrn_shape_gimp_1d(double xi, double lp, double *w, double *dw)
   return base;
 }
 
-/* lp: particle half-width in cells (uGIMP only) */
+/* lp: particle half-width in cells (uGIMP, and cpGIMP at a point) */
 static inline int mrn_shape_weights_1d(mrn_shape_kind k, double xi, double lp, double *w, double *dw) {
   switch (k) {
   case MRN_SHAPE_LINEAR:
   case MRN_SHAPE_CPDI: return mrn_shape_linear_1d(xi, w, dw);
-  case MRN_SHAPE_GIMP: return mrn_shape_gimp_1d(xi, lp, w, dw);
+  case MRN_SHAPE_GIMP:
+  case MRN_SHAPE_CPGIMP: return mrn_shape_gimp_1d(xi, lp, w, dw);
   case MRN_SHAPE_CUBIC_BSPLINE: return mrn_shape_cubic_1d(xi, w, dw);
   default: return mrn_shape_quadratic_1d(xi, w, dw);
   }
