@@ -32,10 +32,11 @@ end
 -- (two cells in from each) that hold no particle (`empty`) and that no
 -- particle's domain reaches (`unreached`: the bounding box of the
 -- parallelogram spanned by the columns of F times half the particle's
--- initial side, the domain CPDI and splitting track, overlaps the cell);
--- the bar's length and mean axial stress, and its particles' smallest and
--- largest axial stretch F_xx away from the grips (|x| < 1.2 m).
-function B.inspect(sim)
+-- initial side, the domain CPDI and splitting track, overlaps the cell;
+-- with `axes`, cpGIMP's box instead, half-widths F_xx and F_yy times that
+-- half side); the bar's length and mean axial stress, and its particles'
+-- smallest and largest axial stretch F_xx away from the grips (|x| < 1.2 m).
+function B.inspect(sim, axes)
   local CELL = B.CELL
   local n = sim:particle_count()
   local F, vol = sim:field("deformation_gradient"), sim:field("volume")
@@ -54,6 +55,7 @@ function B.inspect(sim)
       local fxx, fxy, fyx, fyy = F[k + 1], F[k + 2], F[k + 4], F[k + 5]
       local r = 0.5 * math.sqrt(vol[i] / (fxx * fyy - fxy * fyx))
       local ex, ey = r * (math.abs(fxx) + math.abs(fxy)), r * (math.abs(fyx) + math.abs(fyy))
+      if axes then ex, ey = r * fxx, r * fyy end
       boxes[#boxes + 1] = { p.x[1] - ex, p.x[1] + ex, p.x[2] - ey, p.x[2] + ey }
       if math.abs(p.x[1]) < 1.2 then fmin, fmax = math.min(fmin, fxx), math.max(fmax, fxx) end
     end
