@@ -399,8 +399,8 @@ static int slab_need(const mrn_sim *sim, int r, int h) {
  * j + 1 - ceil(reach) to j + ceil(reach) (the friction faces' touch marks
  * those too), so the rows of a cut c that both sides reach are c - h to
  * c + h with h = ceil(reach) - 1, at least 1. The tracked domains (CPDI's
- * corners, cpGIMP's boxes) come with round-off: a margin. Beyond the grid (or NaN) no slab holds it, as
- * mrn_dist_halo then says. */
+ * corners, cpGIMP's boxes) come with round-off: a margin. Beyond the grid
+ * (or NaN) no slab holds it, as mrn_dist_halo then says. */
 static int halo_for(const mrn_sim *sim, double reach) {
   const double margin = mrn_shape_tracks_domain(sim->shape) ? 1e-9 : 0.0;
   const double rows = ceil(reach + margin) - 1.0, most = sim->grid.ncell[sim->dist->axis] + 1;
