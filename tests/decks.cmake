@@ -31,6 +31,8 @@ moraine_deck_test(cpdi_bouncing_cube cpdi.lua ARGS --set part=cube LABELS long)
 # corners and CPDI2's quadrilaterals stay together
 moraine_deck_test(cpdi2_tension_bar cpdi2.lua ARGS --set part=bar)
 moraine_deck_test(cpdi2_vortex cpdi2.lua ARGS --set part=vortex)
+# cpGIMP: the same bar stays whole with APIC and PIC (uGIMP fractures); FLIP reported
+moraine_deck_test(cpgimp_tension_bar cpgimp.lua)
 # point forces (sim:point_force, load_factor, clear_forces): momentum, energy, traction, checkpoint
 moraine_deck_test(point_force point_force.lua)
 # every setter (found in the method table) refuses NaN, inf and out-of-range values as its constructor key does

@@ -83,7 +83,7 @@ static int check_setup(const mrn_sim *sim, const mrn_implicit_options *o) {
   if (sim->boundary.walls && sim->boundary.walls->count)
     return mrn_error_code(MRN_ERR, "implicit: the simulation has rigid walls (sim:add_wall), which the implicit "
                                    "integrator does not take");
-  if (sim->shape == MRN_SHAPE_CUBIC_BSPLINE || mrn_shape_is_cpdi(sim->shape))
+  if (sim->shape == MRN_SHAPE_CUBIC_BSPLINE || mrn_shape_tracks_domain(sim->shape))
     return mrn_error_code(MRN_ERR, "implicit: shape = '%s' is not supported (use linear, gimp or quadratic_bspline)",
                           mrn_shape_info_of(sim->shape)->name);
   /* both belong to the explicit step (solver/step.c, solver/source.c) */

@@ -16,9 +16,12 @@ static const mrn_shape_info shapes[MRN_SHAPE_KIND_COUNT] = {
     {MRN_SHAPE_CPDI2, "cpdi2", 2,
      "CPDI2 (2D): linear hat functions averaged over a quadrilateral whose corners move with the grid "
      "(Sadeghirad et al. 2013)"},
+    {MRN_SHAPE_CPGIMP, "cpgimp", 3,
+     "cpGIMP: uGIMP with the particle's axis-aligned box stretched by the diagonal of F (Wallstedt & Guilkey 2008)"},
 };
 
-static const char *const names[] = {"linear", "gimp", "quadratic_bspline", "cubic_bspline", "cpdi", "cpdi2", NULL};
+static const char *const names[] = {"linear", "gimp", "quadratic_bspline", "cubic_bspline", "cpdi", "cpdi2", "cpgimp",
+                                    NULL};
 static const char *const boundary_names[] = {"extended", "truncated", "modified", "wls", NULL};
 
 const char *const *mrn_kernel_boundary_names(void) { return boundary_names; }

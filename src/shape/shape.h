@@ -20,6 +20,7 @@ typedef enum {
   MRN_SHAPE_CUBIC_BSPLINE,
   MRN_SHAPE_CPDI, /* CPDI: linear hat functions averaged over the particle's domain (transfer/cpdi.h) */
   MRN_SHAPE_CPDI2, /* CPDI2 (2D): as CPDI over a quadrilateral with tracked corners (transfer/cpdi2.h) */
+  MRN_SHAPE_CPGIMP, /* cpGIMP: uGIMP with the particle's box sized from its tracked domain (transfer/cpgimp.h) */
   MRN_SHAPE_KIND_COUNT
 } mrn_shape_kind;
 
@@ -75,10 +76,19 @@ static inline int mrn_shape_is_cpdi(mrn_shape_kind k) { return k == MRN_SHAPE_CP
 /* whether shape k works in dimension dim: CPDI2's quadrilaterals are 2D only */
 static inline int mrn_shape_takes_dim(mrn_shape_kind k, int dim) { return k != MRN_SHAPE_CPDI2 || dim == 2; }
 
-/* nodes per axis around a point; CPDI's grid basis is the linear one, and
- * its particles reach further, as far as their domains (transfer/cpdi.h) */
+/* nodes per axis around a point; CPDI's grid basis is the linear one,
+ * cpGIMP's at a point is uGIMP's, and their particles reach further, as far
+ * as their domains (transfer/cpdi.h, transfer/cpgimp.h) */
 static inline int mrn_shape_support(mrn_shape_kind k) {
   return k == MRN_SHAPE_LINEAR || mrn_shape_is_cpdi(k) ? 2 : k == MRN_SHAPE_CUBIC_BSPLINE ? 4 : 3;
+}
+
+/* whether the shape follows each particle's domain A = F U0
+ * (particles/domain.h): its support grows with the domain, so its kernels
+ * run through the reference stencil with the domains the step froze
+ * (transfer/cpdi.h) */
+static inline int mrn_shape_tracks_domain(mrn_shape_kind k) {
+  return mrn_shape_is_cpdi(k) || k == MRN_SHAPE_CPGIMP;
 }
 
 /* linear hat functions, support 2 */
@@ -163,13 +173,14 @@ static inline int mrn_shape_gimp_1d(double xi, double lp, double *w, double *dw)
   return base;
 }
 
-/* lp: particle half-width in cells (uGIMP only) */
+/* lp: particle half-width in cells (uGIMP, and cpGIMP at a point) */
 static inline int mrn_shape_weights_1d(mrn_shape_kind k, double xi, double lp, double *w, double *dw) {
   switch (k) {
   case MRN_SHAPE_LINEAR:
   case MRN_SHAPE_CPDI:
   case MRN_SHAPE_CPDI2: return mrn_shape_linear_1d(xi, w, dw);
-  case MRN_SHAPE_GIMP: return mrn_shape_gimp_1d(xi, lp, w, dw);
+  case MRN_SHAPE_GIMP:
+  case MRN_SHAPE_CPGIMP: return mrn_shape_gimp_1d(xi, lp, w, dw);
   case MRN_SHAPE_CUBIC_BSPLINE: return mrn_shape_cubic_1d(xi, w, dw);
   default: return mrn_shape_quadratic_1d(xi, w, dw);
   }

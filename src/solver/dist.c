@@ -398,11 +398,11 @@ static int slab_need(const mrn_sim *sim, int r, int h) {
  * particle: one in cell row j reaches, strictly within it, node rows
  * j + 1 - ceil(reach) to j + ceil(reach) (the friction faces' touch marks
  * those too), so the rows of a cut c that both sides reach are c - h to
- * c + h with h = ceil(reach) - 1, at least 1. CPDI's corners come with
- * round-off: a margin. Beyond the grid (or NaN) no slab holds it, as
- * mrn_dist_halo then says. */
+ * c + h with h = ceil(reach) - 1, at least 1. The tracked domains (CPDI's
+ * corners, cpGIMP's boxes) come with round-off: a margin. Beyond the grid
+ * (or NaN) no slab holds it, as mrn_dist_halo then says. */
 static int halo_for(const mrn_sim *sim, double reach) {
-  const double margin = mrn_shape_is_cpdi(sim->shape) ? 1e-9 : 0.0;
+  const double margin = mrn_shape_tracks_domain(sim->shape) ? 1e-9 : 0.0;
   const double rows = ceil(reach + margin) - 1.0, most = sim->grid.ncell[sim->dist->axis] + 1;
   return rows <= most ? (int)fmax(1.0, rows) : (int)most;
 }
@@ -410,11 +410,11 @@ static int halo_for(const mrn_sim *sim, double reach) {
 int mrn_dist_halo(mrn_sim *sim, double reach, int rc) {
   mrn_dist *d = sim->dist;
   if (!d) return rc;
-  if (!mrn_shape_is_cpdi(sim->shape)) { /* the same on every process: 1, the room mrn_dist_start reserved */
+  if (!mrn_shape_tracks_domain(sim->shape)) { /* the same on every process: 1, the room mrn_dist_start reserved */
     d->halo = halo_for(sim, reach);
     return rc;
   }
-  /* CPDI's grows with each process's domains */
+  /* CPDI's and cpGIMP's grow with each process's domains */
   if ((rc = mrn_dist_agree(sim, rc)) != MRN_OK) return rc;
   mrn_comm_allreduce(&reach, 1, MRN_COMM_MAX);
   const int h = halo_for(sim, reach);
@@ -422,10 +422,11 @@ int mrn_dist_halo(mrn_sim *sim, double reach, int rc) {
     const int have = d->cut[r + 1] - d->cut[r];
     if (have >= slab_need(sim, r, h)) continue;
     mrn_comm_set_shared_error(1); /* every process finds it alike */
-    return mrn_error("parallel: step %ld: CPDI's domains have stretched until its shape functions reach %s cells "
+    const char *what = sim->shape == MRN_SHAPE_CPGIMP ? "cpGIMP's boxes" : "CPDI's domains";
+    return mrn_error("parallel: step %ld: %s have stretched until its shape functions reach %s cells "
                      "from their particles: the halo bands take node rows [cut - %d, cut + %d], and the slabs at "
                      "least %d cells (%d at an end of the axis); process %d's slab has %d: run on fewer processes "
-                     "(doc/parallel.md)", sim->step + 1, mrn_num(reach).s, h, h, 2 * h + 1, h + 1, r, have);
+                     "(doc/parallel.md)", sim->step + 1, what, mrn_num(reach).s, h, h, 2 * h + 1, h + 1, r, have);
   }
   d->halo = h;
   return mrn_dist_agree(sim, reserve(sim));

@@ -3,7 +3,7 @@
  * The grid is cut into slabs along its last axis (y in 2D, z in 3D), one
  * per process, at cell rows chosen so that each slab holds about the same
  * number of particles, and at least MRN_DIST_MIN_CELLS cells thick (2h + 1
- * when CPDI's wider bands need more, below). Every
+ * when CPDI's or cpGIMP's wider bands need more, below). Every
  * process keeps the whole grid's arrays but only the particles whose cell
  * lies in its slab (the last row of cells and anything beyond belong to
  * the last slab, anything below the first to the first).
@@ -14,8 +14,8 @@
  *   are summed with that neighbour's: both then hold the same nodal values
  *   there, and the grid update, run by both on those rows, gives both the
  *   same velocities for G2P. h is 1 (a kernel of support up to 4 cells
- *   reaches one row below its cell and two above), or with CPDI as far as
- *   its stretched domains make the shape functions reach, agreed by every
+ *   reaches one row below its cell and two above), or with CPDI or cpGIMP
+ *   as far as their stretched domains make the shape functions reach, agreed by every
  *   process each step (mrn_dist_halo). A periodic cut axis
  *   makes the last slab and the first neighbours through the wrap: their
  *   band, around cut 0, is the last h node rows and the first h + 1. The
@@ -151,8 +151,8 @@ void mrn_dist_walls_gather_end(struct mrn_sim *sim);
 int mrn_dist_or_marks(void *ctx, unsigned char *marks, int narrays, int rc);
 /* The band's half width h for this step, given the outcome so far, for
  * shape functions that reach `reach` cells from their particles (this
- * process's; CPDI's grow with the domains the step froze, and the largest
- * is agreed by every process): 1, more for CPDI's stretched domains; an
+ * process's; CPDI's and cpGIMP's grow with the domains the step froze, and
+ * the largest is agreed by every process): 1, more for stretched domains; an
  * error when a slab is too thin for it. */
 int mrn_dist_halo(struct mrn_sim *sim, double reach, int rc);
 /* after the step: agree on rc, re-cut if due, send the particles that left */

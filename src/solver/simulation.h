@@ -99,7 +99,7 @@ typedef struct mrn_sim {
   /* scratch, sized to the particle count */
   double *scratch;
   size_t scratch_cap;
-  /* CPDI: the particles' domains as the step froze them (transfer/cpdi.h) */
+  /* CPDI, cpGIMP: the particles' domains as the step froze them (transfer/cpdi.h, cpgimp.h) */
   double *domain;
   size_t domain_cap;
   /* scheme volumetric = "fbar": the gradients and the averaging's scratch

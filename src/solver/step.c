@@ -12,6 +12,7 @@
  * original definitions, in which USL already uses V~ and MUSL re-maps. */
 #include <float.h>
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -28,6 +29,7 @@
 #include "grid/wall.h"
 #include "transfer/cpdi.h"
 #include "transfer/cpdi2.h"
+#include "transfer/cpgimp.h"
 #include "transfer/kernels.h"
 #include "transfer/profile.h"
 #include "transfer/xpic.h"
@@ -471,12 +473,38 @@ static int step_usavg(mrn_sim *sim, mrn_transfer *tr, double dt, step_end *end) 
   return move_remap_update(sim, tr, dt, 0.5 * dt, end);
 }
 
-/* CPDI and CPDI2: refuse what they do not combine with, then freeze the
- * domains (CPDI2: the corners) for every transfer of the step (P2G, force
- * and G2P see the same S_ip, so mass and momentum are conserved to
- * round-off), and widen *reach (cells) by their extent for the walls and
- * friction faces */
-static int cpdi_begin(mrn_sim *sim, double *reach) {
+/* cpGIMP: the particle whose box the freeze refused (transfer/cpgimp.h) */
+static int cpgimp_refused(const mrn_sim *sim, size_t p) {
+  const mrn_particles *ps = &sim->particles;
+  const int dim = sim->dim;
+  const double *x = ps->x + 3 * p;
+  double l[3] = {0, 0, 0}, F[9];
+  mrn_cpgimp_box(sim->domain + 9 * p, dim, sim->grid.inv_cell, l);
+  mrn_tensor_expand(dim, ps->F + (size_t)mrn_tensor_stride(dim) * p, 1.0, F);
+  for (int d = 0; d < dim; d++)
+    if (!(l[d] > 0.0) || !isfinite(l[d]))
+      return mrn_error("step %ld: particle %lld at (%s, %s, %s): shape = 'cpgimp' sizes its box along %c by "
+                       "F_%c%c = %s: the box has collapsed or turned over (a shear or rotation an axis-aligned box "
+                       "does not follow; shape = 'cpdi' follows them)", sim->step + 1, (long long)ps->id[p],
+                       mrn_num(x[0]).s, mrn_num(x[1]).s, mrn_num(x[2]).s, "xyz"[d], "xyz"[d], "xyz"[d],
+                       mrn_num(F[4 * d]).s);
+  char widths[96];
+  snprintf(widths, sizeof widths, dim == 3 ? "%s, %s, %s" : "%s, %s", mrn_num(l[0]).s, mrn_num(l[1]).s,
+           mrn_num(l[2]).s);
+  return mrn_error("step %ld: particle %lld at (%s, %s, %s): shape = 'cpgimp': its box has stretched to half-widths "
+                   "(%s) cells, whose shape functions reach more than the %d nodes a stencil holds (split the "
+                   "stretched particles: mpm.simulation{split = {stretch = ...}})", sim->step + 1, (long long)ps->id[p],
+                   mrn_num(x[0]).s, mrn_num(x[1]).s, mrn_num(x[2]).s, widths, MRN_REF_STENCIL_MAX);
+}
+
+/* The shapes with a tracked domain (CPDI, CPDI2, cpGIMP): refuse what they
+ * do not combine with, then freeze the domains (CPDI2: the corners) for
+ * every transfer of the step
+ * (P2G, force and G2P see the same S_ip, so mass and momentum are
+ * conserved to round-off), and set *reach (cells) to how far the shape
+ * functions reach for the walls, the friction faces and the halo bands:
+ * the grid's hat functions, one cell beyond the domain's extent */
+static int domain_begin(mrn_sim *sim, double *reach) {
   const char *name = mrn_shape_info_of(sim->shape)->name;
   if (sim->kernel_boundary != MRN_KERNEL_EXTENDED)
     return mrn_error("shape = '%s' takes shape_boundary = 'extended' only, not '%s'", name,
@@ -491,17 +519,21 @@ static int cpdi_begin(mrn_sim *sim, double *reach) {
   const size_t need = 9 * sim->particles.n;
   if (need > sim->domain_cap) {
     double *d = realloc(sim->domain, need * sizeof(double));
-    if (!d) return mrn_error("step: out of memory for the CPDI domains");
+    if (!d) return mrn_error("step: out of memory for the particles' domains");
     sim->domain = d, sim->domain_cap = need;
   }
+  double extent = 0.0;
+  int rc = MRN_OK;
   if (sim->shape == MRN_SHAPE_CPDI2) {
-    double r;
-    const int rc = mrn_cpdi2_begin(&sim->particles, sim->grid.inv_cell, sim->domain, &r);
-    *reach += r;
-    return rc;
+    rc = mrn_cpdi2_begin(&sim->particles, sim->grid.inv_cell, sim->domain, &extent);
+  } else if (sim->shape == MRN_SHAPE_CPDI) {
+    extent = mrn_cpdi_domains(&sim->particles, sim->dim, sim->grid.inv_cell, sim->domain);
+  } else {
+    const long bad = mrn_cpgimp_domains(&sim->particles, sim->dim, sim->grid.inv_cell, sim->domain, &extent);
+    if (bad >= 0) return cpgimp_refused(sim, (size_t)bad);
   }
-  *reach += mrn_cpdi_domains(&sim->particles, sim->dim, sim->grid.inv_cell, sim->domain);
-  return MRN_OK;
+  *reach = 1.0 + extent;
+  return rc;
 }
 
 /* the walls' reactions and works, and the rigid bodies moved on */
@@ -527,7 +559,7 @@ int mrn_sim_step_dt(mrn_sim *sim, double dt) {
   const mrn_particle_pass end_pass = {end_chunk, &e};
   step_end end = {sim->on_leave == MRN_LEAVE_DELETE ? NULL : &end_pass, -1};
   double reach = 0.5 * mrn_shape_support(sim->shape); /* cells from a particle its shape functions reach */
-  if (mrn_shape_is_cpdi(sim->shape)) rc = cpdi_begin(sim, &reach);
+  if (mrn_shape_tracks_domain(sim->shape)) rc = domain_begin(sim, &reach);
   if ((rc = mrn_dist_halo(sim, reach, rc)) != MRN_OK) return rc; /* the halo bands that reach needs */
   if ((rc = mrn_boundary_touch(&sim->boundary, &sim->grid, reach, sim->particles.x, sim->particles.vol0,
                                sim->particles.n, sim->dist ? mrn_dist_or_marks : NULL, sim)) != MRN_OK)
@@ -538,7 +570,7 @@ int mrn_sim_step_dt(mrn_sim *sim, double dt) {
                                                    sim->particles.x, sim->particles.vol0, sim->particles.n)))
     return rc;
   mrn_transfer tr = mrn_sim_transfer(sim);
-  if (mrn_shape_is_cpdi(sim->shape)) tr.domain = sim->domain;
+  if (mrn_shape_tracks_domain(sim->shape)) tr.domain = sim->domain;
   if (sim->contact && sim->contact->npairs) {
     rc = mrn_contact_step(sim, &tr, dt);
     end.pass = NULL; /* the contact step's G2P has no end-of-step stage */

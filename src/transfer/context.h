@@ -27,9 +27,10 @@ typedef struct mrn_transfer {
   double mass_floor;            /* nodes lighter than this are treated as empty (kg) */
   mrn_blocks *blocks;           /* the particles binned by block (transfer/blocks.h), kept between steps */
   int sort_now;                 /* reorder the particles by block at the next binning; cleared once done */
-  const double *domain;         /* CPDI: each particle's domain A = F U0 (9 values), CPDI2: its corners'
-                                 * positions (8 values), as the step froze them; or NULL: formed from F
-                                 * or the stored corners at each use (transfer/cpdi.h, cpdi2.h) */
+  const double *domain;         /* CPDI, cpGIMP: each particle's domain A = F U0 (9 values), CPDI2: its
+                                 * corners' positions (8 values), as the step froze them; or NULL: formed
+                                 * from F or the stored corners at each use (transfer/cpdi.h, cpdi2.h,
+                                 * cpgimp.h) */
   /* after a scatter into a nodal array of ncomp values per node (XPIC's
    * passes), its owner may complete the sums: a distributed run adds its
    * neighbours' part (solver/dist.h). NULL: nothing to add */

@@ -49,7 +49,9 @@ void mrn_cpdi_point_velocity(const mrn_transfer *t, const double xc[3], const do
  * the largest reach of a domain from its centre along an axis, in cells */
 double mrn_cpdi_domains(const mrn_particles *ps, int dim, double inv_cell, double *A);
 
-/* the kernels of kernels.h for CPDI, with their contracts */
+/* the kernels of kernels.h for CPDI, with their contracts; they build each
+ * particle's stencil with mrn_ref_stencil_build, so they serve every shape
+ * with a tracked domain (mrn_shape_tracks_domain: cpGIMP too) */
 void mrn_cpdi_p2g(mrn_transfer *tr, int momentum, int force);
 long mrn_cpdi_g2p_then(mrn_transfer *tr, double dt, double *dx, const mrn_gradient_sink *sink,
                        const mrn_particle_pass *after, long *after_bad);

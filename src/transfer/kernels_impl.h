@@ -546,7 +546,7 @@ static KNAME(range_fn) KNAME(p2g_pick)(int kind, int momentum, int force, int af
 static inline double KNAME(sort_seconds)(void) { return mrn_profile_seconds ? mrn_profile_seconds[MRN_PHASE_SORT] : 0.0; }
 
 void KNAME(mrn_p2g)(mrn_transfer *tr, int momentum, int force) {
-  if (mrn_shape_is_cpdi(tr->kernel.shape)) { /* no fast form (cpdi.h) */
+  if (mrn_shape_tracks_domain(tr->kernel.shape)) { /* no fast form (cpdi.h) */
     mrn_cpdi_p2g(tr, momentum, force);
     return;
   }
@@ -849,7 +849,7 @@ static KNAME(gradient_fn) KNAME(gradient_pick)(int kind) {
 }
 
 long KNAME(mrn_gradient)(mrn_transfer *tr, const double *gvel, const mrn_gradient_sink *sink) {
-  if (mrn_shape_is_cpdi(tr->kernel.shape)) return mrn_cpdi_gradient(tr, gvel, sink);
+  if (mrn_shape_tracks_domain(tr->kernel.shape)) return mrn_cpdi_gradient(tr, gvel, sink);
   const double t0 = mrn_phase_begin();
   const mrn_kernel_options ko = tr->kernel;
   double spent = 0.0;
@@ -967,7 +967,7 @@ int KNAME(mrn_update_force_fused)(const mrn_transfer *tr) {
 }
 
 long KNAME(mrn_update_force)(mrn_transfer *tr, const double *gvel, const mrn_gradient_sink *sink) {
-  if (mrn_shape_is_cpdi(tr->kernel.shape)) { /* the two passes (cpdi.h) */
+  if (mrn_shape_tracks_domain(tr->kernel.shape)) { /* the two passes (cpdi.h) */
     const long bad = mrn_cpdi_gradient(tr, gvel, sink);
     mrn_cpdi_p2g(tr, 0, 1);
     return bad;
@@ -1176,7 +1176,7 @@ static KNAME(g2p_fn) KNAME(g2p_pick)(int kind, mrn_grid_velocity_kind gv, int fu
 
 static long KNAME(g2p_any)(mrn_transfer *tr, double dt, double *dx, const mrn_gradient_sink *sink,
                            const mrn_particle_pass *after, long *after_bad) {
-  if (mrn_shape_is_cpdi(tr->kernel.shape)) return mrn_cpdi_g2p_then(tr, dt, dx, sink, after, after_bad);
+  if (mrn_shape_tracks_domain(tr->kernel.shape)) return mrn_cpdi_g2p_then(tr, dt, dx, sink, after, after_bad);
   const double t0 = mrn_phase_begin();
   const mrn_kernel_options ko = tr->kernel;
   const mrn_scheme *sc = tr->scheme;
@@ -1208,7 +1208,7 @@ long KNAME(mrn_g2p_then)(mrn_transfer *tr, double dt, double *dx, const mrn_grad
 /* ---- XPIC's projections -------------------------------------------------------------- */
 
 void KNAME(mrn_grid_to_particles)(mrn_transfer *tr, const double *gvel, double *pvel) {
-  if (mrn_shape_is_cpdi(tr->kernel.shape)) {
+  if (mrn_shape_tracks_domain(tr->kernel.shape)) {
     mrn_cpdi_grid_to_particles(tr, gvel, pvel);
     return;
   }
@@ -1228,7 +1228,7 @@ void KNAME(mrn_grid_to_particles)(mrn_transfer *tr, const double *gvel, double *
 }
 
 void KNAME(mrn_particles_to_grid)(mrn_transfer *tr, const double *pvel, double *gvel) {
-  if (mrn_shape_is_cpdi(tr->kernel.shape)) {
+  if (mrn_shape_tracks_domain(tr->kernel.shape)) {
     mrn_cpdi_particles_to_grid(tr, pvel, gvel);
     return;
   }

@@ -14,6 +14,7 @@
 #include "core/tensor.h"
 #include "transfer/affine_fit.h"
 #include "transfer/cpdi.h"
+#include "transfer/cpgimp.h"
 #include "transfer/wls.h"
 
 /* ---- the stencil -------------------------------------------------------------- */
@@ -84,6 +85,10 @@ static int axis_stencil(const mrn_transfer *t, int d, double x, double lp, int *
 void mrn_ref_stencil_build(const mrn_transfer *t, size_t p, mrn_ref_stencil *s) {
   if (mrn_shape_is_cpdi(t->kernel.shape)) { /* the domain's corners (cpdi.h) */
     mrn_cpdi_stencil(t, p, s);
+    return;
+  }
+  if (t->kernel.shape == MRN_SHAPE_CPGIMP) { /* the box sized from the domain (cpgimp.h) */
+    mrn_cpgimp_stencil(t, p, s);
     return;
   }
   const mrn_kernel_options *k = &t->kernel;

@@ -22,7 +22,10 @@
 #include "shape/shape.h"
 #include "transfer/context.h"
 
-#define MRN_REF_STENCIL_MAX (MRN_SHAPE_MAX_SUPPORT * MRN_SHAPE_MAX_SUPPORT * MRN_SHAPE_MAX_SUPPORT)
+/* room for the widest kernel (MRN_SHAPE_MAX_SUPPORT^3), CPDI's 2^d corners x
+ * 2^d nodes, and a cpGIMP box reaching 6 nodes along every axis, half-widths
+ * up to 2 cells (transfer/cpgimp.h) */
+#define MRN_REF_STENCIL_MAX 216
 
 /* The nodes particle p talks to: node indices, values N_i(x_p), gradients
  * grad N_i(x_p) and branch vectors x_i - x_p (000, Eq. 21); dN and off hold

@@ -69,7 +69,7 @@ static inline void KNAME(stencil_build)(const mrn_grid *g, const mrn_kernel_opti
   int base[DIM], node[DIM][MRN_SHAPE_MAX_SUPPORT];
   const int sup = mrn_shape_support(opt->shape);
   double lp = 0.0;
-  if (opt->shape == MRN_SHAPE_GIMP) {
+  if (opt->shape == MRN_SHAPE_GIMP || opt->shape == MRN_SHAPE_CPGIMP) { /* cpGIMP at a point: F = I */
     /* half the particle's initial side, in cells; at most half a cell so the
      * support stays within 3 nodes (one particle per cell) */
     lp = 0.5 * (DIM == 2 ? sqrt(vol0) : cbrt(vol0)) * g->inv_cell;

@@ -36,7 +36,7 @@ if part == "" or part == "bar" then
     local sim = B.build{ shape = "cpdi2", scheme = scheme, split = false, name = "cpdi2_" .. scheme }
     local mass0 = sim:diagnostics().mass
     sim:run{ time = B.T_END }
-    local r = B.inspect(sim, true)
+    local r = B.inspect(sim, "corners")
     print(string.format("tension bar cpdi2 %-4s: %.3f m long, %d cells without a particle, %d unreached by a " ..
                         "domain, F_xx in [%.3f, %.3f] (exact 3)", scheme, r.length, r.empty, r.unreached, r.fxx_min,
                         r.fxx_max))

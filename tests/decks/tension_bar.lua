@@ -33,14 +33,15 @@ end
 -- particle's domain reaches (`unreached`: the bounding box of the
 -- parallelogram spanned by the columns of F times half the particle's
 -- initial side, the domain CPDI and splitting track, overlaps the cell;
--- with `corners`, a CPDI2 run, the box of the quadrilateral it tracks);
--- the bar's length and mean axial stress, and its particles' smallest and
--- largest axial stretch F_xx away from the grips (|x| < 1.2 m).
-function B.inspect(sim, corners)
+-- with `domain` = "corners", a CPDI2 run, the box of the quadrilateral it
+-- tracks; with "axes", cpGIMP's box, half-widths F_xx and F_yy times that
+-- half side); the bar's length and mean axial stress, and its particles'
+-- smallest and largest axial stretch F_xx away from the grips (|x| < 1.2 m).
+function B.inspect(sim, domain)
   local CELL = B.CELL
   local n = sim:particle_count()
   local F, vol = sim:field("deformation_gradient"), sim:field("volume")
-  local q = corners and sim:field("cpdi2_corners")
+  local q = domain == "corners" and sim:field("cpdi2_corners")
   local cells, boxes, sxx, v = {}, {}, 0, 0
   local grip_lo, grip_hi, lo, hi = -math.huge, math.huge, math.huge, -math.huge
   local fmin, fmax = math.huge, -math.huge
@@ -56,6 +57,7 @@ function B.inspect(sim, corners)
       local fxx, fxy, fyx, fyy = F[k + 1], F[k + 2], F[k + 4], F[k + 5]
       local r = 0.5 * math.sqrt(vol[i] / (fxx * fyy - fxy * fyx))
       local ex, ey = r * (math.abs(fxx) + math.abs(fxy)), r * (math.abs(fyx) + math.abs(fyy))
+      if domain == "axes" then ex, ey = r * fxx, r * fyy end
       local box = { p.x[1] - ex, p.x[1] + ex, p.x[2] - ey, p.x[2] + ey }
       if q then
         local c = 8 * (i - 1)

@@ -3,9 +3,10 @@
 -- Mohr-Coulomb column collapsing on a friction floor, case=cube3d, a 3D
 -- APIC/USL elastic cube, spinning, dropped on a slip floor with viscous
 -- damping, or one of the 2D cases below for the features whose exchanges
--- differ (periodic2d: the periodic cut axis; cpdi2d: CPDI's wider halo
--- band, --set shape=cpdi2 for CPDI2's, whose corners are a particle field
--- that migrates; rolling2d: gap_check's marks).
+-- differ (periodic2d: the periodic cut axis; cpdi2d and cpgimp2d: CPDI's
+-- and cpGIMP's wider halo band, --set shape=cpdi2 for CPDI2's in cpdi2d,
+-- whose corners are a particle field that migrates; rolling2d:
+-- gap_check's marks).
 -- Writes the diagnostics every step (NAME.csv) and the final state
 -- (NAME.h5, sim:save: every particle, in the order of their ids); the 2D
 -- case also a VTK series every 250 steps (NAME.pvd, with grid snapshots in
@@ -25,7 +26,8 @@ local load = mpm.param("load", "")
 -- FLIP for the CPDI bar: APIC's affine field, a velocity difference over a
 -- cell, carries the round-off of the nodal velocities 20 times larger, to
 -- 1e-12 of its largest value in 250 steps
-local transfer = mpm.param("transfer", (case == "collapse2d" or case == "cpdi2d") and "FLIP" or "APIC")
+local bar2d_case = case == "cpdi2d" or case == "cpgimp2d"
+local transfer = mpm.param("transfer", (case == "collapse2d" or bar2d_case) and "FLIP" or "APIC")
 local volumetric = mpm.param("volumetric", "standard")
 local late = mpm.param("late", 0)
 local cpdi_shape = mpm.param("shape", "cpdi") -- cpdi2d's: cpdi or cpdi2
@@ -48,14 +50,15 @@ end
 -- a soft neo-Hookean bar along y, pulled by two heavy grips moving apart
 -- at 2 m/s (the lower at -0.6 m/s, the upper at 1.4: no momentum cancels
 -- to round-off) from 0.5 m to 3.5 times that, in the stretch profile of
--- tests/decks/tension_bar.lua turned along the cut axis; CPDI with one
--- particle per cell: the domains stretch from half a cell to 1.75 cells
--- along y, and the halo band widens to h = 2 as the run goes
-local function cpdi2d()
+-- tests/decks/tension_bar.lua turned along the cut axis; CPDI or cpGIMP
+-- (`shape`) with one particle per cell: the domains stretch from half a
+-- cell to 1.75 cells along y, and the halo band widens to h = 2 as the run
+-- goes
+local function bar2d(shape)
   local s = mpm.simulation{ dim = 2, grid = { origin = { 0, -1.0 }, size = { 0.25, 2.4 }, cell = 0.025 },
-    shape = cpdi_shape, scheme = { transfer = transfer, stress_update = "USL" }, dt = { fixed = 2.5e-3 },
+    shape = shape, scheme = { transfer = transfer, stress_update = "USL" }, dt = { fixed = 2.5e-3 },
     thermo = 0, diagnostics = name .. ".csv", diagnostics_every = 1 }
-  mpm.warnings{ ignore = { "one_particle_per_cell" } } -- CPDI's domains cover the cells between the particles
+  mpm.warnings{ ignore = { "one_particle_per_cell" } } -- the domains cover the cells between the particles
   local bar = mpm.material.neo_hookean{ density = 1000, E = 10, nu = 0.3 }
   local grip = mpm.material.neo_hookean{ density = 1e5, E = 10, nu = 0.3 }
   local function velocity(x, y) return 0.05 * (y + 0.25), 0.4 + 4 * math.max(-0.25, math.min(0.25, y)) end
@@ -107,12 +110,12 @@ elseif case == "cube3d" then
                     end })
 elseif case == "periodic2d" then
   sim = periodic2d()
-elseif case == "cpdi2d" then
-  sim = cpdi2d()
+elseif bar2d_case then
+  sim = bar2d(case == "cpdi2d" and cpdi_shape or "cpgimp")
 elseif case == "rolling2d" then
   sim = rolling2d(true)
 else
-  error("case must be collapse2d, cube3d, periodic2d, cpdi2d or rolling2d, got " .. tostring(case))
+  error("case must be collapse2d, cube3d, periodic2d, cpdi2d, cpgimp2d or rolling2d, got " .. tostring(case))
 end
 if rebalance > 0 then sim:set_parallel{ rebalance_every = rebalance, imbalance = 1.0 } end
 if late > 0 then
@@ -127,11 +130,12 @@ end
 sim:run{ steps = steps - late }
 local par = dofile(mpm.deck_dir .. "/finish.lua")(sim, name)
 
--- what makes the cases say something: CPDI's domains stretched beyond the
--- standard band, and gap_check changing the rolling disk's run by far more
+-- what makes the cases say something: the domains of CPDI and cpGIMP
+-- stretched beyond the standard band, and gap_check changing the rolling disk's run by far more
 -- than the 1e-12 to which the processes must agree
-if case == "cpdi2d" and par.cuts and par.halo < 2 then
-  error(string.format("cpdi2d: the halo band stayed at h = %d; the bar must stretch its domains beyond it", par.halo))
+if bar2d_case and par.cuts and par.halo < 2 then
+  error(string.format("%s: the halo band stayed at h = %d; the bar must stretch its domains beyond it", case,
+                      par.halo))
 end
 if case == "rolling2d" and par.size == 1 then
   local plain = rolling2d(false)

@@ -69,6 +69,10 @@ add_test(NAME mpi.equivalence_cpdi
 add_test(NAME mpi.equivalence_cpdi2
          COMMAND ${Python3_EXECUTABLE} ${MORAINE_PAR_DIR}/equivalence.py $<TARGET_FILE:moraine> ${MORAINE_PAR_DECK}
                  ${MORAINE_TEST_OUT}/mpi_equivalence_cpdi2 cpdi2d 250 2 3 --set shape=cpdi2)
+# cpGIMP: the same bar, its boxes widening the band to h = 2 (asserted by the deck)
+add_test(NAME mpi.equivalence_cpgimp
+         COMMAND ${Python3_EXECUTABLE} ${MORAINE_PAR_DIR}/equivalence.py $<TARGET_FILE:moraine> ${MORAINE_PAR_DECK}
+                 ${MORAINE_TEST_OUT}/mpi_equivalence_cpgimp cpgimp2d 250 2 3)
 # gap_check on a friction wall along the cut axis: a disk rolling down it across the cuts (the deck
 # asserts that gap_check changes the run)
 add_test(NAME mpi.equivalence_gap_check
@@ -105,6 +109,6 @@ set_tests_properties(mpi.equivalence_collapse2d mpi.equivalence_cube3d mpi.equiv
                      mpi.equivalence_fbar3d mpi.equivalence_late_affine mpi.equivalence_source
                      mpi.equivalence_split mpi.equivalence_point mpi.equivalence_incline mpi.equivalence_push
                      mpi.equivalence_blocks mpi.restart_incline mpi.restart_push mpi.equivalence_periodic
-                     mpi.equivalence_cpdi mpi.equivalence_cpdi2 mpi.equivalence_gap_check mpi.vtk_series
+                     mpi.equivalence_cpdi mpi.equivalence_cpdi2 mpi.equivalence_cpgimp mpi.equivalence_gap_check mpi.vtk_series
                      mpi.restart_collapse2d mpi.restart_cube3d mpi.restart_source mpi.restart_split mpi.robust
                      PROPERTIES LABELS mpi RUN_SERIAL TRUE ENVIRONMENT "OMP_NUM_THREADS=1;OMP_WAIT_POLICY=PASSIVE")
