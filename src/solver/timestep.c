@@ -5,6 +5,7 @@
 
 #include "core/error.h"
 #include "solver/simulation.h"
+#include "transfer/cpdi.h"
 
 #include <stdlib.h>
 
@@ -35,9 +36,17 @@ double mrn_dt_particle_critical_at(const mrn_sim *sim, long *fastest_particle, d
   }
   double fastest = 0.0, top = -1.0;
   long top_p = -1;
+  const int cpdi = mrn_shape_is_cpdi(sim->shape);
+  const double root_dim = sqrt((double)sim->dim);
+  /* the CPDI stencil only reads the grid and the particles */
+  const mrn_transfer tr = {.dim = sim->dim, .grid = (mrn_grid *)&sim->grid,
+                           .particles = (mrn_particles *)&sim->particles, .kernel = mrn_sim_kernel_options(sim)};
   for (size_t p = 0; p < ps->n; p++) {
     const double *v = ps->v + 3 * p;
     double u = sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]), s = speed[ps->material[p]] + u;
+    /* a CPDI domain's gradient beyond the hat's own largest, sqrt(dim) / h,
+     * shortens the length a wave may cross in a step (transfer/cpdi.h) */
+    if (cpdi) s *= fmax(1.0, h * mrn_cpdi_gradient_bound(&tr, p) / root_dim);
     if (s > fastest) fastest = s;
     if (u > top) {
       top = u;

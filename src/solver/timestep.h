@@ -3,7 +3,9 @@
  *   a_tau     dt = a_tau * l_cell * min over materials sqrt(rho / E) (000, Eq. 29)
  *   cfl       dt = C min(h / max_p (c_p + |v_p|), h^2 / nu_max) (002, Eqs. 34-37),
  *             c_p the P-wave speed of the particle's material, nu = mu / rho for
- *             materials with a viscosity
+ *             materials with a viscosity; with CPDI and CPDI2 each particle's
+ *             c_p + |v_p| is multiplied by max(1, h g_p / sqrt(dim)), g_p its
+ *             largest |grad S_ip| (transfer/cpdi.h)
  *   grid_cfl  dt = C h min_A sqrt(m_A / (V_A M_A)), nodal averages of mass,
  *             volume and P-wave modulus (001, Eqs. 58-61)
  *   callback  dt = a user function of the simulation (a Lua function in decks)

@@ -128,6 +128,25 @@ void mrn_cpdi_point_velocity(const mrn_transfer *t, const double xc[3], const do
   }
 }
 
+double mrn_cpdi_gradient_bound(const mrn_transfer *t, size_t p) {
+  const int dim = t->dim;
+  mrn_ref_stencil s;
+  mrn_cpdi_stencil(t, p, &s);
+  double worst = 0.0;
+  for (int k = 0; k < s.count; k++) {
+    int first = 1; /* a node's parts summed at its first entry */
+    for (int j = 0; j < k && first; j++) first = s.node[j] != s.node[k];
+    if (!first) continue;
+    double g[3] = {0, 0, 0}, n2 = 0.0;
+    for (int j = k; j < s.count; j++)
+      if (s.node[j] == s.node[k])
+        for (int d = 0; d < dim; d++) g[d] += s.dN[dim * j + d];
+    for (int d = 0; d < dim; d++) n2 += g[d] * g[d];
+    worst = fmax(worst, sqrt(n2));
+  }
+  return worst;
+}
+
 double mrn_cpdi_domains(const mrn_particles *ps, int dim, double inv_cell, double *A) {
   const int offset = mrn_particle_domain_offset(ps);
   double reach = 0.0;

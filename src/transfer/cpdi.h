@@ -44,6 +44,14 @@ void mrn_cpdi_stencil(const mrn_transfer *t, size_t p, mrn_ref_stencil *s);
  * at a corner (beyond the ghost layers taken back onto the last of them) */
 void mrn_cpdi_point_velocity(const mrn_transfer *t, const double xc[3], const double *gvel, double v[3]);
 
+/* the largest |grad S_ip| (1/m) over the nodes of particle p's stencil,
+ * the corners' parts of a node summed. The hat function's gradient is at
+ * most about 1/h; a thin domain spanning several cells takes corner values
+ * that no linear field gives, and its averaged gradient grows with its
+ * aspect ratio (J^-T, or CPDI2's edge normals over the area): the stable
+ * step falls with it (solver/timestep.h) */
+double mrn_cpdi_gradient_bound(const mrn_transfer *t, size_t p);
+
 /* the domains A = F U0 (9 per particle) of every particle into A, as the
  * step freezes them for all its transfers (mrn_transfer.domain); returns
  * the largest reach of a domain from its centre along an axis, in cells */

@@ -17,6 +17,13 @@
  *   the internal forces sum to zero; a domain stretched far beyond the grid
  *   (corners taken back onto the last ghost nodes) keeps the partition of
  *   unity and its nodes inside the padded grid.
+ * - The gradient bound behind the CFL step (mrn_cpdi_gradient_bound): an
+ *   undeformed domain stays within the hat's own largest gradient,
+ *   sqrt(dim) / h, so the particle CFL step is bit for bit the linear
+ *   kernel's; a thin domain sheared over many cells (principal stretches
+ *   30 and 0.16, as in the shear band of a collapsing column) exceeds 5
+ *   times that somewhere (no average of the hat's gradient can), and the
+ *   CFL step falls at least 5 times.
  * - Whole explicit steps (PIC, FLIP, APIC, TPIC x USF, USL, MUSL, USAVG,
  *   no gravity, free faces, deformed domains): the total momentum stays to
  *   1e-12 of sum m |v|, since every transfer of a step uses the domains the
@@ -43,6 +50,7 @@
 #include "core/tensor.h"
 #include "material/material.h"
 #include "solver/simulation.h"
+#include "solver/timestep.h"
 #include "transfer/cpdi.h"
 #include "transfer/cpdi2.h"
 #include "transfer/kernels.h"
@@ -320,6 +328,63 @@ static void steps(int dim, mrn_shape_kind shape) {
   CHECK(worst < TOL);
 }
 
+/* `count` particles of side 0.5 cells at random places, each with F (dim x
+ * dim stored; NULL: I) turned by a random rotation when `turn`, in an
+ * elastic material, on a sim of shape `shape` */
+static mrn_sim *bound_sim(int dim, mrn_shape_kind shape, const double *F, int turn, int count, unsigned seed) {
+  mrn_sim *sim = make_sim(dim, shape);
+  mrn_material *m = mrn_material_new(&mrn_material_linear_elastic);
+  mrn_material_set(m, "density", 1000);
+  mrn_material_set(m, "E", 1e5);
+  mrn_material_set(m, "nu", 0.3);
+  mrn_material_prepare(m);
+  CHECK(mrn_sim_add_material(sim, m) == 0);
+  mrn_material_unref(m);
+  seed_ = seed;
+  for (int p = 0; p < count; p++) {
+    double xi[3] = {0, 0, 0}, Fp[9] = {1, 0, 0, 0, 1, 0, 0, 0, 1};
+    for (int d = 0; d < dim; d++) xi[d] = 5.0 + 6.0 * rnd();
+    if (dim == 2) Fp[1] = 0, Fp[2] = 0, Fp[3] = 1; /* 2 x 2 stored */
+    if (F) {
+      const double a = turn ? 3.14159 * rnd() : 0.0, b = turn ? 3.14159 * rnd() : 0.0;
+      const double R[4] = {cos(a), -sin(a), sin(a), cos(a)}, Q[4] = {cos(b), -sin(b), sin(b), cos(b)};
+      double RF[4];
+      for (int i = 0; i < 2; i++)
+        for (int j = 0; j < 2; j++) RF[2 * i + j] = R[2 * i] * F[j] + R[2 * i + 1] * F[2 + j];
+      for (int i = 0; i < 2; i++)
+        for (int j = 0; j < 2; j++) Fp[2 * i + j] = RF[2 * i] * Q[j] + RF[2 * i + 1] * Q[2 + j];
+    }
+    add(sim, xi, 0.5, Fp);
+    for (int d = 0; d < 3; d++) sim->particles.v[3 * (size_t)p + d] = 0.0;
+  }
+  mrn_sim_particles_changed(sim);
+  return sim;
+}
+
+static double largest_bound(mrn_sim *sim) {
+  const mrn_transfer t = mrn_sim_transfer(sim);
+  double worst = 0.0;
+  for (size_t p = 0; p < sim->particles.n; p++) worst = fmax(worst, mrn_cpdi_gradient_bound(&t, p));
+  return worst * sim->grid.cell;
+}
+
+static void gradient_bound(void) {
+  mrn_sim *plain = bound_sim(2, MRN_SHAPE_CPDI, NULL, 0, 200, 777u);
+  mrn_sim *linear = bound_sim(2, MRN_SHAPE_LINEAR, NULL, 0, 200, 777u);
+  const double undeformed = largest_bound(plain);
+  CHECK(undeformed <= sqrt(2.0));
+  CHECK(mrn_dt_particle_critical(plain) == mrn_dt_particle_critical(linear));
+  static const double thin[4] = {30.0, 0.0, 0.0, 0.16}; /* principal stretches, turned at random */
+  mrn_sim *sheared = bound_sim(2, MRN_SHAPE_CPDI, thin, 1, 200, 778u);
+  mrn_sim *same = bound_sim(2, MRN_SHAPE_LINEAR, thin, 1, 200, 778u);
+  const double amplified = largest_bound(sheared), ratio = mrn_dt_particle_critical(same) / mrn_dt_particle_critical(sheared);
+  printf("2D CPDI gradient bound: h |grad S| up to %.3f undeformed, %.2f stretched 30 x 0.16; CFL step %.2f times "
+         "smaller\n", undeformed, amplified, ratio);
+  CHECK(amplified > 5.0 * sqrt(2.0));
+  CHECK(ratio > 5.0);
+  mrn_sim_free(plain), mrn_sim_free(linear), mrn_sim_free(sheared), mrn_sim_free(same);
+}
+
 /* ---- CPDI2 ------------------------------------------------------------------------ */
 
 /* a convex quadrilateral about the origin (offsets, counter-clockwise from
@@ -542,6 +607,7 @@ int main(void) {
     steps(dim, MRN_SHAPE_CPDI);
   }
   divergence_2d();
+  gradient_bound();
   cpdi2_integrals();
   cpdi2_consistency();
   cpdi2_parallelogram();
