@@ -9,6 +9,15 @@ int mrn_particle_domain_offset(const mrn_particles *ps) {
   return u && u->ncomp == 9 ? u->offset : -1;
 }
 
+void mrn_particle_domain_now(const mrn_particles *ps, int dim, size_t i, const double *frozen, double A[9]) {
+  if (frozen) {
+    memcpy(A, frozen + 9 * i, 9 * sizeof(double));
+    return;
+  }
+  double U0[9];
+  mrn_particle_domain(ps, dim, i, mrn_particle_domain_offset(ps), mrn_particle_half_side(ps->vol0[i], dim), U0, A);
+}
+
 void mrn_particle_domain(const mrn_particles *ps, int dim, size_t i, int offset, double r, double U0[9], double A[9]) {
   int set = 0;
   memset(U0, 0, 9 * sizeof(double));

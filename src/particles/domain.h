@@ -10,6 +10,7 @@
 #ifndef MRN_PARTICLES_DOMAIN_H
 #define MRN_PARTICLES_DOMAIN_H
 
+#include <math.h>
 #include <stddef.h>
 
 #include "particles/particles.h"
@@ -20,6 +21,16 @@
 
 /* where U0 sits in a particle's record of ps->user (9 components), or -1 */
 int mrn_particle_domain_offset(const mrn_particles *ps);
+
+/* half the seeding spacing of a particle of initial volume vol0: the
+ * half-width r of its domain until it is split, and uGIMP's half-width */
+static inline double mrn_particle_half_side(double vol0, int dim) {
+  return 0.5 * (dim == 2 ? sqrt(vol0) : cbrt(vol0));
+}
+
+/* particle i's domain A: the one `frozen` holds (9 per particle, as a step
+ * froze them), or, when frozen is NULL, F U0 formed now */
+void mrn_particle_domain_now(const mrn_particles *ps, int dim, size_t i, const double *frozen, double A[9]);
 
 /* particle i's U0 and its image A = F U0 (3 x 3 row-major; in 2D the
  * in-plane block, the rest zero); `offset` from mrn_particle_domain_offset,

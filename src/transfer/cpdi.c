@@ -12,17 +12,6 @@
 
 /* ---- the stencil ---------------------------------------------------------------- */
 
-/* particle p's domain: frozen by the step, or formed from F now */
-static void domain_of(const mrn_transfer *t, size_t p, double A[9]) {
-  if (t->domain) {
-    memcpy(A, t->domain + 9 * p, 9 * sizeof(double));
-    return;
-  }
-  const mrn_particles *ps = t->particles;
-  double U0[9];
-  mrn_particle_domain(ps, t->dim, p, mrn_particle_domain_offset(ps), 0.5 * pow(ps->vol0[p], 1.0 / t->dim), U0, A);
-}
-
 /* The hat functions along axis d at a corner with grid coordinate xi: the
  * first node (unwrapped) into *base, the node numbers into node[2], the
  * weights into w[2]. Off a periodic axis a corner beyond the ghost layers
@@ -69,7 +58,7 @@ static void parallelogram(const mrn_transfer *t, size_t p, mrn_ref_stencil *s) {
   const int dim = t->dim, corners = 1 << dim;
   const double *x = t->particles->x + 3 * p, share = 1.0 / corners;
   double A[9], Ji[9];
-  domain_of(t, p, A);
+  mrn_particle_domain_now(t->particles, t->dim, p, t->domain, A);
   if (dim == 2) A[8] = 1.0; /* the plane block's inverse */
   if (mat_inverse(A, Ji))
     for (int e = 0; e < 9; e++) Ji[e] = NAN;
@@ -152,7 +141,7 @@ double mrn_cpdi_domains(const mrn_particles *ps, int dim, double inv_cell, doubl
   double reach = 0.0;
   for (size_t p = 0; p < ps->n; p++) {
     double U0[9], *a = A + 9 * p;
-    mrn_particle_domain(ps, dim, p, offset, 0.5 * pow(ps->vol0[p], 1.0 / dim), U0, a);
+    mrn_particle_domain(ps, dim, p, offset, mrn_particle_half_side(ps->vol0[p], dim), U0, a);
     for (int d = 0; d < dim; d++) {
       double r = 0.0; /* the corners' largest distance from x_p along d */
       for (int k = 0; k < dim; k++) r += fabs(a[3 * d + k]);

@@ -40,7 +40,7 @@ static int field_offset(const mrn_particles *ps) {
 /* CPDI1's parallelogram A xi_c, A = F U0 */
 static void parallelogram(const mrn_particles *ps, size_t p, double off[4][2]) {
   double U0[9], A[9];
-  mrn_particle_domain(ps, 2, p, mrn_particle_domain_offset(ps), 0.5 * sqrt(ps->vol0[p]), U0, A);
+  mrn_particle_domain(ps, 2, p, mrn_particle_domain_offset(ps), mrn_particle_half_side(ps->vol0[p], 2), U0, A);
   for (int c = 0; c < 4; c++)
     for (int a = 0; a < 2; a++) off[c][a] = A[3 * a] * mrn_cpdi2_xi[c][0] + A[3 * a + 1] * mrn_cpdi2_xi[c][1];
 }

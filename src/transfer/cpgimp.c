@@ -44,20 +44,6 @@ int mrn_cpgimp_box(const double A[9], int dim, double inv_cell, double l[3]) {
   return count <= MRN_REF_STENCIL_MAX ? count : 0;
 }
 
-/* half the particle's initial side, as uGIMP's (transfer/reference.c), so
- * that F = I gives its half-width to the bit */
-static double half_side(double vol0, int dim) { return 0.5 * (dim == 2 ? sqrt(vol0) : cbrt(vol0)); }
-
-/* particle p's domain: frozen by the step, or formed from F now */
-static void domain_of(const mrn_transfer *t, size_t p, double A[9]) {
-  if (t->domain) {
-    memcpy(A, t->domain + 9 * p, 9 * sizeof(double));
-    return;
-  }
-  const mrn_particles *ps = t->particles;
-  double U0[9];
-  mrn_particle_domain(ps, t->dim, p, mrn_particle_domain_offset(ps), half_side(ps->vol0[p], t->dim), U0, A);
-}
 
 /* ---- the stencil ------------------------------------------------------------------- */
 
@@ -91,35 +77,22 @@ void mrn_cpgimp_stencil(const mrn_transfer *t, size_t p, mrn_ref_stencil *s) {
   const int dim = t->dim;
   const double *x = t->particles->x + 3 * p;
   double A[9], l[3] = {0, 0, 0};
-  domain_of(t, p, A);
+  mrn_particle_domain_now(t->particles, t->dim, p, t->domain, A);
   if (!mrn_cpgimp_box(A, dim, g->inv_cell, l)) {
     refused(t, p, s);
     return;
   }
   double w[3][MRN_REF_STENCIL_MAX], dw[3][MRN_REF_STENCIL_MAX];
-  int base[3] = {0, 0, 0}, n[3] = {1, 1, 1};
+  int n[3] = {1, 1, 1}, node[3][MRN_REF_STENCIL_MAX], at[3][MRN_REF_STENCIL_MAX]; /* rows beyond n unread */
   for (int d = 0; d < dim; d++) {
-    base[d] = mrn_cpgimp_1d((x[d] - g->origin[d]) * g->inv_cell, l[d], w[d], dw[d]);
+    const int base = mrn_cpgimp_1d((x[d] - g->origin[d]) * g->inv_cell, l[d], w[d], dw[d]);
     n[d] = mrn_cpgimp_nodes(l[d]);
-  }
-  s->count = n[0] * n[1] * n[2];
-  for (int c = 0; c < s->count; c++) {
-    const int idx[3] = {c % n[0], c / n[0] % n[1], c / (n[0] * n[1])};
-    int node[3] = {0, 0, 0};
-    double N = 1.0;
-    for (int d = 0; d < dim; d++) N *= w[d][idx[d]];
-    for (int d = 0; d < dim; d++) {
-      double dN = dw[d][idx[d]] * g->inv_cell;
-      for (int e = 0; e < dim; e++)
-        if (e != d) dN *= w[e][idx[e]];
-      node[d] = axis_node(t, d, base[d] + idx[d]);
-      const int at = (t->kernel.periodic >> d) & 1u ? base[d] + idx[d] : node[d]; /* unwrapped, or taken back */
-      s->dN[dim * c + d] = dN;
-      s->off[dim * c + d] = g->origin[d] + at * g->cell - x[d];
+    for (int k = 0; k < n[d]; k++) {
+      node[d][k] = axis_node(t, d, base + k);
+      at[d][k] = (t->kernel.periodic >> d) & 1u ? base + k : node[d][k]; /* unwrapped, or taken back */
     }
-    s->N[c] = N;
-    s->node[c] = mrn_grid_index(g, node[0], node[1], node[2]);
   }
+  mrn_ref_tensor_stencil(t, p, n, MRN_REF_STENCIL_MAX, w[0], dw[0], node[0], at[0], s);
 }
 
 long mrn_cpgimp_domains(const mrn_particles *ps, int dim, double inv_cell, double *A, double *extent) {
@@ -127,7 +100,7 @@ long mrn_cpgimp_domains(const mrn_particles *ps, int dim, double inv_cell, doubl
   double widest = 0.0;
   for (size_t p = 0; p < ps->n; p++) {
     double U0[9], l[3], *a = A + 9 * p;
-    mrn_particle_domain(ps, dim, p, offset, half_side(ps->vol0[p], dim), U0, a);
+    mrn_particle_domain(ps, dim, p, offset, mrn_particle_half_side(ps->vol0[p], dim), U0, a);
     if (!mrn_cpgimp_box(a, dim, inv_cell, l)) return (long)p;
     for (int d = 0; d < dim; d++) widest = fmax(widest, l[d]);
   }

@@ -40,6 +40,14 @@ typedef struct mrn_ref_stencil {
 
 void mrn_ref_stencil_build(const mrn_transfer *t, size_t p, mrn_ref_stencil *s);
 
+/* particle p's stencil as the tensor product of 1D rows along each axis d:
+ * n[d] nodes, their weights w and derivatives dw (per unit of grid
+ * coordinate), node numbers `node` and grid coordinates `at` (from which
+ * the branch vectors x_i - x_p are taken), row d at offset d * stride of
+ * each array; n[2] = 1 in 2D. Nodes with x fastest. */
+void mrn_ref_tensor_stencil(const mrn_transfer *t, size_t p, const int n[3], int stride, const double *w,
+                            const double *dw, const int *node, const int *at, mrn_ref_stencil *s);
+
 /* P2G: nodal mass, and momentum with the scheme's affine or Taylor term,
  * when `momentum`; internal force when `force`. Clears what it writes, on
  * the whole grid. */

@@ -24,19 +24,7 @@ local part = mpm.param("part", "")
 
 if part == "" or part == "bar" then
   local B = dofile(mpm.deck_dir .. "/tension_bar.lua")
-  local function run(shape, scheme)
-    local sim = B.build{ shape = shape, scheme = scheme, split = false, name = shape .. "_" .. scheme }
-    local mass0 = sim:diagnostics().mass
-    sim:run{ time = B.T_END }
-    local r = B.inspect(sim)
-    print(string.format("tension bar %-6s %-4s: %.3f m long, %d cells without a particle, %d unreached by a " ..
-                        "domain, F_xx in [%.3f, %.3f] (exact 3)", shape, scheme, r.length, r.empty, r.unreached,
-                        r.fxx_min, r.fxx_max))
-    T.close(sim:diagnostics().mass, mass0, 1e-12, shape .. " " .. scheme .. ": mass")
-    T.close(r.length, 3 * B.L0, 0.02, shape .. " " .. scheme .. ": length between the grips")
-    sim:free()
-    return r
-  end
+  local function run(shape, scheme) return B.run(T, shape, scheme) end
   local standard = run("linear", "APIC")
   T.expect{ id = "cpdi_tension_bar.standard_unreached", value = standard.unreached, min = 1,
             what = "linear + APIC: cells of the bar unreached by a particle domain at 3 L0 (numerical fracture)" }

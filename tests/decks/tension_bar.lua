@@ -87,4 +87,22 @@ function B.inspect(sim, domain)
            span = hi - lo, fxx_min = fmin, fxx_max = fmax }
 end
 
+--- Builds the bar with `shape` and `scheme`, pulls it to 3 L0 and inspects
+-- it (`domain` as in B.inspect); checks through T (testlib.lua) that the
+-- mass is kept to 1e-12 and the bar is 3 L0 long between the grips within
+-- 2 %, and returns what B.inspect returns.
+function B.run(T, shape, scheme, domain)
+  local sim = B.build{ shape = shape, scheme = scheme, split = false, name = shape .. "_" .. scheme }
+  local mass0 = sim:diagnostics().mass
+  sim:run{ time = B.T_END }
+  local r = B.inspect(sim, domain)
+  print(string.format("tension bar %-6s %-4s: %.3f m long, %d cells without a particle, %d unreached by a " ..
+                      "domain, F_xx in [%.3f, %.3f] (exact 3)", shape, scheme, r.length, r.empty, r.unreached,
+                      r.fxx_min, r.fxx_max))
+  T.close(sim:diagnostics().mass, mass0, 1e-12, shape .. " " .. scheme .. ": mass")
+  T.close(r.length, 3 * B.L0, 0.02, shape .. " " .. scheme .. ": length between the grips")
+  sim:free()
+  return r
+end
+
 return B

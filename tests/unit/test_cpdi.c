@@ -58,35 +58,8 @@
 
 #define TOL 1e-12
 
-static unsigned seed_ = 12345u;
-static double rnd(void) { /* in [0, 1) */
-  seed_ = seed_ * 1103515245u + 12345u;
-  return ((seed_ >> 8) & 0xffffff) / 16777216.0;
-}
+#include "domain_shapes.h"
 
-static mrn_sim *make_sim(int dim, mrn_shape_kind shape) {
-  mrn_sim_config cfg = {.dim = dim, .origin = {-0.3, 0.7, 1.1}, .size = {1.6, 1.6, 1.6}, .cell = 0.1, .shape = shape};
-  mrn_sim *sim = mrn_sim_new(&cfg);
-  CHECK(sim != NULL);
-  return sim;
-}
-
-/* a particle at grid coordinates xi with side `side` cells and deformation F (dim x dim stored) */
-static size_t add(mrn_sim *sim, const double xi[3], double side, const double *F) {
-  const mrn_grid *g = &sim->grid;
-  double x[3] = {0, 0, 0};
-  for (int d = 0; d < sim->dim; d++) x[d] = g->origin[d] + xi[d] * g->cell;
-  const double s = side * g->cell, vol = sim->dim == 2 ? s * s : s * s * s;
-  const long p = mrn_particles_add(&sim->particles, x, 1e3 * vol, vol, 0);
-  CHECK(p >= 0);
-  const int ts = mrn_tensor_stride(sim->dim);
-  if (F) memcpy(sim->particles.F + (size_t)ts * (size_t)p, F, (size_t)ts * sizeof(double));
-  for (int d = 0; d < 3; d++) sim->particles.v[3 * p + d] = rnd() - 0.5;
-  for (int k = 0; k < 6; k++) sim->particles.stress[6 * p + k] = 1e3 * (rnd() - 0.5);
-  return (size_t)p;
-}
-
-/* a sheared, stretched and rotated F with det F > 0 */
 static void random_F(int dim, double *F) {
   double M[9];
   for (int a = 0; a < 3; a++)
@@ -119,21 +92,7 @@ static void consistency(int dim, int deformed) {
   double worst = 0.0;
   for (size_t p = 0; p < sim->particles.n; p++) {
     mrn_ref_stencil_build(&t, p, &s);
-    double sum = 0.0, gsum[3] = {0, 0, 0}, xs[3] = {0, 0, 0}, G[3][3] = {{0}};
-    for (int c = 0; c < s.count; c++) {
-      sum += s.N[c];
-      for (int a = 0; a < dim; a++) {
-        gsum[a] += s.dN[dim * c + a];
-        xs[a] += s.N[c] * s.off[dim * c + a];
-        for (int b = 0; b < dim; b++) G[a][b] += s.off[dim * c + a] * s.dN[dim * c + b];
-      }
-    }
-    worst = fmax(worst, fabs(sum - 1.0));
-    for (int a = 0; a < dim; a++) {
-      worst = fmax(worst, fabs(gsum[a]) * sim->grid.cell);
-      worst = fmax(worst, fabs(xs[a]) / sim->grid.cell);
-      for (int b = 0; b < dim; b++) worst = fmax(worst, fabs(G[a][b] - (a == b)));
-    }
+    worst = fmax(worst, consistency_error(&s, dim, sim->grid.cell));
   }
   printf("%dD %s: worst partition of unity / gradient sum / linear reproduction error %.2e\n", dim,
          deformed ? "deformed" : "undeformed", worst);
@@ -248,31 +207,7 @@ static void kernels(int dim) {
   mrn_sim_particles_changed(sim);
   mrn_grid *g = &sim->grid;
   mrn_transfer t = mrn_sim_transfer(sim);
-  mrn_p2g(&t, 1, 1);
-  const size_t n = g->n;
-  double *fast = malloc(7 * n * sizeof(double));
-  memcpy(fast, g->mass, n * sizeof(double));
-  memcpy(fast + n, g->mom, 3 * n * sizeof(double));
-  memcpy(fast + 4 * n, g->force, 3 * n * sizeof(double));
-  mrn_ref_p2g(&t, 1, 1);
-  CHECK(memcmp(fast, g->mass, n * sizeof(double)) == 0);
-  CHECK(memcmp(fast + n, g->mom, 3 * n * sizeof(double)) == 0);
-  CHECK(memcmp(fast + 4 * n, g->force, 3 * n * sizeof(double)) == 0);
-  double m = 0.0, mp = 0.0, P[3] = {0, 0, 0}, Pp[3] = {0, 0, 0}, f[3] = {0, 0, 0}, fs = 0.0;
-  for (size_t i = 0; i < n; i++) {
-    m += g->mass[i];
-    for (int d = 0; d < 3; d++) P[d] += g->mom[3 * i + d], f[d] += g->force[3 * i + d], fs += fabs(g->force[3 * i + d]);
-  }
-  for (size_t p = 0; p < sim->particles.n; p++) {
-    mp += sim->particles.mass[p];
-    for (int d = 0; d < dim; d++) Pp[d] += sim->particles.mass[p] * sim->particles.v[3 * p + d];
-  }
-  CHECK_CLOSE(m, mp, TOL);
-  for (int d = 0; d < dim; d++) {
-    CHECK(fabs(P[d] - Pp[d]) <= TOL * mp);
-    CHECK(fabs(f[d]) <= TOL * fs);
-  }
-  free(fast);
+  p2g_against_reference(sim, &t);
   /* a particle by the lower x face, its domain 20 cells long along x */
   const double xi[3] = {0.5, 8, 8}, F[9] = {40, 0, 0, 0, 1, 0, 0, 0, 1}, F2[4] = {40, 0, 0, 1};
   const size_t p = add(sim, xi, 1.0, dim == 2 ? F2 : F);
@@ -294,16 +229,9 @@ static void steps(int dim, mrn_shape_kind shape) {
   for (int k = 0; k < 4; k++)
     for (int u = MRN_STRESS_USF; u <= MRN_STRESS_USAVG; u++) {
       mrn_sim *sim = make_sim(dim, shape);
-      for (int d = 0; d < 3; d++) sim->gravity[d] = 0.0;
       CHECK(mrn_scheme_from_preset(presets[k], &sim->scheme) == 0);
       sim->scheme.stress_update = (mrn_stress_update_kind)u;
-      mrn_material *m = mrn_material_new(&mrn_material_linear_elastic);
-      mrn_material_set(m, "density", 1000);
-      mrn_material_set(m, "E", 1e5);
-      mrn_material_set(m, "nu", 0.3);
-      mrn_material_prepare(m);
-      CHECK(mrn_sim_add_material(sim, m) == 0);
-      mrn_material_unref(m);
+      add_elastic(sim);
       for (int p = 0; p < 60; p++) {
         double xi[3] = {0, 0, 0}, F[9] = {0};
         for (int d = 0; d < dim; d++) xi[d] = 5.0 + 6.0 * rnd();
@@ -311,16 +239,7 @@ static void steps(int dim, mrn_shape_kind shape) {
           for (int b = 0; b < dim; b++) F[dim * a + b] = (a == b) + 0.3 * (rnd() - 0.5);
         add(sim, xi, 0.5, F);
       }
-      mrn_sim_particles_changed(sim);
-      mrn_diagnostics d0, d1;
-      mrn_sim_diagnostics(sim, &d0);
-      double scale = 0.0;
-      for (size_t p = 0; p < sim->particles.n; p++)
-        scale += sim->particles.mass[p] * sqrt(pow(sim->particles.v[3 * p], 2) + pow(sim->particles.v[3 * p + 1], 2) +
-                                               pow(sim->particles.v[3 * p + 2], 2));
-      for (int s = 0; s < 5; s++) CHECK(mrn_sim_step_dt(sim, 1e-4) == 0);
-      mrn_sim_diagnostics(sim, &d1);
-      for (int a = 0; a < dim; a++) worst = fmax(worst, fabs(d1.momentum[a] - d0.momentum[a]) / scale);
+      worst = fmax(worst, momentum_drift(sim));
       mrn_sim_free(sim);
     }
   printf("%dD %s steps, every strategy and stress update: worst momentum change %.2e of sum m |v|\n", dim,
@@ -333,14 +252,8 @@ static void steps(int dim, mrn_shape_kind shape) {
  * elastic material, on a sim of shape `shape` */
 static mrn_sim *bound_sim(int dim, mrn_shape_kind shape, const double *F, int turn, int count, unsigned seed) {
   mrn_sim *sim = make_sim(dim, shape);
-  mrn_material *m = mrn_material_new(&mrn_material_linear_elastic);
-  mrn_material_set(m, "density", 1000);
-  mrn_material_set(m, "E", 1e5);
-  mrn_material_set(m, "nu", 0.3);
-  mrn_material_prepare(m);
-  CHECK(mrn_sim_add_material(sim, m) == 0);
-  mrn_material_unref(m);
-  seed_ = seed;
+  add_elastic(sim);
+  domain_seed = seed;
   for (int p = 0; p < count; p++) {
     double xi[3] = {0, 0, 0}, Fp[9] = {1, 0, 0, 0, 1, 0, 0, 0, 1};
     for (int d = 0; d < dim; d++) xi[d] = 5.0 + 6.0 * rnd();
