@@ -21,9 +21,9 @@
  *   undeformed domain stays within the hat's own largest gradient,
  *   sqrt(dim) / h, so the particle CFL step is bit for bit the linear
  *   kernel's; a thin domain sheared over many cells (principal stretches
- *   30 and 0.16, as in the shear band of a collapsing column) exceeds 5
- *   times that somewhere (no average of the hat's gradient can), and the
- *   CFL step falls at least 5 times.
+ *   30 and 0.16, the aspect ratio of 190 reached in the shear band of a
+ *   collapsing column) exceeds 5 times that somewhere (no average of the
+ *   hat's gradient can), and the CFL step falls at least 5 times.
  * - Whole explicit steps (PIC, FLIP, APIC, TPIC x USF, USL, MUSL, USAVG,
  *   no gravity, free faces, deformed domains): the total momentum stays to
  *   1e-12 of sum m |v|, since every transfer of a step uses the domains the
