@@ -814,7 +814,7 @@ static void book(const mrn_wall *w, const mrn_grid *g, size_t c, const double J[
 }
 
 static double wall_apply(mrn_wall *w, mrn_grid *g, double mass_floor, double *vel, int with_friction,
-                         const mrn_walls_share *share) {
+                         const mrn_walls_share *share, double pass_weight) {
   double work = 0.0, *J = w->sums;
   if (w->ncol) memset(J, 0, 3 * w->ncol * sizeof *J);
   if (w->spec.kind != MRN_WALL_FIXED) work = contact_columns(w, g, mass_floor, vel, with_friction, J, share);
@@ -822,12 +822,16 @@ static double wall_apply(mrn_wall *w, mrn_grid *g, double mass_floor, double *ve
     for (size_t c = 0; c < w->ncol; c++)
       for (size_t k = w->col_start[c]; k < w->col_start[c + 1]; k++)
         wall_fix(g, mass_floor, vel + 3 * w->col_node[k], w->col_node[k], w->col_w + 3 * c, J + 3 * c);
-  /* the reaction: the impulses of V~ and of the step's first V (the nodal
-   * velocity, not XPIC's smoothed fields), acting at the column's first node */
-  const int hold = !with_friction && !w->v_done && vel == g->vel;
+  /* the reaction: the impulses of V~, of the step's first V and of XPIC's
+   * smoothed fields, each of these with its weight in V* (xpic.h), acting
+   * at the column's first node */
+  const double hold = with_friction ? 0.0 : vel == g->vel ? (w->v_done ? 0.0 : 1.0) : pass_weight;
   for (size_t c = 0; c < w->ncol; c++) {
     if (with_friction) book(w, g, c, J + 3 * c, w->impulse, w->angular, &w->step_work);
-    else if (hold) book(w, g, c, J + 3 * c, w->hold_impulse, w->hold_angular, &w->hold_work);
+    else if (hold != 0.0) {
+      for (int d = 0; d < 3; d++) J[3 * c + d] *= hold;
+      book(w, g, c, J + 3 * c, w->hold_impulse, w->hold_angular, &w->hold_work);
+    }
   }
   if (with_friction) w->step_friction += work, w->v_done = 1;
   return work;
@@ -836,7 +840,7 @@ static double wall_apply(mrn_wall *w, mrn_grid *g, double mass_floor, double *ve
 double mrn_walls_apply(mrn_walls *ws, mrn_grid *g, double mass_floor, double *vel, int with_friction) {
   double work = 0.0;
   for (int i = 0; ws && i < ws->count; i++)
-    work += wall_apply(&ws->wall[i], g, mass_floor, vel, with_friction, ws->share);
+    work += wall_apply(&ws->wall[i], g, mass_floor, vel, with_friction, ws->share, ws->pass_weight);
   return work;
 }
 

@@ -163,6 +163,10 @@ typedef struct mrn_walls {
   double cundall;      /* D of Cundall's damping, for the bodies (set by the solver) */
   double damping_work; /* the work of that damping on the bodies in the last step */
   const mrn_walls_share *share; /* a distributed run's, or NULL */
+  /* the weight with which the holds on a field other than the grid's V
+   * reach the particles (XPIC's smoothed passes, set by the solver around
+   * each), booked with the holds of V; 0: not booked */
+  double pass_weight;
 } mrn_walls;
 
 #define MRN_WALL_TOUCH 1u

@@ -76,8 +76,10 @@ int mrn_contact_step(struct mrn_sim *sim, mrn_transfer *tr, double dt);
  * of g, the simulation's grid or a body's view of it */
 void mrn_grid_velocity_on(struct mrn_sim *sim, mrn_grid *g);
 /* the simulation's conditions on a velocity field of its grid (faces,
- * constraints, inlets; mrn_transfer.hold); ctx is the simulation */
-void mrn_sim_hold_velocity(void *ctx, double *vel);
+ * walls, constraints, inlets; mrn_transfer.hold); ctx is the simulation,
+ * `weight` that of the field in the particles' velocities, with which the
+ * walls book the impulses of these holds */
+void mrn_sim_hold_velocity(void *ctx, double *vel, double weight);
 void mrn_grid_update_on(struct mrn_sim *sim, mrn_grid *g, double dt);
 /* the share of a change of V (before the forces) that reaches the
  * particles' momentum under scheme s: 1 for PIC-like updates, 0 for FLIP,

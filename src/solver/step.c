@@ -89,9 +89,12 @@ static void grid_velocity_held(mrn_sim *sim, mrn_grid *g, double dt, double inle
   mrn_phase_end(MRN_PHASE_GRID, t0);
 }
 
-void mrn_sim_hold_velocity(void *ctx, double *vel) {
+void mrn_sim_hold_velocity(void *ctx, double *vel, double weight) {
   mrn_sim *sim = ctx;
+  mrn_walls *ws = sim->boundary.walls;
+  if (ws) ws->pass_weight = weight;
   hold_velocity(sim, &sim->grid, vel);
+  if (ws) ws->pass_weight = 0.0;
 }
 
 void mrn_grid_velocity_on(mrn_sim *sim, mrn_grid *g) { grid_velocity_held(sim, g, 0.0, 0.0); }

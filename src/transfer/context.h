@@ -38,10 +38,12 @@ typedef struct mrn_transfer {
   /* the largest of n values over the same processes, in place (a
    * convergence test that every process must end alike). NULL: nothing */
   void (*max_over)(void *ctx, double *values, int n);
-  /* the owner's conditions on a nodal velocity field (faces, constraints,
-   * inlets), applied to a field a transfer made (XPIC's smoothed passes).
-   * NULL: the face conditions of `boundary` */
-  void (*hold)(void *ctx, double *vel);
+  /* the owner's conditions on a nodal velocity field (faces, walls,
+   * constraints, inlets), applied to a field a transfer made (XPIC's
+   * smoothed passes); `weight` is the coefficient with which that field
+   * enters the particles' velocities, so that the walls book the momentum
+   * their holds pass on. NULL: the face conditions of `boundary` */
+  void (*hold)(void *ctx, double *vel, double weight);
   void *sum_ctx; /* of all three */
 } mrn_transfer;
 
