@@ -102,19 +102,13 @@ void mrn_cpdi_stencil(const mrn_transfer *t, size_t p, mrn_ref_stencil *s) {
 }
 
 void mrn_cpdi_point_velocity(const mrn_transfer *t, const double xc[3], const double *gvel, double v[3]) {
-  const int dim = t->dim;
-  double w[3][2] = {{1, 1}, {1, 1}, {1, 1}};
-  int base[3] = {0, 0, 0}, node[3][2] = {{0, 0}, {0, 0}, {0, 0}};
-  for (int a = 0; a < dim; a++)
-    corner_axis(t, a, (xc[a] - t->grid->origin[a]) * t->grid->inv_cell, &base[a], node[a], w[a]);
+  static const double no_gradient[3] = {0, 0, 0};
+  mrn_ref_stencil s;
+  s.count = 0;
+  corner_entries(t, xc, xc, 1.0, 0.0, no_gradient, &s); /* the hat functions at xc alone */
   for (int d = 0; d < 3; d++) v[d] = 0.0;
-  for (int n = 0; n < (1 << dim); n++) {
-    const int idx[3] = {n & 1, (n >> 1) & 1, (n >> 2) & 1};
-    double N = 1.0;
-    for (int d = 0; d < dim; d++) N *= w[d][idx[d]];
-    const size_t i = mrn_grid_index(t->grid, node[0][idx[0]], node[1][idx[1]], dim == 3 ? node[2][idx[2]] : 0);
-    for (int d = 0; d < dim; d++) v[d] += N * gvel[3 * i + d];
-  }
+  for (int k = 0; k < s.count; k++)
+    for (int d = 0; d < t->dim; d++) v[d] += s.N[k] * gvel[3 * s.node[k] + d];
 }
 
 double mrn_cpdi_gradient_bound(const mrn_transfer *t, size_t p) {
