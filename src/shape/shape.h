@@ -149,9 +149,12 @@ static inline int mrn_shape_cubic_1d(double xi, double *w, double *dw) {
 }
 
 /* uGIMP (Bardenhagen & Kober): the hat function convolved with a particle of
- * half-width lp (in cells, fixed at its initial size), support 3 for lp <= 1/2.
- * dw is d/dxi of the weight, r = xi - node. */
-static inline int mrn_shape_gimp_1d(double xi, double lp, double *w, double *dw) {
+ * half-width lp (in cells, fixed at its initial size), support 3 for lp <= 1/2:
+ * 1 - (r^2 + lp^2) / (2 lp) for |r| < lp, 1 - |r| up to 1 - lp, then
+ * (1 + lp - |r|)^2 / (4 lp) up to 1 + lp. dw is d/dxi of the weight,
+ * r = xi - node. The plain form, branch by branch: the reference the
+ * factored form below is tested against (test_kernels_reference). */
+static inline int mrn_shape_gimp_1d_piecewise(double xi, double lp, double *w, double *dw) {
   int base = (int)floor(xi - lp);
   for (int k = 0; k < 3; k++) {
     double r = xi - (base + k);
@@ -171,6 +174,46 @@ static inline int mrn_shape_gimp_1d(double xi, double lp, double *w, double *dw)
     }
   }
   return base;
+}
+
+/* uGIMP in factored form. With base = floor(xi - lp), the particle's box
+ * [xi - lp, xi + lp] starts in the cell [base, base + 1]; C = base + 1 -
+ * (xi - lp) is how much of the box that cell holds (in (0, 1]). Either the
+ * box stays in the cell (C >= 2 lp) and the weights are the hat function's,
+ * or it reaches past node base + 1 by t = 2 lp - C, and the piecewise form
+ * above reduces to
+ *   w0 = C^2 / (4 lp), w2 = t^2 / (4 lp), w1 = 1 - w0 - w2,
+ *   dw0 = -C / (2 lp), dw2 = t / (2 lp), dw1 = -(dw0 + dw2);
+ * with m = min(C, 2 lp) one set of formulas serves both cases
+ * (w0 = m^2 / (4 lp) + (C - m), t = 2 lp - m), with no branch per node and
+ * no cancellation in a small weight. K = 1 / lp. A macro so that the same
+ * operations serve a double and a GCC vector of doubles (the 2D fast
+ * stencil forms both axes at once), with the same bits; MIN is the minimum
+ * for the type. */
+#define MRN_GIMP_FACTORED(MIN, C, LP, K, W0, W1, W2, DW0, DW1, DW2)                         \
+  do {                                                                                      \
+    const __typeof__(C) m_ = MIN((C), 2.0 * (LP));                                          \
+    const __typeof__(C) t_ = 2.0 * (LP)-m_; /* the box past node base + 1, or 0 */         \
+    (W0) = 0.25 * (K) * m_ * m_ + ((C)-m_);                                                 \
+    (W2) = 0.25 * (K) * t_ * t_;                                                            \
+    (W1) = 1.0 - (W0) - (W2);                                                               \
+    (DW0) = -0.5 * (K) * m_;                                                                \
+    (DW2) = 0.5 * (K) * t_;                                                                 \
+    (DW1) = -((DW0) + (DW2));                                                               \
+  } while (0)
+#define MRN_MIN_SCALAR(a, b) ((a) < (b) ? (a) : (b))
+
+/* uGIMP's weights as every stencil forms them (MRN_GIMP_FACTORED), given
+ * inv_lp = 1 / lp */
+static inline int mrn_shape_gimp_1d_k(double xi, double lp, double inv_lp, double *w, double *dw) {
+  const double h = xi - lp, b = floor(h);
+  const double c = (b + 1.0) - h;
+  MRN_GIMP_FACTORED(MRN_MIN_SCALAR, c, lp, inv_lp, w[0], w[1], w[2], dw[0], dw[1], dw[2]);
+  return (int)b;
+}
+
+static inline int mrn_shape_gimp_1d(double xi, double lp, double *w, double *dw) {
+  return mrn_shape_gimp_1d_k(xi, lp, 1.0 / lp, w, dw);
 }
 
 /* lp: particle half-width in cells (uGIMP, and cpGIMP at a point) */

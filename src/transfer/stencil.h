@@ -163,44 +163,6 @@ static __attribute__((noinline, unused)) int mrn_bspline_cubic_axis(double xi, d
   return (int)fl - 1;
 }
 
-/* uGIMP's weights W and derivatives DW (d/dxi times inv_cell) on every lane
- * of the vectors of type V (masks of type M), given r = xi - node (node
- * distances in cells) and lp (the particle's half-width in cells, at most
- * 1/2): each of mrn_shape_gimp_1d's branches formed on every lane with its
- * operations and the lane's branch picked by masks, so the same values
- * without a branch per node (lanes 1 + lp cells or more away get zero). */
-#define MRN_PICK(V, M, m, a, b) ((V)(((M)(a) & (m)) | ((M)(b) & ~(m))))
-#define MRN_GIMP_LANES(V, M, r, lp, inv_cell, W, DW)                                                            \
-  do {                                                                                                          \
-    const V zero_ = {0};                                                                                        \
-    const V a_ = MRN_PICK(V, M, (r) < 0.0, -(r), (r)); /* fabs */                                              \
-    const V sgn_ = MRN_PICK(V, M, (r) < 0.0, zero_ - 1.0, zero_ + 1.0);                                        \
-    const V t_ = 1.0 + (lp)-a_;                                                                                 \
-    const M inner_ = a_ < (lp), middle_ = a_ < 1.0 - (lp), outer_ = a_ < 1.0 + (lp);                           \
-    const V w_in_ = 1.0 - ((r) * (r) + (lp) * (lp)) / (2.0 * (lp)), w_mid_ = 1.0 - a_,                          \
-            w_out_ = t_ * t_ / (4.0 * (lp));                                                                    \
-    const V d_in_ = -(r) / (lp), d_mid_ = -sgn_, d_out_ = -sgn_ * t_ / (2.0 * (lp));                            \
-    W = MRN_PICK(V, M, inner_, w_in_, MRN_PICK(V, M, middle_, w_mid_, MRN_PICK(V, M, outer_, w_out_, zero_)));   \
-    DW = MRN_PICK(V, M, inner_, d_in_, MRN_PICK(V, M, middle_, d_mid_, MRN_PICK(V, M, outer_, d_out_, zero_))) * \
-         (inv_cell);                                                                                            \
-  } while (0)
-
-/* uGIMP along one axis for the 3 nodes from floor(xi - lp), as 4-wide
- * vectors (MRN_GIMP_LANES; the fourth lane, 2 + lp cells or more away, gets
- * zero). Stores and returns as mrn_bspline_cubic_axis. Inlined (a call per
- * axis cost a fifth of the uGIMP step): test_blocks holds the kernels that
- * build the same particle's stencil to the same bits. */
-typedef long long mrn_axis_m4 __attribute__((vector_size(32), aligned(8), may_alias));
-static inline __attribute__((always_inline, unused)) int mrn_gimp_axis(double xi, double lp, double inv_cell,
-                                                                        double origin, double cell, double x,
-                                                                        double *w, double *dw, double *off) {
-  const double fl = floor(xi - lp);
-  const mrn_axis_v4 k = {0.0, 1.0, 2.0, 3.0};
-  const mrn_axis_v4 node = fl + k, r = xi - node;
-  MRN_GIMP_LANES(mrn_axis_v4, mrn_axis_m4, r, lp, inv_cell, *(mrn_axis_v4 *)w, *(mrn_axis_v4 *)dw);
-  *(mrn_axis_v4 *)off = origin + node * cell - x;
-  return (int)fl;
-}
 #endif
 
 /* The shapes with a fast stencil, by the code the kernels are specialised
@@ -226,25 +188,25 @@ typedef struct KNAME(axes) {
 } KNAME(axes);
 
 /* uGIMP's particle half-width in cells, from its initial volume vol0, as
- * stencil_build forms it. In 3D the last value is kept per thread, keyed by
- * the bits of vol0 and of the grid's 1/cell: the particles that follow one
- * another mostly share vol0, and the cube root is a library call that
- * costs more than the rest of the axes (in 2D the square root is one
- * instruction, cheaper than the look-up). */
-static inline double KNAME(gimp_half_width)(const mrn_grid *g, double vol0) {
-#if DIM == 3
+ * stencil_build forms it, and its reciprocal into *inv_lp. The last pair is
+ * kept per thread, keyed by the bits of vol0 and of the grid's 1/cell: the
+ * particles that follow one another mostly share vol0, and the root and the
+ * division cost more than the rest of the axes (the engine is built with
+ * TLS descriptors, -mtls-dialect=gnu2, so that a look-up is no call to
+ * __tls_get_addr). */
+static inline double KNAME(gimp_half_width)(const mrn_grid *g, double vol0, double *inv_lp) {
   static _Thread_local uint64_t memo_vol0 = 0, memo_inv = 0; /* 1/cell is never +0: no hit at first */
-  static _Thread_local double memo_lp = 0.0;
+  static _Thread_local double memo_lp = 0.0, memo_inv_lp = 0.0;
   uint64_t bv, bi;
   memcpy(&bv, &vol0, sizeof bv);
   memcpy(&bi, &g->inv_cell, sizeof bi);
-  if (bv == memo_vol0 && bi == memo_inv) return memo_lp;
-#endif
+  if (bv == memo_vol0 && bi == memo_inv) {
+    *inv_lp = memo_inv_lp;
+    return memo_lp;
+  }
   double lp = 0.5 * (DIM == 2 ? sqrt(vol0) : cbrt(vol0)) * g->inv_cell;
   lp = lp > 0.5 ? 0.5 : lp;
-#if DIM == 3
-  memo_vol0 = bv, memo_inv = bi, memo_lp = lp;
-#endif
+  memo_vol0 = bv, memo_inv = bi, memo_lp = lp, memo_inv_lp = *inv_lp = 1.0 / lp;
   return lp;
 }
 
@@ -328,35 +290,39 @@ static inline __attribute__((always_inline)) int KNAME(axes_linear_2d)(const mrn
   return 1;
 }
 
-/* uGIMP's axes of a 2D particle, both axes at once as the two halves of
- * 8-wide vectors (one AVX-512 register): the operations of mrn_gimp_axis
- * on each half, so the same bits. Only with AVX-512: without it GCC splits
- * the 8-wide operations into far more pieces than two axis passes take. */
-#ifdef __AVX512F__
-#define MRN_GIMP_AXES_2D 1
-typedef double mrn_axis_v8 __attribute__((vector_size(64), aligned(8), may_alias));
-typedef long long mrn_axis_m8 __attribute__((vector_size(64), aligned(8), may_alias));
+/* uGIMP's axes of a 2D particle, both axes at once as the lanes of 2-wide
+ * vectors: the operations of mrn_shape_gimp_1d per axis (MRN_GIMP_FACTORED),
+ * so the same bits. The fourth lane of each axis holds zeros. */
+#define MRN_MIN_V2(a, b) ((mrn_axis_v2)(((mrn_axis_m2)(a) & ((a) < (b))) | ((mrn_axis_m2)(b) & ~((a) < (b)))))
 static inline __attribute__((always_inline)) int KNAME(axes_gimp_2d)(const mrn_grid *g, const mrn_kernel_boundary mode,
                                                                      const double *x, double vol0, KNAME(axes) *a) {
-  const double lp = KNAME(gimp_half_width)(g, vol0);
+  double inv_lp;
+  const double lp = KNAME(gimp_half_width)(g, vol0, &inv_lp);
   const double inv_cell = g->inv_cell, cell = g->cell;
-  const int nc0 = g->ncell[0], nc1 = g->ncell[1];
-  const size_t pad = (size_t)g->pad, st0 = (size_t)g->stride[0], st1 = (size_t)g->stride[1];
-  const double o0 = g->origin[0], o1 = g->origin[1], x0 = x[0], x1 = x[1];
-  const double xi0 = (x0 - o0) * inv_cell, xi1 = (x1 - o1) * inv_cell;
-  const double f0 = floor(xi0 - lp), f1 = floor(xi1 - lp);
-  const mrn_axis_v8 k = {0.0, 1.0, 2.0, 3.0, 0.0, 1.0, 2.0, 3.0};
-  const mrn_axis_v8 fl = {f0, f0, f0, f0, f1, f1, f1, f1}, xi = {xi0, xi0, xi0, xi0, xi1, xi1, xi1, xi1};
-  const mrn_axis_v8 org = {o0, o0, o0, o0, o1, o1, o1, o1}, xv = {x0, x0, x0, x0, x1, x1, x1, x1};
-  const mrn_axis_v8 node = fl + k, r = xi - node;
-  MRN_GIMP_LANES(mrn_axis_v8, mrn_axis_m8, r, lp, inv_cell, *(mrn_axis_v8 *)a->w, *(mrn_axis_v8 *)a->dw);
-  *(mrn_axis_v8 *)a->off = org + node * cell - xv;
-  const int b0 = (int)f0, b1 = (int)f1;
-  if (mode != MRN_KERNEL_EXTENDED && ((b0 < 0) | (b1 < 0) | (b0 + 2 > nc0) | (b1 + 2 > nc1))) return 0;
-  a->node0 = ((size_t)b0 + pad) * st0 + ((size_t)b1 + pad) * st1;
+  const mrn_axis_v2 lpv = {lp, lp};
+  const mrn_axis_v2 xd = {x[0], x[1]}, origin = {g->origin[0], g->origin[1]};
+  const mrn_axis_v2 xi = (xd - origin) * inv_cell, h = xi - lp;
+  const mrn_axis_v2 b0 = {floor(h[0]), floor(h[1])}; /* (double)base, exactly */
+  const int base[2] = {(int)b0[0], (int)b0[1]};
+  const mrn_axis_v2 c = (b0 + 1.0) - h;
+  mrn_axis_v2 w0, w1, w2, dw0, dw1, dw2;
+  MRN_GIMP_FACTORED(MRN_MIN_V2, c, lpv, inv_lp, w0, w1, w2, dw0, dw1, dw2);
+  dw0 *= inv_cell;
+  dw1 *= inv_cell;
+  dw2 *= inv_cell;
+  const mrn_axis_v2 o0 = origin + b0 * cell - xd, o1 = origin + (b0 + 1.0) * cell - xd,
+                    o2 = origin + (b0 + 2.0) * cell - xd;
+  for (int d = 0; d < 2; d++) {
+    *(mrn_axis_v4 *)a->w[d] = (mrn_axis_v4){w0[d], w1[d], w2[d], 0.0};
+    *(mrn_axis_v4 *)a->dw[d] = (mrn_axis_v4){dw0[d], dw1[d], dw2[d], 0.0};
+    *(mrn_axis_v4 *)a->off[d] = (mrn_axis_v4){o0[d], o1[d], o2[d], 0.0};
+  }
+  if (mode != MRN_KERNEL_EXTENDED &&
+      ((base[0] < 0) | (base[1] < 0) | (base[0] + 2 > g->ncell[0]) | (base[1] + 2 > g->ncell[1])))
+    return 0;
+  a->node0 = (size_t)(base[0] + g->pad) * (size_t)g->stride[0] + (size_t)(base[1] + g->pad) * (size_t)g->stride[1];
   return 1;
 }
-#endif
 #endif
 
 
@@ -366,12 +332,11 @@ static inline __attribute__((always_inline)) int KNAME(axes_build)(const mrn_gri
 #if DIM == 2
   if (kind == MRN_FAST_QUADRATIC) return KNAME(axes_quadratic_2d)(g, mode, x, a);
   if (kind == MRN_FAST_LINEAR) return KNAME(axes_linear_2d)(g, mode, x, a);
-#ifdef MRN_GIMP_AXES_2D
   if (kind == MRN_FAST_GIMP) return KNAME(axes_gimp_2d)(g, mode, x, vol0, a);
 #endif
-#endif
   const int sup = MRN_FAST_SUPPORT(kind);
-  const double lp = kind == MRN_FAST_GIMP ? KNAME(gimp_half_width)(g, vol0) : 0.0;
+  double inv_lp = 0.0;
+  const double lp = kind == MRN_FAST_GIMP ? KNAME(gimp_half_width)(g, vol0, &inv_lp) : 0.0;
   /* the grid's values in locals: the stores into `a` could alias them, and
    * the compiler would load them again for every node */
   const double inv_cell = g->inv_cell, cell = g->cell;
@@ -383,11 +348,11 @@ static inline __attribute__((always_inline)) int KNAME(axes_build)(const mrn_gri
     int base;
     if (kind == MRN_FAST_CUBIC) {
       base = mrn_bspline_cubic_axis(xi, inv_cell, origin, cell, xd, a->w[d], a->dw[d], a->off[d]);
-    } else if (kind == MRN_FAST_GIMP) {
-      base = mrn_gimp_axis(xi, lp, inv_cell, origin, cell, xd, a->w[d], a->dw[d], a->off[d]);
     } else {
       double w[3], dw[3];
-      if (kind == MRN_FAST_QUADRATIC) {
+      if (kind == MRN_FAST_GIMP) {
+        base = mrn_shape_gimp_1d_k(xi, lp, inv_lp, w, dw);
+      } else if (kind == MRN_FAST_QUADRATIC) {
         base = mrn_shape_quadratic_1d(xi, w, dw);
       } else { /* linear; a particle exactly on the upper face in the last cell, as stencil_build */
         base = mrn_shape_linear_1d(xi, w, dw);

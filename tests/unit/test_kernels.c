@@ -4,7 +4,14 @@
  *   sum N = 1, sum N x_i = x_p, sum grad N = 0, sum x_i (x) grad N = I.
  * With the WLS correction, the boundary-modified kernels and the extended
  * (ghost-node) grid they hold to 1e-12; the truncated kernels violate them
- * next to the faces, which the test shows. */
+ * next to the faces, which the test shows.
+ * uGIMP's factored 1D form, which every stencil uses (MRN_GIMP_FACTORED),
+ * against the plain piecewise form: within 4 DBL_EPSILON (|xi| + 1) for the
+ * weights and that over lp for the derivatives (the factored form rounds
+ * xi - lp, the piecewise one forms xi - node exactly: half an ulp of xi,
+ * which the derivative's slope 1/lp magnifies), weights never negative,
+ * and the quadratic B-spline at lp = 1/2. */
+#include <float.h>
 #include <stdlib.h>
 
 #include "check.h"
@@ -70,7 +77,40 @@ static errors sweep(int dim, mrn_shape_kind shape, mrn_kernel_boundary mode, int
   return e;
 }
 
+/* uGIMP 1D: factored against piecewise, at random positions and where a
+ * branch changes (the box's edges on a node, the particle on a node) */
+static void gimp_forms(void) {
+  static const double lps[] = {0.01, 0.05, 0.125, 0.25, 1.0 / 3.0, 0.49, 0.5};
+  unsigned seed = 11u;
+  double worst_w = 0, worst_dw = 0, worst_q = 0, lowest = 1;
+  for (size_t l = 0; l < sizeof lps / sizeof lps[0]; l++) {
+    const double lp = lps[l];
+    for (int i = 0; i < 20000; i++) {
+      const double n = 3 + i % 50, edge[] = {n + lp, n - lp, n, n + 1 - lp, n + rnd(&seed)};
+      const double xi = edge[i % 5] + (i % 7 == 0 ? 1e-15 * (i % 2 ? 1 : -1) : 0);
+      double w[3], dw[3], wp[3], dwp[3], wq[3], dwq[3];
+      const int b = mrn_shape_gimp_1d(xi, lp, w, dw), bp = mrn_shape_gimp_1d_piecewise(xi, lp, wp, dwp);
+      CHECK(b == bp);
+      const double ulps = DBL_EPSILON * (fabs(xi) + 1); /* the error of xi - lp */
+      for (int k = 0; k < 3; k++) {
+        worst_w = fmax(worst_w, fabs(w[k] - wp[k]) / ulps);
+        worst_dw = fmax(worst_dw, fabs(dw[k] - dwp[k]) * lp / ulps);
+        lowest = fmin(lowest, w[k]);
+      }
+      if (lp == 0.5 && mrn_shape_quadratic_1d(xi, wq, dwq) == b)
+        for (int k = 0; k < 3; k++)
+          worst_q = fmax(worst_q, fmax(fabs(w[k] - wq[k]), fabs(dw[k] - dwq[k])) / (DBL_EPSILON * (fabs(xi) + 1)));
+    }
+  }
+  printf("uGIMP 1D, factored against piecewise, in DBL_EPSILON (|xi| + 1): weights %.2f, derivatives times lp "
+         "%.2f; lp = 1/2 against the quadratic B-spline %.2f; smallest weight %.1e\n", worst_w, worst_dw, worst_q,
+         lowest);
+  CHECK(worst_w <= 4 && worst_dw <= 4 && worst_q <= 4);
+  CHECK(lowest >= 0.0);
+}
+
 int main(void) {
+  gimp_forms();
   static const char *modes[] = {"extended", "truncated", "modified", "wls"};
   for (int dim = 2; dim <= 3; dim++)
     for (int shape = 0; shape < MRN_SHAPE_KIND_COUNT; shape++)
