@@ -218,6 +218,31 @@ static inline double KNAME(gimp_half_width)(const mrn_grid *g, double vol0, doub
 typedef double mrn_axis_v2 __attribute__((vector_size(16)));
 typedef long long mrn_axis_m2 __attribute__((vector_size(16)));
 #endif
+/* The end of a 3-node 2D axes build (quadratic B-spline, uGIMP): the
+ * derivatives per cell scaled by 1/cell, the branch components, the stores
+ * with zeros in each axis's fourth lane (group_sum, kernels_impl.h, reads
+ * the x factors as 4-wide vectors), and the first node; 0 when the support
+ * crosses a face whose kernel is adjusted. b0 is (double)base, exactly. */
+static inline __attribute__((always_inline)) int KNAME(axes_store3_2d)(
+    const mrn_grid *g, const mrn_kernel_boundary mode, mrn_axis_v2 xd, mrn_axis_v2 origin, mrn_axis_v2 b0,
+    const mrn_axis_v2 w[3], const mrn_axis_v2 dw[3], KNAME(axes) *a) {
+  const double inv_cell = g->inv_cell, cell = g->cell;
+  const int base[2] = {(int)b0[0], (int)b0[1]};
+  const mrn_axis_v2 dw0 = dw[0] * inv_cell, dw1 = dw[1] * inv_cell, dw2 = dw[2] * inv_cell;
+  const mrn_axis_v2 o0 = origin + b0 * cell - xd, o1 = origin + (b0 + 1.0) * cell - xd,
+                    o2 = origin + (b0 + 2.0) * cell - xd;
+  for (int d = 0; d < 2; d++) {
+    *(mrn_axis_v4 *)a->w[d] = (mrn_axis_v4){w[0][d], w[1][d], w[2][d], 0.0};
+    *(mrn_axis_v4 *)a->dw[d] = (mrn_axis_v4){dw0[d], dw1[d], dw2[d], 0.0};
+    *(mrn_axis_v4 *)a->off[d] = (mrn_axis_v4){o0[d], o1[d], o2[d], 0.0};
+  }
+  if (mode != MRN_KERNEL_EXTENDED &&
+      ((base[0] < 0) | (base[1] < 0) | (base[0] + 2 > g->ncell[0]) | (base[1] + 2 > g->ncell[1])))
+    return 0;
+  a->node0 = (size_t)(base[0] + g->pad) * (size_t)g->stride[0] + (size_t)(base[1] + g->pad) * (size_t)g->stride[1];
+  return 1;
+}
+
 /* The quadratic B-spline's axes of a 2D particle, both axes at once as the
  * lanes of 2-wide vectors: the same operations as the loop of axes_build
  * (MRN_QUADRATIC_BSPLINE, as mrn_shape_quadratic_1d per axis), so the same
@@ -226,38 +251,13 @@ typedef long long mrn_axis_m2 __attribute__((vector_size(16)));
 static inline __attribute__((always_inline)) int KNAME(axes_quadratic_2d)(const mrn_grid *g,
                                                                           const mrn_kernel_boundary mode,
                                                                           const double *x, KNAME(axes) *a) {
-  const double inv_cell = g->inv_cell, cell = g->cell;
   const mrn_axis_v2 xd = {x[0], x[1]}, origin = {g->origin[0], g->origin[1]};
-  const mrn_axis_v2 xi = (xd - origin) * inv_cell, h = xi - 0.5;
+  const mrn_axis_v2 xi = (xd - origin) * g->inv_cell, h = xi - 0.5;
   const mrn_axis_v2 b0 = {floor(h[0]), floor(h[1])}; /* (double)base, exactly */
-  const int base[2] = {(int)b0[0], (int)b0[1]};
   const mrn_axis_v2 d0 = xi - b0;
-  mrn_axis_v2 w0, w1, w2, dw0, dw1, dw2;
-  MRN_QUADRATIC_BSPLINE(d0, w0, w1, w2, dw0, dw1, dw2);
-  dw0 *= inv_cell;
-  dw1 *= inv_cell;
-  dw2 *= inv_cell;
-  const mrn_axis_v2 o0 = origin + b0 * cell - xd, o1 = origin + (b0 + 1.0) * cell - xd,
-                    o2 = origin + (b0 + 2.0) * cell - xd;
-  for (int d = 0; d < 2; d++) {
-    a->w[d][0] = w0[d];
-    a->w[d][1] = w1[d];
-    a->w[d][2] = w2[d];
-    a->w[d][3] = 0.0;
-    a->dw[d][0] = dw0[d];
-    a->dw[d][1] = dw1[d];
-    a->dw[d][2] = dw2[d];
-    a->dw[d][3] = 0.0;
-    a->off[d][0] = o0[d];
-    a->off[d][1] = o1[d];
-    a->off[d][2] = o2[d];
-    a->off[d][3] = 0.0;
-  }
-  if (mode != MRN_KERNEL_EXTENDED &&
-      ((base[0] < 0) | (base[1] < 0) | (base[0] + 2 > g->ncell[0]) | (base[1] + 2 > g->ncell[1])))
-    return 0;
-  a->node0 = (size_t)(base[0] + g->pad) * (size_t)g->stride[0] + (size_t)(base[1] + g->pad) * (size_t)g->stride[1];
-  return 1;
+  mrn_axis_v2 w[3], dw[3];
+  MRN_QUADRATIC_BSPLINE(d0, w[0], w[1], w[2], dw[0], dw[1], dw[2]);
+  return KNAME(axes_store3_2d)(g, mode, xd, origin, b0, w, dw, a);
 }
 
 /* The linear stencil's axes of a 2D particle, both axes at once: the
@@ -298,30 +298,14 @@ static inline __attribute__((always_inline)) int KNAME(axes_gimp_2d)(const mrn_g
                                                                      const double *x, double vol0, KNAME(axes) *a) {
   double inv_lp;
   const double lp = KNAME(gimp_half_width)(g, vol0, &inv_lp);
-  const double inv_cell = g->inv_cell, cell = g->cell;
   const mrn_axis_v2 lpv = {lp, lp};
   const mrn_axis_v2 xd = {x[0], x[1]}, origin = {g->origin[0], g->origin[1]};
-  const mrn_axis_v2 xi = (xd - origin) * inv_cell, h = xi - lp;
+  const mrn_axis_v2 xi = (xd - origin) * g->inv_cell, h = xi - lp;
   const mrn_axis_v2 b0 = {floor(h[0]), floor(h[1])}; /* (double)base, exactly */
-  const int base[2] = {(int)b0[0], (int)b0[1]};
   const mrn_axis_v2 c = (b0 + 1.0) - h;
-  mrn_axis_v2 w0, w1, w2, dw0, dw1, dw2;
-  MRN_GIMP_FACTORED(MRN_MIN_V2, c, lpv, inv_lp, w0, w1, w2, dw0, dw1, dw2);
-  dw0 *= inv_cell;
-  dw1 *= inv_cell;
-  dw2 *= inv_cell;
-  const mrn_axis_v2 o0 = origin + b0 * cell - xd, o1 = origin + (b0 + 1.0) * cell - xd,
-                    o2 = origin + (b0 + 2.0) * cell - xd;
-  for (int d = 0; d < 2; d++) {
-    *(mrn_axis_v4 *)a->w[d] = (mrn_axis_v4){w0[d], w1[d], w2[d], 0.0};
-    *(mrn_axis_v4 *)a->dw[d] = (mrn_axis_v4){dw0[d], dw1[d], dw2[d], 0.0};
-    *(mrn_axis_v4 *)a->off[d] = (mrn_axis_v4){o0[d], o1[d], o2[d], 0.0};
-  }
-  if (mode != MRN_KERNEL_EXTENDED &&
-      ((base[0] < 0) | (base[1] < 0) | (base[0] + 2 > g->ncell[0]) | (base[1] + 2 > g->ncell[1])))
-    return 0;
-  a->node0 = (size_t)(base[0] + g->pad) * (size_t)g->stride[0] + (size_t)(base[1] + g->pad) * (size_t)g->stride[1];
-  return 1;
+  mrn_axis_v2 w[3], dw[3];
+  MRN_GIMP_FACTORED(MRN_MIN_V2, c, lpv, inv_lp, w[0], w[1], w[2], dw[0], dw[1], dw[2]);
+  return KNAME(axes_store3_2d)(g, mode, xd, origin, b0, w, dw, a);
 }
 #endif
 
