@@ -153,7 +153,7 @@ static inline int mrn_shape_cubic_1d(double xi, double *w, double *dw) {
  * 1 - (r^2 + lp^2) / (2 lp) for |r| < lp, 1 - |r| up to 1 - lp, then
  * (1 + lp - |r|)^2 / (4 lp) up to 1 + lp. dw is d/dxi of the weight,
  * r = xi - node. The plain form, branch by branch: the reference the
- * factored form below is tested against (test_kernels_reference). */
+ * factored form below is tested against (tests/unit/test_kernels.c). */
 static inline int mrn_shape_gimp_1d_piecewise(double xi, double lp, double *w, double *dw) {
   int base = (int)floor(xi - lp);
   for (int k = 0; k < 3; k++) {
