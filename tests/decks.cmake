@@ -198,12 +198,14 @@ add_test(NAME python.vti_run
          COMMAND ${Python3_EXECUTABLE} ${CMAKE_CURRENT_SOURCE_DIR}/python/check_grid_run.py ${MORAINE_TEST_OUT}/series_output s 10 10)
 set_tests_properties(python.vti_run PROPERTIES DEPENDS deck.series_output LABELS python)
 
-# contact between bodies (solver/contact.h): two elastic disks collide and separate (momentum to
-# round-off, no overlap beyond a cell, energy kept), a block slides on another by Coulomb's law
+# contact between bodies (solver/contact.h): two elastic disks (and two balls in 3D) collide and
+# separate (momentum to round-off, no overlap beyond a cell, energy kept), a block slides on another
+# by Coulomb's law
 # (contact_disks_single: the single field, and bodies without a pair are labels, bit for bit)
 moraine_deck_test(contact_disks contact_disks.lua LABELS physics)
 moraine_deck_test(contact_disks_apic contact_disks.lua ARGS --set transfer=APIC --set energy_min=0.5 --set compare=true LABELS physics)
 moraine_deck_test(contact_disks_musl contact_disks.lua ARGS --set stress_update=MUSL LABELS physics)
+moraine_deck_test(contact_disks_3d contact_disks.lua ARGS --set dim=3 LABELS physics)
 moraine_deck_test(contact_slide contact_slide.lua ARGS --set transfer=APIC LABELS physics)
 moraine_deck_test(contact_slide_flip contact_slide.lua ARGS --set mu=0.2 LABELS physics)
 moraine_deck_test(contact_slide_frictionless contact_slide.lua ARGS --set mu=0 LABELS physics)

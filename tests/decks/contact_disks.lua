@@ -4,41 +4,50 @@
 -- E = 1000 Pa, nu = 0.3, rho = 1000 kg/m^3, dt = 1e-3 s, quadratic
 -- B-splines, USF. With contact = true each disk is a body and they meet
 -- through frictionless contact (solver/contact.h); with false they share one
--- velocity field, as without bodies.
---   moraine tests/decks/contact_disks.lua [--set contact=false] [--set transfer=APIC]
+-- velocity field, as without bodies. With dim = 3, two balls in the unit
+-- cube, centres (0.2, 0.2, 0.2) and (0.8, 0.8, 0.8), velocities
+-- +-(0.1, 0.1, 0.1) m/s, run to 4 s (they meet later along the longer
+-- diagonal).
+--   moraine tests/decks/contact_disks.lua [--set contact=false] [--set transfer=APIC] [--set dim=3]
 local T = dofile(mpm.deck_dir .. "/testlib.lua")
 local contact = mpm.param("contact", true)
 local transfer = mpm.param("transfer", "FLIP")
-local t_end = mpm.param("time", 3.0)
+local dim = mpm.param("dim", 2)
+local t_end = mpm.param("time", dim == 3 and 4.0 or 3.0)
 local rubber = mpm.material.linear_elastic{ density = 1000, E = 1000, nu = 0.3 }
 local h = 0.05
 
+-- a point or velocity with every component c
+local function diagonal(c) return dim == 3 and { c, c, c } or { c, c } end
+local region = dim == 3 and mpm.sphere or mpm.disk
+
 local function disks(body_a, body_b)
   local s = mpm.simulation{
-    dim = 2, grid = { origin = { 0, 0 }, size = { 1, 1 }, cell = h }, shape = "quadratic_bspline",
+    dim = dim, grid = { origin = diagonal(0), size = diagonal(1), cell = h }, shape = "quadratic_bspline",
     boundary = { all = "free" }, scheme = { transfer = transfer, stress_update = mpm.param("stress_update", "USF") },
     dt = { fixed = 1e-3 }, thermo = 0, diagnostics = false,
   }
-  s:add_particles(mpm.disk{ center = { 0.2, 0.2 }, radius = 0.2 },
-                  { material = rubber, velocity = { 0.1, 0.1 }, body = body_a })
-  s:add_particles(mpm.disk{ center = { 0.8, 0.8 }, radius = 0.2 },
-                  { material = rubber, velocity = { -0.1, -0.1 }, body = body_b })
+  s:add_particles(region{ center = diagonal(0.2), radius = 0.2 },
+                  { material = rubber, velocity = diagonal(0.1), body = body_a })
+  s:add_particles(region{ center = diagonal(0.8), radius = 0.2 },
+                  { material = rubber, velocity = diagonal(-0.1), body = body_b })
   return s
 end
 local sim = disks("a", "b")
 if contact then sim:add_contact{ bodies = { "a", "b" }, kind = "frictionless" } end
 
--- per body: mass, momentum along the line of centres (1, 1)/sqrt 2, and the
--- extreme positions along it (the front of a, the back of b)
+-- per body: mass, momentum along the line of centres (1, 1)/sqrt 2 (in 3D
+-- (1, 1, 1)/sqrt 3), and the extreme positions along it (the front of a,
+-- the back of b)
 local function bodies()
   local m, b = sim:field("mass"), sim:field("body")
   local r = { { m = 0, p = 0, front = -math.huge }, { m = 0, p = 0, front = math.huge } }
   for i = 1, #m do
     local q = sim:particle(i)
-    local s = (q.x[1] + q.x[2]) / math.sqrt(2)
+    local s = (q.x[1] + q.x[2] + (dim == 3 and q.x[3] or 0)) / math.sqrt(dim)
     local k = b[i] == 1 and 1 or 2
     r[k].m = r[k].m + m[i]
-    r[k].p = r[k].p + m[i] * (q.v[1] + q.v[2]) / math.sqrt(2)
+    r[k].p = r[k].p + m[i] * (q.v[1] + q.v[2] + (dim == 3 and q.v[3] or 0)) / math.sqrt(dim)
     r[k].front = k == 1 and math.max(r[k].front, s) or math.min(r[k].front, s)
   end
   return r
@@ -55,12 +64,15 @@ sim:run{ time = t_end }
 
 local d, r = sim:diagnostics(), bodies()
 local E = sim:energy().total
-print(string.format("contact_disks (%s, %s, contact %s): t = %.2f s, E/E0 = %.4f, W_contact = %.3g J/m, "
-                    .. "momentum (%.2e, %.2e), velocity of a along the line %.4f m/s, deepest overlap %.4f m "
-                    .. "(%.2f cells)", transfer, mpm.param("stress_update", "USF"), tostring(contact), sim:time(), E / E0,
-                    d.W_contact, d.momentum[1], d.momentum[2], r[1].p / r[1].m, overlap, overlap / h))
-T.check(math.abs(d.momentum[1]) < 1e-12 * math.abs(p0) and math.abs(d.momentum[2]) < 1e-12 * math.abs(p0),
-        "total momentum (%g, %g) is not zero to round-off", d.momentum[1], d.momentum[2])
+local pz = dim == 3 and d.momentum[3] or 0
+print(string.format("contact_disks (%dD, %s, %s, contact %s): t = %.2f s, E/E0 = %.4f, W_contact = %.3g %s, "
+                    .. "momentum (%.2e, %.2e, %.2e), velocity of a along the line %.4f m/s, deepest overlap %.4f m "
+                    .. "(%.2f cells)", dim, transfer, mpm.param("stress_update", "USF"), tostring(contact), sim:time(),
+                    E / E0, d.W_contact, dim == 3 and "J" or "J/m", d.momentum[1], d.momentum[2], pz, r[1].p / r[1].m,
+                    overlap, overlap / h))
+local worst_p = math.max(math.abs(d.momentum[1]), math.abs(d.momentum[2]), math.abs(pz))
+T.check(worst_p < 1e-12 * math.abs(p0), "total momentum (%g, %g, %g) is not zero to round-off", d.momentum[1],
+        d.momentum[2], pz)
 if contact then
   -- they bounced and moved apart: a moves back, a gap between the fronts
   T.check(r[1].p / r[1].m < -0.05, "disk a did not rebound: %g m/s along the line", r[1].p / r[1].m)
