@@ -206,6 +206,17 @@ moraine_deck_test(contact_disks contact_disks.lua LABELS physics)
 moraine_deck_test(contact_disks_apic contact_disks.lua ARGS --set transfer=APIC --set energy_min=0.5 --set compare=true LABELS physics)
 moraine_deck_test(contact_disks_musl contact_disks.lua ARGS --set stress_update=MUSL LABELS physics)
 moraine_deck_test(contact_disks_3d contact_disks.lua ARGS --set dim=3 LABELS physics)
+# the same state on 1 and 2 threads (the bodies are scattered side by side, each in particle order):
+# 6,400 particles, enough for the loops to take both threads; the checkpoints compared object by object
+foreach(threads 1 2)
+  moraine_deck_test(contact_disks_threads${threads} contact_disks.lua
+                    ARGS --threads ${threads} --set cell=0.0125 --set save=true LABELS physics)
+  set_tests_properties(deck.contact_disks_threads${threads} PROPERTIES FIXTURES_SETUP contact_threads)
+endforeach()
+add_test(NAME python.contact_threads
+         COMMAND ${Python3_EXECUTABLE} ${CMAKE_SOURCE_DIR}/scripts/bitwise/compare.py
+                 ${MORAINE_TEST_OUT}/contact_disks_threads1 ${MORAINE_TEST_OUT}/contact_disks_threads2)
+set_tests_properties(python.contact_threads PROPERTIES LABELS python FIXTURES_REQUIRED contact_threads)
 moraine_deck_test(contact_slide contact_slide.lua ARGS --set transfer=APIC LABELS physics)
 moraine_deck_test(contact_slide_flip contact_slide.lua ARGS --set mu=0.2 LABELS physics)
 moraine_deck_test(contact_slide_frictionless contact_slide.lua ARGS --set mu=0 LABELS physics)

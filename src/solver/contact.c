@@ -135,30 +135,41 @@ static inline int body_of(const mrn_particles *ps, const mrn_user_field *uf, siz
   return (int)ps->user[p * (size_t)ps->user_stride + (size_t)uf->offset];
 }
 
-/* P2G of each body's particles into its view (mass, momentum and the mass
+/* P2G of body b's particles into its view (mass, momentum and the mass
  * gradient g_i = sum_p m_p grad N_i(x_p) when `momentum`; force when
- * `force`). The arrays are cleared whole: they are small beside the
- * particles, and the active spans of the grid cover them. */
-static void bodies_p2g(mrn_sim *sim, const mrn_transfer *tr, int momentum, int force) {
+ * `force`), in particle order. */
+static void body_p2g(const mrn_sim *sim, const mrn_transfer *tr, int b, int momentum, int force) {
   mrn_contact *c = sim->contact;
   const mrn_particles *ps = &sim->particles;
   const mrn_user_field *uf = mrn_particles_user_field(ps, MRN_BODY_FIELD);
-  const size_t n = c->nnode * (size_t)c->nbodies;
   const int dim = sim->dim;
-  if (momentum) memset(c->mass, 0, 4 * n * sizeof(double)), memset(c->grad, 0, 3 * n * sizeof(double));
-  if (force) memset(c->force, 0, 3 * n * sizeof(double));
+  double *grad = c->grad + 3 * c->nnode * (size_t)b;
   mrn_transfer t = *tr;
+  t.grid = &c->view[b];
   mrn_ref_stencil s;
   for (size_t p = 0; p < ps->n; p++) {
-    const int b = body_of(ps, uf, p);
-    t.grid = &c->view[b];
+    if (body_of(ps, uf, p) != b) continue;
     mrn_ref_stencil_build(&t, p, &s);
     mrn_ref_p2g_add(&t, p, &s, momentum, force);
     if (!momentum) continue;
-    double *grad = c->grad + 3 * c->nnode * (size_t)b;
     for (int k = 0; k < s.count; k++)
       for (int d = 0; d < dim; d++) grad[3 * s.node[k] + d] += ps->mass[p] * s.dN[dim * k + d];
   }
+}
+
+/* P2G of every body into its view. Each body has its own arrays, so the
+ * bodies are scattered on threads side by side, each in particle order:
+ * the sums are those of one thread, whatever the thread count. The arrays
+ * are cleared whole: they are small beside the particles, and the active
+ * spans of the grid cover them. */
+static void bodies_p2g(mrn_sim *sim, const mrn_transfer *tr, int momentum, int force) {
+  mrn_contact *c = sim->contact;
+  const size_t n = c->nnode * (size_t)c->nbodies;
+  if (momentum) memset(c->mass, 0, 4 * n * sizeof(double)), memset(c->grad, 0, 3 * n * sizeof(double));
+  if (force) memset(c->force, 0, 3 * n * sizeof(double));
+  const int nb = c->nbodies;
+#pragma omp parallel for schedule(dynamic, 1) if (sim->particles.n > MRN_OMP_MIN_ITEMS)
+  for (int b = 0; b < nb; b++) body_p2g(sim, tr, b, momentum, force);
 }
 
 /* ---- the contact law at the nodes --------------------------------------------------- */

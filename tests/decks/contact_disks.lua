@@ -8,6 +8,8 @@
 -- cube, centres (0.2, 0.2, 0.2) and (0.8, 0.8, 0.8), velocities
 -- +-(0.1, 0.1, 0.1) m/s, run to 4 s (they meet later along the longer
 -- diagonal).
+-- --set cell=H changes the cell size (0.05 m), --set save=true writes the
+-- final state to state.h5.
 --   moraine tests/decks/contact_disks.lua [--set contact=false] [--set transfer=APIC] [--set dim=3]
 local T = dofile(mpm.deck_dir .. "/testlib.lua")
 local contact = mpm.param("contact", true)
@@ -15,7 +17,7 @@ local transfer = mpm.param("transfer", "FLIP")
 local dim = mpm.param("dim", 2)
 local t_end = mpm.param("time", dim == 3 and 4.0 or 3.0)
 local rubber = mpm.material.linear_elastic{ density = 1000, E = 1000, nu = 0.3 }
-local h = 0.05
+local h = mpm.param("cell", 0.05)
 
 -- a point or velocity with every component c
 local function diagonal(c) return dim == 3 and { c, c, c } or { c, c } end
@@ -61,6 +63,8 @@ sim:hook{ every_steps = mpm.param("verbose", false) and 100 or 10, fn = function
   if mpm.param("verbose", false) then print(sim:time(), r[1].p / r[1].m, r[1].front, r[2].front) end
 end }
 sim:run{ time = t_end }
+-- the state for a comparison between runs (e.g. on 1 and 2 threads)
+if mpm.param("save", false) then sim:save("state.h5") end
 
 local d, r = sim:diagnostics(), bodies()
 local E = sim:energy().total
