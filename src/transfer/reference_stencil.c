@@ -107,18 +107,21 @@ void mrn_ref_tensor_stencil(const mrn_transfer *t, size_t p, const int n[3], int
   const int dim = t->dim;
   const double *x = t->particles->x + 3 * p;
   s->count = n[0] * n[1] * n[2];
-  for (int c = 0; c < s->count; c++) {
-    const int idx[3] = {c % n[0], c / n[0] % n[1], c / (n[0] * n[1])};
-    double N = 1.0;
-    for (int d = 0; d < dim; d++) N *= w[d * stride + idx[d]];
-    for (int d = 0; d < dim; d++) {
-      double dN = dw[d * stride + idx[d]] * g->inv_cell;
-      for (int e = 0; e < dim; e++)
-        if (e != d) dN *= w[e * stride + idx[e]];
-      s->dN[dim * c + d] = dN;
-      s->off[dim * c + d] = g->origin[d] + at[d * stride + idx[d]] * g->cell - x[d];
-    }
-    s->N[c] = N;
-    s->node[c] = mrn_grid_index(g, node[idx[0]], node[stride + idx[1]], dim == 3 ? node[2 * stride + idx[2]] : 0);
-  }
+  int c = 0; /* node by node, x fastest */
+  for (int iz = 0; iz < n[2]; iz++)
+    for (int iy = 0; iy < n[1]; iy++)
+      for (int ix = 0; ix < n[0]; ix++, c++) {
+        const int idx[3] = {ix, iy, iz};
+        double N = 1.0;
+        for (int d = 0; d < dim; d++) N *= w[d * stride + idx[d]];
+        for (int d = 0; d < dim; d++) {
+          double dN = dw[d * stride + idx[d]] * g->inv_cell;
+          for (int e = 0; e < dim; e++)
+            if (e != d) dN *= w[e * stride + idx[e]];
+          s->dN[dim * c + d] = dN;
+          s->off[dim * c + d] = g->origin[d] + at[d * stride + idx[d]] * g->cell - x[d];
+        }
+        s->N[c] = N;
+        s->node[c] = mrn_grid_index(g, node[ix], node[stride + iy], dim == 3 ? node[2 * stride + iz] : 0);
+      }
 }
