@@ -231,10 +231,19 @@ static inline __attribute__((always_inline)) int KNAME(axes_store3_2d)(
   const mrn_axis_v2 dw0 = dw[0] * inv_cell, dw1 = dw[1] * inv_cell, dw2 = dw[2] * inv_cell;
   const mrn_axis_v2 o0 = origin + b0 * cell - xd, o1 = origin + (b0 + 1.0) * cell - xd,
                     o2 = origin + (b0 + 2.0) * cell - xd;
-  for (int d = 0; d < 2; d++) {
-    *(mrn_axis_v4 *)a->w[d] = (mrn_axis_v4){w[0][d], w[1][d], w[2][d], 0.0};
-    *(mrn_axis_v4 *)a->dw[d] = (mrn_axis_v4){dw0[d], dw1[d], dw2[d], 0.0};
-    *(mrn_axis_v4 *)a->off[d] = (mrn_axis_v4){o0[d], o1[d], o2[d], 0.0};
+  for (int d = 0; d < 2; d++) { /* lane by lane: fewer shuffles than building 4-wide vectors */
+    a->w[d][0] = w[0][d];
+    a->w[d][1] = w[1][d];
+    a->w[d][2] = w[2][d];
+    a->w[d][3] = 0.0;
+    a->dw[d][0] = dw0[d];
+    a->dw[d][1] = dw1[d];
+    a->dw[d][2] = dw2[d];
+    a->dw[d][3] = 0.0;
+    a->off[d][0] = o0[d];
+    a->off[d][1] = o1[d];
+    a->off[d][2] = o2[d];
+    a->off[d][3] = 0.0;
   }
   if (mode != MRN_KERNEL_EXTENDED &&
       ((base[0] < 0) | (base[1] < 0) | (base[0] + 2 > g->ncell[0]) | (base[1] + 2 > g->ncell[1])))
