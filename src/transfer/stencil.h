@@ -255,8 +255,7 @@ static inline __attribute__((always_inline)) int KNAME(axes_store3_2d)(
 /* The quadratic B-spline's axes of a 2D particle, both axes at once as the
  * lanes of 2-wide vectors: the same operations as the loop of axes_build
  * (MRN_QUADRATIC_BSPLINE, as mrn_shape_quadratic_1d per axis), so the same
- * bits. The fourth lane of each axis holds zeros: group_sum (kernels_impl.h)
- * reads the x factors as 4-wide vectors. */
+ * bits; stored by axes_store3_2d. */
 static inline __attribute__((always_inline)) int KNAME(axes_quadratic_2d)(const mrn_grid *g,
                                                                           const mrn_kernel_boundary mode,
                                                                           const double *x, KNAME(axes) *a) {
@@ -301,7 +300,7 @@ static inline __attribute__((always_inline)) int KNAME(axes_linear_2d)(const mrn
 
 /* uGIMP's axes of a 2D particle, both axes at once as the lanes of 2-wide
  * vectors: the operations of mrn_shape_gimp_1d per axis (MRN_GIMP_FACTORED),
- * so the same bits. The fourth lane of each axis holds zeros. */
+ * so the same bits; stored by axes_store3_2d. */
 #define MRN_MIN_V2(a, b) ((mrn_axis_v2)(((mrn_axis_m2)(a) & ((a) < (b))) | ((mrn_axis_m2)(b) & ~((a) < (b)))))
 static inline __attribute__((always_inline)) int KNAME(axes_gimp_2d)(const mrn_grid *g, const mrn_kernel_boundary mode,
                                                                      const double *x, double vol0, KNAME(axes) *a) {
