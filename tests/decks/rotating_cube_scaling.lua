@@ -30,13 +30,12 @@ local function loss_rate(name, a_tau, spin)
   local sim = C.throw{ transfer = "APIC", a_tau = a_tau, spin = spin, size = math.max(size, 8),
                        diagnostics = "scaling_" .. name .. ".csv", diagnostics_every = 200 }
   local L0 = sim:diagnostics().L_centroid
-  local n, st, sy, stt, sty = 0, 0, 0, 0, 0
+  local ts, ys = {}, {}
   for k = 1, samples do
     sim:run{ time = duration / samples } -- advances by that much
-    local t, y = sim:time(), 100 * sim:diagnostics().L_centroid / L0
-    n, st, sy, stt, sty = n + 1, st + t, sy + y, stt + t * t, sty + t * y
+    ts[k], ys[k] = sim:time(), 100 * sim:diagnostics().L_centroid / L0
   end
-  local slope = (n * sty - st * sy) / (n * stt - st * st)
+  local slope = T.slope(ts, ys)
   local kept = sim:diagnostics().L_centroid / L0
   print(string.format("rotating cube APIC %-5s a_tau %.3f, omega %.3f rad/s: loss rate %.4g %%/s (fit), " ..
                       "%.4g %%/s (end points), L/L0 = %.8f after %.0f s",

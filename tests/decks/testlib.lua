@@ -50,6 +50,15 @@ function T.list(s)
   return t
 end
 
+--- the least-squares slope of ys against xs (lists of equal length, >= 2)
+function T.slope(xs, ys)
+  local n, sx, sy, sxx, sxy = #xs, 0, 0, 0, 0
+  for i = 1, n do
+    sx, sy, sxx, sxy = sx + xs[i], sy + ys[i], sxx + xs[i] * xs[i], sxy + xs[i] * ys[i]
+  end
+  return (n * sxy - sx * sy) / (n * sxx - sx * sx)
+end
+
 --- index of the particle nearest the point x (2 or 3 numbers)
 function T.nearest(sim, x)
   local best, index = math.huge, nil
