@@ -8,12 +8,12 @@
 -- -mu N times the distance slid (N = m g cos theta), and W_MPM stays small.
 -- The relative velocity is sampled every `sample` seconds from t1 to t1 + t2
 -- and a is its least-squares slope: the sudden load sets the lower block
--- vibrating in shear (period 4 H / c_s, about 13 ms), which PIC damps and
--- FLIP keeps, so the velocity difference of two instants would carry the
+-- vibrating in shear (period 4 H / c_s, about 13 ms), which the PIC-like
+-- updates damp and FLIP keeps, so the velocity difference of two instants would carry the
 -- vibration's phase. The distance slid is the trapezoidal sum of the samples.
 -- With theta = 0 the block settles (damped) on the other and keeps its
--- lithostatic mean stress (a first-order error of the contact rows inside
--- the block: run it with --set cell=0.025, the block 8 cells high).
+-- lithostatic mean stress (less an error of the cell size, from the contact
+-- rows inside the block: --set cell=0.025 makes the block 8 cells high).
 --   moraine tests/decks/contact_slide.lua [--set mu=0.7] [--set transfer=APIC] [--set cell=0.025]
 local T = dofile(mpm.deck_dir .. "/testlib.lua")
 local mu = mpm.param("mu", 0.3)
