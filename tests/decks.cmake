@@ -48,6 +48,8 @@ moraine_deck_test(friction_3d friction.lua ARGS --set dim=3 LABELS slow)
 moraine_deck_test(walls walls.lua)
 moraine_deck_test(walls_restart walls_restart.lua)
 moraine_deck_test(walls_3d walls_3d.lua LABELS slow)
+moraine_deck_test(walls_rest_long walls.lua ARGS --set only=rest --set length=2.4 --set rest_cell=0.0125 --set average=0.6
+                  --set strategies=FLIP,APIC LABELS slow)
 # a disk rolling (gap_check) and sliding down an inclined plane: a against the closed forms
 moraine_deck_test(rolling_disk rolling_disk.lua)
 # mesh walls from STL files: a cube mesh as the box wall, an incline, binary = ASCII, a checkpoint
