@@ -20,7 +20,8 @@
 --          --set rest_cell=h (m) and --set average=s (the averaging window):
 --          a block long enough for its middle to be the infinite slope, on
 --          cells fine enough, has both stresses there within 3 % (asserted),
---          e.g. length 2.4 (twelve heights), rest_cell 0.0125, average 0.6.
+--          e.g. length 2.4 (twelve heights), rest_cell 0.0125, average 0.6;
+--          --set face=true puts it on a friction face (gravity tilted).
 -- face     a friction plane through a row of nodes (gravity tilted by 35 deg,
 --          mu = 0.3, 2000 steps) slides as the friction face, to 1e-6.
 -- plate    a plate wall (velocity 0.05 m/s) pushes a block along a slip floor
@@ -37,22 +38,30 @@ local L, H = 0.4, 0.2
 local only = mpm.param("only", "")
 local rest_length, rest_cell = mpm.param("length", 1.2), mpm.param("rest_cell", cell)
 local rest_average = mpm.param("average", 0.2) -- s, the window the stresses and the reaction are averaged over
+local rest_face = mpm.param("face", false) -- the block at rest on a friction face, gravity tilted, instead
 
 -- the grid holds the incline's blocks up to rest_length long
-local function simulation(scheme, gravity, h)
+local function simulation(scheme, gravity, h, bottom)
   local width = math.max(2.0, math.ceil(0.5 + rest_length))
   return mpm.simulation{ dim = 2, grid = { size = { width, 1.6 }, cell = h or cell }, shape = "quadratic_bspline",
-                         scheme = scheme, gravity = gravity, boundary = { all = "slip", top = "free" },
+                         scheme = scheme, gravity = gravity, boundary = { all = "slip", top = "free", bottom = bottom },
                          dt = { a_tau = 0.2 }, diagnostics = false, thermo = 0, progress = false }
 end
 
--- the block on a plane through p at theta: n out of the wall, t downhill
+-- the block on a plane through p at theta: n out of the wall, t downhill;
+-- with o.face on the bottom friction face, gravity tilted by theta
 local function incline(o)
   local L = o.length or L
   local th = math.rad(o.theta)
-  local n, t, p = { math.sin(th), math.cos(th) }, { math.cos(th), -math.sin(th) }, { 0.1, 1.3 }
-  local sim = simulation(o.strategy, { 0, -g }, o.cell)
-  sim:add_wall{ name = "incline", shape = "plane", point = p, normal = n, kind = "friction", mu = o.mu }
+  local n, t, p, sim
+  if o.face then
+    n, t, p = { 0, 1 }, { 1, 0 }, { 0.1, 0 }
+    sim = simulation(o.strategy, { g * math.sin(th), -g * math.cos(th) }, o.cell, { "friction", mu = o.mu })
+  else
+    n, t, p = { math.sin(th), math.cos(th) }, { math.cos(th), -math.sin(th) }, { 0.1, 1.3 }
+    sim = simulation(o.strategy, { 0, -g }, o.cell)
+    sim:add_wall{ name = "incline", shape = "plane", point = p, normal = n, kind = "friction", mu = o.mu }
+  end
   local function at(s, h) return { p[1] + s * t[1] + h * n[1], p[2] + s * t[2] + h * n[2] } end
   -- the infinite slope: sigma_nn = -rho g cos(theta) (H - h), sigma_nt = rho g sin(theta) (H - h)
   local function slope(x, y)
@@ -112,7 +121,7 @@ end
 -- the block that sticks: its creep, the plane's reaction and the stresses
 local function at_rest(strategy)
   local o = { strategy = strategy, theta = 25, mu = 0.8, time = 0.4, stressed = true, length = rest_length,
-              cell = rest_cell }
+              cell = rest_cell, face = rest_face }
   local sim, s, n, t, p = incline(o)
   local free = 0.5 * g * math.sin(math.rad(o.theta)) * o.time ^ 2
   worst.creep = math.max(worst.creep, math.abs(s) / free)
@@ -120,32 +129,36 @@ local function at_rest(strategy)
           free)
   -- the stress averaged over `average` s more (the block vibrates,
   -- undamped), and the plane's mean reaction then against the weight
-  local sum, J0 = { 0, 0, 0, 0 }, sim:wall("incline").impulse
+  local sum, J0 = { 0, 0, 0, 0 }, not o.face and sim:wall("incline").impulse
   for _ = 1, math.floor(rest_average / 0.01 + 0.5) do
     sim:run{ time = 0.01 }
     middle_stress(o, sim, n, t, p, sum)
   end
-  local J1, W = sim:wall("incline").impulse, rho * o.length * H * g
-  local F = { (J1[1] - J0[1]) / rest_average, (J1[2] - J0[2]) / rest_average }
-  local th = math.rad(o.theta)
-  local fn, ft = -(F[1] * n[1] + F[2] * n[2]), F[1] * t[1] + F[2] * t[2]
-  local rn, rt = math.abs(fn / (W * math.cos(th)) - 1), math.abs(ft / (W * math.sin(th)) - 1)
-  worst.reaction = math.max(worst.reaction, rn, rt)
-  T.check(rn <= 0.03 and rt <= 0.03, "%s: mean reaction %.4g N/m normal, %.4g along (weight: %.4g, %.4g)", label(o),
-          fn, ft, W * math.cos(th), W * math.sin(th))
+  if not o.face then
+    local J1, W = sim:wall("incline").impulse, rho * o.length * H * g
+    local F = { (J1[1] - J0[1]) / rest_average, (J1[2] - J0[2]) / rest_average }
+    local th = math.rad(o.theta)
+    local fn, ft = -(F[1] * n[1] + F[2] * n[2]), F[1] * t[1] + F[2] * t[2]
+    local rn, rt = math.abs(fn / (W * math.cos(th)) - 1), math.abs(ft / (W * math.sin(th)) - 1)
+    worst.reaction = math.max(worst.reaction, rn, rt)
+    T.check(rn <= 0.03 and rt <= 0.03, "%s: mean reaction %.4g N/m normal, %.4g along (weight: %.4g, %.4g)",
+            label(o), fn, ft, W * math.cos(th), W * math.sin(th))
+  end
   local enn, ent = math.abs(sum[1] / sum[3] - 1), math.abs(sum[2] / sum[4] - 1)
   worst.stress = math.max(worst.stress, enn)
   worst.shear = math.max(worst.shear, ent)
-  print(string.format("%s, block %g m long on %g m cells, at rest: sigma_nn %+.2f %% off the lithostatic, "
+  print(string.format("%s, block %g m long on %g m cells (%s), at rest: sigma_nn %+.2f %% off the lithostatic, "
                       .. "sigma_nt %+.2f %% off the infinite slope's", label(o), o.length, o.cell,
+                      o.face and "friction face" or "wall",
                       100 * (sum[1] / sum[3] - 1), 100 * (sum[2] / sum[4] - 1)))
   T.check(enn <= 0.03, "%s: mean sigma_nn at mid-height %.4g Pa, lithostatic %.4g", label(o), sum[1], sum[3])
 end
 
 if only == "rest" then
   for _, strategy in ipairs(strategies) do at_rest(strategy) end
-  local what = string.format("block %g m long (%g heights) on %g m cells, at rest: mean %%s at mid-height of the "
-                             .. "middle third off the %%s", rest_length, rest_length / H, rest_cell)
+  local what = string.format("block %g m long (%g heights) on %g m cells%s, at rest: mean %%s at mid-height of the "
+                             .. "middle third off the %%s", rest_length, rest_length / H, rest_cell,
+                             rest_face and " on a friction face" or "")
   T.expect{ id = "walls.rest.normal", value = 100 * worst.stress, max = 3, unit = "%",
             what = string.format(what, "sigma_nn", "lithostatic") }
   T.expect{ id = "walls.rest.shear", value = 100 * worst.shear, max = 3, unit = "%",
