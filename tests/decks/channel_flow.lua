@@ -22,13 +22,11 @@ local transfers = list(mpm.param("transfers", "APIC,FLIP0.99"))
 local fractions = { 0.05, 0.15, 0.5 }
 local fluid = mpm.material.newtonian{ density = rho, viscosity = mu, sound_speed = c }
 
-local function slope(hs, es)
-  local n, sx, sy, sxx, sxy = #hs, 0, 0, 0, 0
-  for i = 1, n do
-    local lx, ly = math.log(hs[i]), math.log(es[i])
-    sx, sy, sxx, sxy = sx + lx, sy + ly, sxx + lx * lx, sxy + lx * ly
-  end
-  return (n * sxy - sx * sy) / (n * sxx - sx * sx)
+-- the least-squares slope of log e against log h: the convergence order
+local function log_slope(hs, es)
+  local lx, ly = {}, {}
+  for i = 1, #hs do lx[i], ly[i] = math.log(hs[i]), math.log(es[i]) end
+  return T.slope(lx, ly)
 end
 
 --- M.study{ name, series = u(y, t), scale = function(t) the error's reference speed,
@@ -78,7 +76,7 @@ function M.study(case)
       T.expect{ id = string.format("%s.%s.E_N%d", case.name, transfer, N), what = string.format("%s N = %d: E(h)", transfer, N),
                 value = es[i], detail = true }
     end
-    local order = slope(hs, es)
+    local order = log_slope(hs, es)
     local shown = {}
     for i, e in ipairs(es) do shown[i] = string.format("%.3e", e) end
     print(string.format("%s %-8s convergence order %.2f over N = %s (E = %s)", case.name, transfer, order,

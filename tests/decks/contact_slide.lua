@@ -49,10 +49,9 @@ end
 
 sim:run{ time = mpm.param("t1", 0.1) }
 local W1 = sim:diagnostics().W_contact
-local ts, vs, m = {}, {}, nil
+local ts, vs = {}, {}
 local function sample()
-  local v, w
-  v, w, m = state()
+  local v, w = state()
   ts[#ts + 1], vs[#vs + 1] = sim:time(), v - w
 end
 sample()
@@ -61,7 +60,7 @@ for _ = 1, math.floor(t2 / sample_dt + 0.5) do
   sim:run{ time = sample_dt }
   sample()
 end
-local d = sim:diagnostics()
+local d, m = sim:diagnostics(), select(3, state())
 local a = T.slope(ts, vs)
 local expected = math.max(0, g * (math.sin(theta) - mu * math.cos(theta)))
 -- the friction work over the samples: mu N times the relative distance slid
