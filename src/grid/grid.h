@@ -11,6 +11,8 @@
 #include <stddef.h>
 
 #define MRN_GRID_PAD 2
+/* the bit of grid.contact above the six face bits (grid/boundary.h) */
+#define MRN_GRID_BODIES_HELD (1u << 6)
 
 typedef struct mrn_grid {
   int dim;
@@ -32,8 +34,10 @@ typedef struct mrn_grid {
   double *vel_star; /* 3n XPIC(m) smoothed velocity V* (see transfer/xpic.c) */
   double *work;     /* 3n scratch for the XPIC iterations */
   /* n: at the face node of each column of a friction face, bit 1 << face set
-   * when the column ended the last step in contact (grid/boundary.c); kept
-   * from step to step, saved in checkpoints */
+   * when the column ended the last step in contact (grid/boundary.c); at a
+   * node two bodies share, MRN_GRID_BODIES_HELD when the contact between them
+   * acted there at the end of the last step (solver/contact.c); kept from step
+   * to step, saved in checkpoints */
   unsigned char *contact;
   /* n: at the face nodes of friction faces, bit 1 << face set when the
    * material touches the face there (mrn_boundary_touch, each step) */

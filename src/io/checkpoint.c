@@ -95,8 +95,8 @@ static void save_simulation(mrn_h5w *w, const mrn_sim *sim) {
   H5Gclose(g);
 }
 
-/* the friction faces' contact states (grid.contact) as rows (node, bits),
- * for the nodes where any bit is set */
+/* the contact states of the friction faces and the bodies (grid.contact) as
+ * rows (node, bits), for the nodes where any bit is set */
 static void save_contacts(mrn_h5w *w, hid_t g, const mrn_grid *grid) {
   size_t count = 0;
   for (size_t n = 0; n < grid->n; n++) count += grid->contact[n] != 0;
@@ -113,7 +113,7 @@ static void save_contacts(mrn_h5w *w, hid_t g, const mrn_grid *grid) {
     }
   mrn_h5w_int64(w, g, "contact_count", (int64_t)count);
   mrn_h5w_dataset(w, g, "contact", H5T_NATIVE_INT64, rows, count, 2, "",
-                  "friction-face contacts held at the end of the last step: node index, bits 1 << face");
+                  "contacts held at the end of the last step: node index, bits 1 << face (friction faces) and 64 (bodies)");
   free(rows);
 }
 

@@ -180,11 +180,12 @@ static void bodies_p2g(mrn_sim *sim, const mrn_transfer *tr, int momentum, int f
  * g_b = sum_p m_p grad N_i(x_p) over b's particles, which points from b
  * towards the node: out of b. b approaches when its velocity relative to vcm has a
  * positive component dn along it. Then dn is removed and friction takes
- * at most mu dn off the tangential part (all of it: stick). A bonded pair
- * takes vcm. With two bodies the normals are opposite, so the changes
- * conserve the node's momentum. */
+ * at most mu dn off the tangential part (all of it: stick). Moving apart,
+ * the share `keep` of dn is removed (a node held since the last step, in V;
+ * see contact_apply). A bonded pair takes vcm. With two bodies the normals
+ * are opposite, so the changes conserve the node's momentum. */
 static void body_change(const mrn_contact *c, size_t i, const double *vel, const int *list, int count, int k,
-                        const double vcm[3], int with_friction, double dv[3]) {
+                        const double vcm[3], double keep, double dv[3]) {
   const size_t n = c->nnode;
   const int b = list[k];
   int other = -1;
@@ -208,23 +209,35 @@ static void body_change(const mrn_contact *c, size_t i, const double *vel, const
   on = sqrt(on);
   double dn = 0.0, t[3], tn = 0.0;
   for (int d = 0; d < 3; d++) o[d] /= on, dn += rel[d] * o[d];
-  if (!(dn > 0.0)) return; /* moving apart, or no relative motion: free */
+  if (!(dn > 0.0)) { /* moving apart, or no relative motion: free, but for the held part */
+    if (keep > 0.0)
+      for (int d = 0; d < 3; d++) dv[d] = -keep * dn * o[d];
+    return;
+  }
   for (int d = 0; d < 3; d++) t[d] = rel[d] - dn * o[d], tn += t[d] * t[d];
   tn = sqrt(tn);
-  const double slip = !with_friction ? 0.0 : tn > 0.0 ? fmin(law->mu * dn, tn) / tn : 0.0;
+  const double slip = tn > 0.0 ? fmin(law->mu * dn, tn) / tn : 0.0;
   for (int d = 0; d < 3; d++) dv[d] = -dn * o[d] - slip * t[d];
 }
 
 /* The contact law on every node two or more bodies share, on their
- * velocities V or V~ (`with_friction` 0: normal only).
+ * velocities V (`decide` 0) or V~ (`decide` 1).
+ * On V~ it decides the contacts: a node where the law changed a body's
+ * velocity gets MRN_GRID_BODIES_HELD in grid.contact, every other loses it.
+ * On V, bodies moving apart at a node so marked lose the share `keep` of
+ * their normal velocity relative to the node's centre of mass (as the faces
+ * hold V where they ended the last step in contact).
  * Returns the frictional work sum_b m_b dV_b . (V_b - V_cm) after the
  * change (000, Eq. 66, in the frame of the node's centre of mass), of the
  * nodes whose work this process books (mrn_grid_owns). */
-static double contact_apply(mrn_sim *sim, double *vel, int with_friction) {
+static double contact_apply(mrn_sim *sim, double *vel, int decide, double keep) {
   const mrn_contact *c = sim->contact;
   const size_t n = c->nnode;
+  unsigned char *held = sim->grid.contact;
   const mrn_node_ranges r = mrn_grid_active_ranges(&sim->grid);
   double work = 0.0;
+  if (decide)
+    for (size_t i = 0; i < n; i++) held[i] &= (unsigned char)~MRN_GRID_BODIES_HELD;
   for (long k = 0; k < r.count; k++)
     for (long i = r.lo[k]; i < r.hi[k]; i++) {
       int list[MRN_MAX_BODIES], count = 0;
@@ -238,16 +251,20 @@ static double contact_apply(mrn_sim *sim, double *vel, int with_friction) {
       }
       if (count < 2) continue;
       for (int d = 0; d < 3; d++) vcm[d] /= M;
-      for (int j = 0; j < count; j++) body_change(c, (size_t)i, vel, list, count, j, vcm, with_friction, dv[j]);
+      const double kept = !decide && (held[i] & MRN_GRID_BODIES_HELD) ? keep : 0.0;
+      int changed = 0;
+      for (int j = 0; j < count; j++) body_change(c, (size_t)i, vel, list, count, j, vcm, kept, dv[j]);
       for (int j = 0; j < count; j++) {
         double *v = vel + 3 * (n * list[j] + i);
         const double m = c->mass[n * list[j] + i];
-        const int books = with_friction && mrn_grid_owns(&sim->grid, i); /* once over the processes */
+        const int books = mrn_grid_owns(&sim->grid, i); /* once over the processes */
         for (int d = 0; d < 3; d++) {
+          changed |= dv[j][d] != 0.0;
           v[d] += dv[j][d];
           if (books) work += m * dv[j][d] * (v[d] - vcm[d]);
         }
       }
+      if (decide && changed) held[i] |= MRN_GRID_BODIES_HELD;
     }
   return work;
 }
@@ -265,19 +282,25 @@ static void book_work(mrn_sim *sim, double work) {
 /* V_b of every body with its face conditions, then the contact law with
  * friction: the normal impulse a body gets here is part of what holds it,
  * so Coulomb bounds its tangential part too. Its work reaches the
- * particles' momentum in the share the velocity update takes of V (none
- * for FLIP, which takes V~ - V). */
+ * particles' momentum in the share s the velocity update takes of V (none
+ * for FLIP, which takes V~ - V). A node in contact at the end of the last
+ * step keeps the share 1 - s of its hold while its bodies move apart in V:
+ * FLIP's V shows a separation the particles remember, not one the grid made;
+ * the stress update would take it, and the impulse with which V~ undoes it
+ * would do work on it (doc/numerics.md, "Contact between bodies"). */
 static void bodies_velocity(mrn_sim *sim) {
   mrn_contact *c = sim->contact;
+  const double share = mrn_hold_share(&sim->scheme);
   for (int b = 0; b < c->nbodies; b++) mrn_grid_velocity_on(sim, &c->view[b]);
-  book_work(sim, mrn_hold_share(&sim->scheme) * contact_apply(sim, c->vel, 1));
+  book_work(sim, share * contact_apply(sim, c->vel, 0, 1.0 - share));
 }
 
-/* V~_b of every body, then the contact law with friction */
+/* V~_b of every body, then the contact law with friction, which decides
+ * the contacts */
 static void bodies_update(mrn_sim *sim, double dt) {
   mrn_contact *c = sim->contact;
   for (int b = 0; b < c->nbodies; b++) mrn_grid_update_on(sim, &c->view[b], dt);
-  book_work(sim, contact_apply(sim, c->vel_new, 1));
+  book_work(sim, contact_apply(sim, c->vel_new, 1, 0.0));
 }
 
 static double *gradients(mrn_contact *c, size_t np) {
