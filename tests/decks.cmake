@@ -205,11 +205,12 @@ set_tests_properties(python.vti_run PROPERTIES DEPENDS deck.series_output LABELS
 # by Coulomb's law
 # (contact_disks_single: the single field, and bodies without a pair are labels, bit for bit).
 # FLIP keeps the energy as the single field does, both with a first-order error of the step:
-# contact's is 1.1 times the single field's (USF and MUSL), asserted within 1.15 times
+# contact's is 1.1 times the single field's in 2D (USF and MUSL), asserted within 1.15 times,
+# and below it in 3D
 moraine_deck_test(contact_disks contact_disks.lua ARGS --set compare=true --set compare_factor=1.15 LABELS physics)
 moraine_deck_test(contact_disks_apic contact_disks.lua ARGS --set transfer=APIC --set energy_min=0.5 --set compare=true LABELS physics)
 moraine_deck_test(contact_disks_musl contact_disks.lua ARGS --set stress_update=MUSL --set compare=true --set compare_factor=1.15 LABELS physics)
-moraine_deck_test(contact_disks_3d contact_disks.lua ARGS --set dim=3 LABELS physics)
+moraine_deck_test(contact_disks_3d contact_disks.lua ARGS --set dim=3 --set compare=true LABELS physics)
 # the same state on 1 and 2 threads (the bodies are scattered side by side, each in particle order):
 # 6,400 particles, enough for the loops to take both threads; the checkpoints compared object by object
 foreach(threads 1 2)
