@@ -35,9 +35,9 @@ typedef struct mrn_grid {
   double *work;     /* 3n scratch for the XPIC iterations */
   /* n: at the face node of each column of a friction face, bit 1 << face set
    * when the column ended the last step in contact (grid/boundary.c); at a
-   * node two bodies share, MRN_GRID_BODIES_HELD when the contact between them
-   * acted there at the end of the last step (solver/contact.c); kept from step
-   * to step, saved in checkpoints */
+   * node two bodies share, MRN_GRID_BODIES_HELD when they approached there in
+   * the last step's V~ (solver/contact.c); kept from step to step, saved in
+   * checkpoints */
   unsigned char *contact;
   /* n: at the face nodes of friction faces, bit 1 << face set when the
    * material touches the face there (mrn_boundary_touch, each step) */

@@ -167,9 +167,8 @@ static void read_grid_axis(mrn_h5r *r, ck_data *d, int k, const int64_t *ncell) 
   d->ncell[k] = (int)ncell[k];
 }
 
-/* the friction faces' and the bodies' contact states; files written before
- * they were kept have none, and their first step decides every contact
- * afresh */
+/* the friction faces' contact states; files written before they were kept
+ * have none, and their first step decides every contact afresh */
 static void read_contacts(mrn_h5r *r, ck_data *d) {
   const char *g = "/grid";
   if (!mrn_h5r_has_attr(r, g, "contact_count")) return;
@@ -180,8 +179,8 @@ static void read_contacts(mrn_h5r *r, ck_data *d) {
   d->contact = mrn_h5r_dataset(r, "/grid/contact", MRN_H5_INT64, d->ncontact, 2);
   for (int64_t k = 0; k < d->ncontact && d->contact && !r->failed; k++)
     require(r, d->contact[2 * k] >= 0 && d->contact[2 * k] < nodes && d->contact[2 * k + 1] > 0 &&
-                   (d->contact[2 * k + 1] & ~(int64_t)(((1 << MRN_FACE_COUNT) - 1) | MRN_GRID_BODIES_HELD)) == 0,
-            "/grid/contact: row %lld (node %lld, bits %lld) is not a node of the grid with face or body bits",
+                   d->contact[2 * k + 1] < (1 << MRN_FACE_COUNT),
+            "/grid/contact: row %lld (node %lld, bits %lld) is not a node of the grid with face bits",
             (long long)k + 1, (long long)d->contact[2 * k], (long long)d->contact[2 * k + 1]);
 }
 

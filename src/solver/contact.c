@@ -180,12 +180,13 @@ static void bodies_p2g(mrn_sim *sim, const mrn_transfer *tr, int momentum, int f
  * g_b = sum_p m_p grad N_i(x_p) over b's particles, which points from b
  * towards the node: out of b. b approaches when its velocity relative to vcm has a
  * positive component dn along it. Then dn is removed and friction takes
- * at most mu dn off the tangential part (all of it: stick). Moving apart,
- * the share `keep` of dn is removed (a node held since the last step, in V;
- * see contact_apply). A bonded pair takes vcm. With two bodies the normals
- * are opposite, so the changes conserve the node's momentum. */
-static void body_change(const mrn_contact *c, size_t i, const double *vel, const int *list, int count, int k,
-                        const double vcm[3], double keep, double dv[3]) {
+ * at most mu dn off the tangential part (all of it: stick), and 1 is
+ * returned: the bodies are in contact. Moving apart, the share `keep` of dn
+ * is removed (a node held since the last step, in V; see contact_apply). A
+ * bonded pair takes vcm. With two bodies the normals are opposite, so the
+ * changes conserve the node's momentum. */
+static int body_change(const mrn_contact *c, size_t i, const double *vel, const int *list, int count, int k,
+                       const double vcm[3], double keep, double dv[3]) {
   const size_t n = c->nnode;
   const int b = list[k];
   int other = -1;
@@ -197,7 +198,7 @@ static void body_change(const mrn_contact *c, size_t i, const double *vel, const
   for (int d = 0; d < 3; d++) rel[d] = v[d] - vcm[d], dv[d] = 0.0;
   if (!law || law->kind == MRN_CONTACT_BONDED) {
     for (int d = 0; d < 3; d++) dv[d] = -rel[d];
-    return;
+    return 0;
   }
   if (law->has_normal) /* given, from a into b: out of a */
     for (int d = 0; d < 3; d++) o[d] = (b == law->a ? 1.0 : -1.0) * law->normal[d];
@@ -205,31 +206,34 @@ static void body_change(const mrn_contact *c, size_t i, const double *vel, const
     for (int j = 0; j < count; j++)
       for (int d = 0; d < 3; d++) o[d] += (j == k ? 1.0 : -1.0) * c->grad[3 * (n * list[j] + i) + d];
   for (int d = 0; d < 3; d++) on += o[d] * o[d];
-  if (!(on > 0.0)) return;
+  if (!(on > 0.0)) return 0;
   on = sqrt(on);
   double dn = 0.0, t[3], tn = 0.0;
   for (int d = 0; d < 3; d++) o[d] /= on, dn += rel[d] * o[d];
   if (!(dn > 0.0)) { /* moving apart, or no relative motion: free, but for the held part */
     if (keep > 0.0)
       for (int d = 0; d < 3; d++) dv[d] = -keep * dn * o[d];
-    return;
+    return 0;
   }
   for (int d = 0; d < 3; d++) t[d] = rel[d] - dn * o[d], tn += t[d] * t[d];
   tn = sqrt(tn);
   const double slip = tn > 0.0 ? fmin(law->mu * dn, tn) / tn : 0.0;
   for (int d = 0; d < 3; d++) dv[d] = -dn * o[d] - slip * t[d];
+  return 1;
 }
 
 /* The contact law on every node two or more bodies share, on their
  * velocities V (`decide` 0) or V~ (`decide` 1).
- * On V~ it decides the contacts: a node where the law changed a body's
- * velocity gets MRN_GRID_BODIES_HELD in grid.contact, every other loses it.
- * On V, bodies moving apart at a node so marked lose the share `keep` of
- * their normal velocity relative to the node's centre of mass (as the faces
- * hold V where they ended the last step in contact).
- * Returns the frictional work sum_b m_b dV_b . (V_b - V_cm) after the
- * change (000, Eq. 66, in the frame of the node's centre of mass), of the
- * nodes whose work this process books (mrn_grid_owns). */
+ * On V~ it decides the contacts: a node where two bodies approached (not a
+ * bond) gets MRN_GRID_BODIES_HELD in grid.contact, every other loses it.
+ * On V (the step's, and a re-map's under MUSL and USAVG), bodies moving
+ * apart at a node so marked lose the share `keep` of their normal velocity
+ * relative to the node's centre of mass.
+ * Returns the work of the changes sum_b m_b dV_b . (V_b - V_cm) after them
+ * (000, Eq. 66, in the frame of the node's centre of mass: friction's, and
+ * the bonds'; a normal change leaves no normal relative velocity, and a
+ * share `keep` of it leaves (1 - keep) of it), of the nodes whose work this
+ * process books (mrn_grid_owns). */
 static double contact_apply(mrn_sim *sim, double *vel, int decide, double keep) {
   const mrn_contact *c = sim->contact;
   const size_t n = c->nnode;
@@ -252,19 +256,18 @@ static double contact_apply(mrn_sim *sim, double *vel, int decide, double keep) 
       if (count < 2) continue;
       for (int d = 0; d < 3; d++) vcm[d] /= M;
       const double kept = !decide && (held[i] & MRN_GRID_BODIES_HELD) ? keep : 0.0;
-      int changed = 0;
-      for (int j = 0; j < count; j++) body_change(c, (size_t)i, vel, list, count, j, vcm, kept, dv[j]);
+      int touching = 0;
+      for (int j = 0; j < count; j++) touching |= body_change(c, (size_t)i, vel, list, count, j, vcm, kept, dv[j]);
       for (int j = 0; j < count; j++) {
         double *v = vel + 3 * (n * list[j] + i);
         const double m = c->mass[n * list[j] + i];
         const int books = mrn_grid_owns(&sim->grid, i); /* once over the processes */
         for (int d = 0; d < 3; d++) {
-          changed |= dv[j][d] != 0.0;
           v[d] += dv[j][d];
           if (books) work += m * dv[j][d] * (v[d] - vcm[d]);
         }
       }
-      if (decide && changed) held[i] |= MRN_GRID_BODIES_HELD;
+      if (decide && touching) held[i] |= MRN_GRID_BODIES_HELD;
     }
   return work;
 }
