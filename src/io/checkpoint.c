@@ -95,25 +95,42 @@ static void save_simulation(mrn_h5w *w, const mrn_sim *sim) {
   H5Gclose(g);
 }
 
-/* the contact states of the friction faces and the bodies (grid.contact) as
- * rows (node, bits), for the nodes where any bit is set */
-static void save_contacts(mrn_h5w *w, hid_t g, const mrn_grid *grid) {
-  size_t count = 0;
-  for (size_t n = 0; n < grid->n; n++) count += grid->contact[n] != 0;
-  int64_t *rows = malloc(2 * (count ? count : 1) * sizeof *rows);
+/* the nodes whose grid.contact has any of `bits`, as rows of `cols`
+ * int64: the node index, then (cols 2) its bits among `bits`; NULL when out
+ * of memory (w->failed set) */
+static int64_t *contact_rows(mrn_h5w *w, const mrn_grid *grid, unsigned bits, int cols, size_t *count) {
+  *count = 0;
+  for (size_t n = 0; n < grid->n; n++) *count += (grid->contact[n] & bits) != 0;
+  int64_t *rows = malloc((size_t)cols * (*count ? *count : 1) * sizeof *rows);
   if (!rows) {
     w->failed = 1;
     snprintf(w->what, sizeof w->what, "/grid/contact (out of memory)");
-    return;
+    return NULL;
   }
   for (size_t n = 0, k = 0; n < grid->n; n++)
-    if (grid->contact[n]) {
-      rows[2 * k] = (int64_t)n;
-      rows[2 * k++ + 1] = grid->contact[n];
+    if (grid->contact[n] & bits) {
+      rows[cols * k] = (int64_t)n;
+      if (cols == 2) rows[cols * k + 1] = grid->contact[n] & bits;
+      k++;
     }
+  return rows;
+}
+
+/* the friction faces' contact states (grid.contact) as rows (node, bits),
+ * and apart the nodes where the contact between bodies held: a reader that
+ * knows only the faces' bits still reads the file */
+static void save_contacts(mrn_h5w *w, hid_t g, const mrn_grid *grid) {
+  size_t count;
+  int64_t *rows = contact_rows(w, grid, (1u << MRN_FACE_COUNT) - 1, 2, &count);
+  if (!rows) return;
   mrn_h5w_int64(w, g, "contact_count", (int64_t)count);
   mrn_h5w_dataset(w, g, "contact", H5T_NATIVE_INT64, rows, count, 2, "",
-                  "contacts held at the end of the last step: node index, bits 1 << face (friction faces) and 64 (bodies)");
+                  "friction-face contacts held at the end of the last step: node index, bits 1 << face");
+  free(rows);
+  if (!(rows = contact_rows(w, grid, MRN_GRID_BODIES_HELD, 1, &count))) return;
+  mrn_h5w_int64(w, g, "bodies_held_count", (int64_t)count);
+  mrn_h5w_dataset(w, g, "bodies_held", H5T_NATIVE_INT64, rows, count, MRN_H5_RANK1, "",
+                  "nodes where the contact between bodies held at the end of the last step");
   free(rows);
 }
 
@@ -486,6 +503,7 @@ static mrn_sim *build_sim(const ck_data *d, mrn_checkpoint_info *info) {
   if (ck_take_walls(sim, d)) goto fail;
   take_dt_policy(sim, d, info);
   for (int64_t k = 0; k < d->ncontact; k++) sim->grid.contact[d->contact[2 * k]] = (unsigned char)d->contact[2 * k + 1];
+  for (int64_t k = 0; k < d->nbodies_held; k++) sim->grid.contact[d->bodies_held[k]] |= MRN_GRID_BODIES_HELD;
   for (int i = 0; i < d->nmaterials; i++)
     if (mrn_sim_add_material(sim, d->materials[i]) < 0) goto fail;
   if (take_particles(sim, d)) goto fail;

@@ -32,6 +32,8 @@ typedef struct ck_data {
   int ncell[3];
   int64_t ncontact; /* rows (node, bits) of the friction faces' contacts (grid.contact) */
   int64_t *contact;
+  int64_t nbodies_held; /* nodes where the contact between bodies held (MRN_GRID_BODIES_HELD) */
+  int64_t *bodies_held;
   /* /scheme, /boundary */
   mrn_scheme scheme;
   mrn_boundary boundary;

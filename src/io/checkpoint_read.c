@@ -167,8 +167,9 @@ static void read_grid_axis(mrn_h5r *r, ck_data *d, int k, const int64_t *ncell) 
   d->ncell[k] = (int)ncell[k];
 }
 
-/* the friction faces' contact states; files written before they were kept
- * have none, and their first step decides every contact afresh */
+/* the friction faces' and the bodies' contact states; files written before
+ * they were kept have none, and their first step decides every contact
+ * afresh */
 static void read_contacts(mrn_h5r *r, ck_data *d) {
   const char *g = "/grid";
   if (!mrn_h5r_has_attr(r, g, "contact_count")) return;
@@ -182,6 +183,14 @@ static void read_contacts(mrn_h5r *r, ck_data *d) {
                    d->contact[2 * k + 1] < (1 << MRN_FACE_COUNT),
             "/grid/contact: row %lld (node %lld, bits %lld) is not a node of the grid with face bits",
             (long long)k + 1, (long long)d->contact[2 * k], (long long)d->contact[2 * k + 1]);
+  if (r->failed || !mrn_h5r_has_attr(r, g, "bodies_held_count")) return;
+  read_int_in(r, g, "bodies_held_count", 0, nodes, &d->nbodies_held);
+  if (r->failed) return;
+  d->bodies_held = mrn_h5r_dataset(r, "/grid/bodies_held", MRN_H5_INT64, d->nbodies_held, MRN_H5_RANK1);
+  for (int64_t k = 0; k < d->nbodies_held && d->bodies_held && !r->failed; k++)
+    require(r, d->bodies_held[k] >= 0 && d->bodies_held[k] < nodes,
+            "/grid/bodies_held: row %lld (node %lld) is not a node of the grid", (long long)k + 1,
+            (long long)d->bodies_held[k]);
 }
 
 static void read_grid(mrn_h5r *r, ck_data *d) {
@@ -528,6 +537,7 @@ void ck_free(ck_data *d) {
   free(d->id);
   free(d->state);
   free(d->contact);
+  free(d->bodies_held);
   ck_free_walls(d);
   for (int i = 0; i < d->nuser; i++) free(d->user_values[i]);
   memset(d, 0, sizeof *d);

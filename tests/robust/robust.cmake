@@ -61,5 +61,5 @@ add_test(NAME robust.source_restart COMMAND ${MORAINE_ROBUST_DIR}/source_restart
 set_tests_properties(robust.source_restart PROPERTIES LABELS robust ENVIRONMENT OMP_WAIT_POLICY=PASSIVE)
 # contact between bodies: the deck's bodies and pairs carried over a --restart, bit for bit
 add_test(NAME robust.contact_restart COMMAND ${MORAINE_ROBUST_DIR}/contact_restart.sh $<TARGET_FILE:moraine>
-                                             ${MORAINE_TEST_OUT}/robust_contact_restart)
+                                             ${MORAINE_TEST_OUT}/robust_contact_restart ${Python3_EXECUTABLE})
 set_tests_properties(robust.contact_restart PROPERTIES LABELS robust ENVIRONMENT OMP_WAIT_POLICY=PASSIVE)

@@ -438,8 +438,8 @@ static void d_F_inverted(hid_t f, long n) { poke_double(f, "/particles/F", 9 * 3
 static void d_F_out_of_plane(hid_t f, long n) { poke_double(f, "/particles/F", 9 * 2 + 2, 0.25); }
 static void d_affine_zz(hid_t f, long n) { poke_double(f, "/particles/affine", 9 * 5 + 8, 3.0); }
 
-/* contacts: a row naming a node beyond the grid, no face or body, a bit
- * that is neither */
+/* contacts: a row naming a node beyond the grid, no face, a bit that is not
+ * a face's (the bodies' are kept apart), a body contact beyond the grid */
 static void d_contact_node(hid_t f, long n) {
   const long long rows[2] = {1000000000LL, 4};
   set_int_attr(f, "/grid", "contact_count", 1);
@@ -451,9 +451,14 @@ static void d_contact_bits(hid_t f, long n) {
   replace_dataset(f, "/grid/contact", H5T_NATIVE_LLONG, rows, 1, 2);
 }
 static void d_contact_unknown_bit(hid_t f, long n) {
-  const long long rows[2] = {0, 128};
+  const long long rows[2] = {0, 64};
   set_int_attr(f, "/grid", "contact_count", 1);
   replace_dataset(f, "/grid/contact", H5T_NATIVE_LLONG, rows, 1, 2);
+}
+static void d_bodies_held_node(hid_t f, long n) {
+  const long long rows[1] = {1000000000LL};
+  set_int_attr(f, "/grid", "bodies_held_count", 1);
+  replace_dataset(f, "/grid/bodies_held", H5T_NATIVE_LLONG, rows, 1, 0);
 }
 static void d_material_index(hid_t f, long n) {
   int32_t seven = 7;
@@ -544,7 +549,8 @@ static void test_damaged_files(void) {
       {"2D affine zz", d_affine_zz, "/particles/affine: particle 5 (id 6) has z components (0, 0, 0, 0, zz 3) in a 2D file"},
       {"contact beyond the grid", d_contact_node, "/grid/contact: row 1 (node 1000000000, bits 4) is not a node"},
       {"contact with no face", d_contact_bits, "/grid/contact: row 1 (node 0, bits 0) is not a node"},
-      {"contact with an unknown bit", d_contact_unknown_bit, "/grid/contact: row 1 (node 0, bits 128) is not a node"},
+      {"contact with a bit not a face's", d_contact_unknown_bit, "/grid/contact: row 1 (node 0, bits 64) is not a node"},
+      {"body contact beyond the grid", d_bodies_held_node, "/grid/bodies_held: row 1 (node 1000000000) is not a node"},
       {"material index", d_material_index, "particle 3 (id 4) has material 7, but the file defines 1 material"},
       {"duplicate id", d_duplicate_id, "/particles/id: id 1 appears more than once"},
       {"external link", d_external_link, "/particles/v is a soft or external link"},
