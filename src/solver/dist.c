@@ -524,9 +524,26 @@ static int move_particles(mrn_sim *sim) {
   return rc;
 }
 
+/* A re-cut gives a process rows whose contacts (grid.contact: the friction
+ * faces' and the bodies') another kept: before it, every process takes each
+ * node's bits from the process that owns it. */
+static int pool_contacts(mrn_sim *sim) {
+  mrn_grid *g = &sim->grid;
+  double *all = calloc(g->n + 1, sizeof *all);
+  int rc = mrn_dist_agree(sim, all ? MRN_OK : mrn_error("parallel: out of memory for the contacts"));
+  if (rc == MRN_OK) {
+    for (size_t i = 0; i < g->n; i++) all[i] = mrn_grid_owns(g, (long)i) ? g->contact[i] : 0.0;
+    mrn_comm_allreduce(all, (int)g->n, MRN_COMM_SUM);
+    for (size_t i = 0; i < g->n; i++) g->contact[i] = (unsigned char)all[i];
+  }
+  free(all);
+  return rc;
+}
+
 int mrn_dist_rebalance(mrn_sim *sim) {
   if (!sim->dist) return MRN_OK;
-  int rc = cut_by_count(sim, sim->dist, 0);
+  int rc = pool_contacts(sim);
+  if (rc == MRN_OK) rc = cut_by_count(sim, sim->dist, 0);
   if (rc == MRN_OK) sim->dist->rebalances++;
   rc = mrn_dist_agree(sim, rc == MRN_OK ? move_particles(sim) : rc);
   return rc == MRN_OK ? mrn_dist_walls_recut(sim) : rc;
