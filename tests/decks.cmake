@@ -50,8 +50,10 @@ moraine_deck_test(walls_restart walls_restart.lua)
 moraine_deck_test(walls_3d walls_3d.lua LABELS slow)
 moraine_deck_test(walls_rest_long walls.lua ARGS --set only=rest --set length=2.4 --set rest_cell=0.0125 --set average=0.6
                   --set strategies=FLIP,APIC LABELS slow)
-# a disk rolling (gap_check) and sliding down an inclined plane: a against the closed forms
-moraine_deck_test(rolling_disk rolling_disk.lua)
+# a disk rolling (gap_check) and sliding down an inclined plane: a against the closed forms; on the wall
+# within 3 % at 16 cells per radius and 3 x 3 points per cell (APIC, FLIP)
+moraine_deck_test(rolling_disk rolling_disk.lua ARGS --set only=slide,face,wall)
+moraine_deck_test(rolling_disk_fine rolling_disk.lua ARGS --set only=fine LABELS slow)
 # mesh walls from STL files: a cube mesh as the box wall, an incline, binary = ASCII, a checkpoint
 moraine_deck_test(walls_mesh walls_mesh.lua)
 # rigid bodies: free fall at g, fixed dofs, mass and inertia, momentum with the material, a restart bit for bit

@@ -11,7 +11,8 @@
 -- the material stands clear of the wall (doc/numerics.md, "Rolling").
 --
 -- Parameters (--set key=value): theta (30 deg), mus (0.5,0.1), cells (cells
--- per radius, 8), strategy (APIC), time (0.6 s), gap_check (true), quick
+-- per radius, 8), per_cell (particles per cell, 4: 2 x 2; 9: 3 x 3),
+-- strategy (APIC), time (0.6 s), gap_check (true), quick
 -- (true: 4 cells per radius, 0.2 s, what ctest runs). Writes `disk_mu<mu>.csv`
 -- (t, s, the closed form's s, the spin omega), `disk_mu<mu>_final.csv` (the
 -- particles: x, y, speed) and `summary.csv`; plot.py draws them.
@@ -19,6 +20,7 @@ local quick = mpm.param("quick", false)
 local theta = math.rad(mpm.param("theta", 30))
 local cells = mpm.param("cells", quick and 4 or 8)
 local strategy = mpm.param("strategy", "APIC")
+local per_cell = mpm.param("per_cell", 4)
 local duration = mpm.param("time", quick and 0.2 or 0.6)
 local gap_check = mpm.param("gap_check", true)
 local mus = {}
@@ -60,7 +62,7 @@ local function roll(mu)
   sim:add_wall{ name = "incline", shape = "plane", point = p0, normal = n, kind = "friction", mu = mu,
                 gap_check = gap_check }
   local c0 = { p0[1] + 0.12 * t[1] + R * n[1], p0[2] + 0.12 * t[2] + R * n[2] }
-  sim:add_particles(mpm.disk{ center = c0, radius = R }, { material = rubber, per_cell = 4 })
+  sim:add_particles(mpm.disk{ center = c0, radius = R }, { material = rubber, per_cell = per_cell })
   local a_exact, how = closed_form(mu)
   local name = string.format("disk_mu%g", mu):gsub("%.", "p")
   local f = assert(io.open(mpm.outdir .. "/" .. name .. ".csv", "w"))
@@ -93,8 +95,8 @@ end
 
 local summary = assert(io.open(mpm.outdir .. "/summary.csv", "w"))
 summary:write("mu,motion,a,a_closed_form,deviation_percent,W_MPM\n")
-print(string.format("disk on a %g degree wall, %d cells per radius, %s, gap_check %s:", math.deg(theta), cells,
-                    strategy, tostring(gap_check)))
+print(string.format("disk on a %g degree wall, %d cells per radius, %d particles per cell, %s, gap_check %s:",
+                    math.deg(theta), cells, per_cell, strategy, tostring(gap_check)))
 for _, mu in ipairs(mus) do
   local a, exact, how, W_MPM = roll(mu)
   local dev = 100 * (a / exact - 1)
