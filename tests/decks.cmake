@@ -165,6 +165,12 @@ add_test(NAME python.inflow_series
          COMMAND ${Python3_EXECUTABLE} ${CMAKE_CURRENT_SOURCE_DIR}/python/check_inflow_series.py
                  ${MORAINE_TEST_OUT}/example_channel_inflow)
 set_tests_properties(python.inflow_series PROPERTIES LABELS python FIXTURES_REQUIRED channel_inflow)
+# the extrusion example's picture drawn from its snapshots through VTK's reader
+set_tests_properties(example.extrusion PROPERTIES FIXTURES_SETUP extrusion)
+add_test(NAME python.extrusion_plot
+         COMMAND ${Python3_EXECUTABLE} ${CMAKE_SOURCE_DIR}/examples/extrusion/plot.py
+                 ${MORAINE_TEST_OUT}/example_extrusion ${MORAINE_TEST_OUT}/example_extrusion/velocity.png)
+set_tests_properties(python.extrusion_plot PROPERTIES LABELS python FIXTURES_REQUIRED extrusion)
 
 # Robustness: a signal stops a run cleanly with a checkpoint that continues
 # bit for bit; a failed run leaves a checkpoint h5py reads
