@@ -31,7 +31,10 @@ local strategy = mpm.param("strategy", "APIC")
 -- one run; returns the fitted acceleration along the plane
 local function roll(o)
   local strategy = o.strategy or strategy
-  local cell = R / (tonumber(mpm.param("cells", "")) or o.cells)
+  -- the overrides, kept in o for the report
+  o.cells = tonumber(mpm.param("cells", "")) or o.cells
+  o.per_cell = tonumber(mpm.param("per_cell", "")) or o.per_cell or 4
+  local cell = R / o.cells
   local n, t, sim, c0 = { math.sin(th), math.cos(th) }, { math.cos(th), -math.sin(th) }
   local common = { dim = 2, shape = "quadratic_bspline", scheme = strategy, dt = { a_tau = 0.2 }, diagnostics = false,
                    thermo = 0, progress = false }
@@ -59,9 +62,8 @@ local function roll(o)
     sim = mpm.simulation(common)
     c0 = { 1.5 * R, R }
   end
-  local per_cell = tonumber(mpm.param("per_cell", "")) or o.per_cell or 4
   sim:add_particles(mpm.disk{ center = c0, radius = R },
-                    { material = mpm.material.linear_elastic{ density = rho, E = E, nu = 0.3 }, per_cell = per_cell })
+                    { material = mpm.material.linear_elastic{ density = rho, E = E, nu = 0.3 }, per_cell = o.per_cell })
   -- the normal equations of the fit, sums of t^k and s t^k
   local S, b = { 0, 0, 0, 0, 0 }, { 0, 0, 0 }
   for _ = 1, 20 do
@@ -113,7 +115,7 @@ if parts.wall then
   local a0 = roll{ wall = true, mu = 0.5, cells = 8, time = 0.6, gap_check = false }
   print(string.format("roll, wall, 8 cells: a = %.4f m/s^2 (%+.1f %%), without gap_check %.4f (%+.1f %%)", a,
                       off(a, rolling), a0, off(a0, rolling)))
-  hops("roll, wall, 8 cells", run)
+  hops(string.format("roll, wall, %d cells", run.cells), run)
   T.expect{ id = "rolling.wall", what = "disk rolling on an inclined wall, 8 cells per radius: |a / (2/3) g sin - 1|",
             value = math.abs(off(a, rolling)), max = 5, unit = "%" }
   T.expect{ id = "rolling.wall_default", asserted = false, value = math.abs(off(a0, rolling)), unit = "%",
@@ -126,8 +128,7 @@ if parts.fine then
     local run = { wall = true, mu = 0.5, cells = 16, per_cell = 9, time = 0.6, gap_check = true, hops = true,
                   strategy = s }
     local a = roll(run)
-    local label = string.format("roll, wall, %d cells, %d per cell, %s", tonumber(mpm.param("cells", "")) or run.cells,
-                                tonumber(mpm.param("per_cell", "")) or run.per_cell, s)
+    local label = string.format("roll, wall, %d cells, %d per cell, %s", run.cells, run.per_cell, s)
     print(string.format("%s: a = %.4f m/s^2 (%+.1f %%)", label, a, off(a, rolling)))
     hops(label, run)
     T.expect{ id = "rolling.wall_fine_" .. s, value = math.abs(off(a, rolling)), max = 3, unit = "%",
