@@ -134,6 +134,11 @@ add_test(NAME python.example_pngs
          COMMAND ${Python3_EXECUTABLE} ${CMAKE_CURRENT_SOURCE_DIR}/python/check_png.py ${collapse_pngs}
                  ${example_plot_dir}/bouncing_cube/energies.png ${example_plot_dir}/bouncing_cube/momentum.png)
 set_tests_properties(python.example_pngs PROPERTIES LABELS "python;plot" FIXTURES_REQUIRED example_plots)
+# the collapse's front read back from the same run's VTK series (examples/column_collapse/front.py)
+add_test(NAME python.collapse_front
+         COMMAND ${Python3_EXECUTABLE} ${CMAKE_SOURCE_DIR}/examples/column_collapse/front.py
+                 ${example_plot_dir}/column_collapse/AR1_FLIP_collapse.pvd)
+set_tests_properties(python.collapse_front PROPERTIES LABELS "python;plot" FIXTURES_REQUIRED example_plots)
 
 # ---- the run log, the summary, the thermo columns and the progress bar -------
 # python.run_log: log.txt holds everything printed for runs that end well, fail,

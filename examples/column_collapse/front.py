@@ -1,0 +1,133 @@
+"""The front of a collapse, read from its VTK snapshots: where the runout of
+000's Eq. 70 comes from.
+
+    /usr/bin/python3 examples/column_collapse/front.py out/collapse/AR0.6_FLIP_collapse.pvd [--mu 0.3]
+
+Reads every snapshot of the series through VTK's own reader (python3-vtk9;
+the deck writes velocity, displacement and id) and prints
+
+- L~ against t~ (000, Eqs. 70-73) from the furthest particle and from the
+  particle below which 99 % and 95 % of them lie, and the furthest
+  particle's x;
+- the furthest particle's history: where it started (position minus
+  displacement), when it reached the floor (centre within half a cell), its
+  speed there and its mean deceleration from there to rest in units of
+  mu g, both from its motion (snapshot to snapshot), and the largest gap
+  between its stored velocity and its motion;
+- where it would have stopped had it decelerated at mu g from the floor on.
+
+Options: --cell (m, 0.1), --width (L_x^init, m, 1), --ar (default: from the
+name AR<a>_...), --mu (0.3), --g (9.81).
+"""
+import argparse
+import math
+import os
+import re
+import sys
+import xml.etree.ElementTree as ET
+
+import numpy as np
+import vtk
+from vtk.util.numpy_support import vtk_to_numpy
+
+
+def snapshots(pvd):
+    """(time, path) of each data set of a .pvd collection, in time order"""
+    root = ET.parse(pvd).getroot()
+    base = os.path.dirname(pvd)
+    sets = [(float(d.get("timestep")), os.path.join(base, d.get("file"))) for d in root.iter("DataSet")]
+    return sorted(sets)
+
+
+def read(path):
+    """positions, stored velocities and initial positions, keyed by id"""
+    reader = vtk.vtkXMLPolyDataReader()
+    reader.SetFileName(path)
+    reader.Update()
+    data = reader.GetOutput()
+    fields = data.GetPointData()
+    x = vtk_to_numpy(data.GetPoints().GetData())[:, :2]
+    v = vtk_to_numpy(fields.GetArray("velocity"))[:, :2]
+    u = vtk_to_numpy(fields.GetArray("displacement"))[:, :2]
+    ids = vtk_to_numpy(fields.GetArray("id")).astype(np.int64)
+    return {"x": x, "v": v, "x0": x - u, "id": ids, "row": {int(i): k for k, i in enumerate(ids)}}
+
+
+def runout(x_max, o):
+    """L~ of a front at x_max: 000, Eqs. 70-72"""
+    Lx = math.floor(x_max / o.cell + 1.0) * o.cell
+    return (Lx - o.width) / o.width
+
+
+def front_table(series, o, tscale):
+    print(f"{'t (s)':>7} {'t~':>6} {'L~':>5} {'L~ 99%':>7} {'L~ 95%':>7} {'front (m)':>10}")
+    step = max(1, len(series) // 20)
+    for t, s in series[::step] + ([series[-1]] if (len(series) - 1) % step else []):
+        xs = np.sort(s["x"][:, 0])
+        n = len(xs)
+        print(f"{t:7.2f} {t / tscale:6.2f} {runout(xs[-1], o):5.1f} {runout(xs[int(0.99 * n)], o):7.1f} "
+              f"{runout(xs[int(0.95 * n)], o):7.1f} {xs[-1]:10.3f}")
+
+
+def path_of(series, pid):
+    """times, positions and stored velocities of one particle"""
+    rows = [(t, s["x"][s["row"][pid]], s["v"][s["row"][pid]]) for t, s in series if pid in s["row"]]
+    t = np.array([r[0] for r in rows])
+    return t, np.array([r[1] for r in rows]), np.array([r[2] for r in rows])
+
+
+def furthest_history(series, o):
+    last = series[-1][1]
+    k = int(np.argmax(last["x"][:, 0]))
+    pid = int(last["id"][k])
+    t, x, v = path_of(series, pid)
+    motion = np.gradient(x[:, 0], t)  # its speed along x from its positions
+    x0 = last["x0"][k]
+    print(f"\nfurthest particle (id {pid}): started at x = {x0[0]:.3f} m, y = {x0[1]:.3f} m; "
+          f"ends at x = {x[-1, 0]:.3f} m")
+    down = np.nonzero(x[:, 1] < 0.5 * o.cell)[0]
+    if len(down) == 0:
+        print("  never within half a cell of the floor")
+        return
+    i = int(down[0])
+    mug = o.mu * o.g
+    print(f"  on the floor from t = {t[i]:.2f} s at x = {x[i, 0]:.3f} m, moving at {motion[i]:.2f} m/s")
+    if i == len(t) - 1:
+        print("  (at the last snapshot: nothing more to measure)")
+        return
+    still = motion[i:] < 0.02
+    rest = i + int(np.argmax(still)) if np.any(still) else len(t) - 1
+    decel = (motion[i] - motion[rest]) / (t[rest] - t[i])
+    gap = np.max(np.abs(v[i:, 0] - motion[i:]))
+    print(f"  at rest (< 0.02 m/s) from t = {t[rest]:.2f} s" if np.any(still)
+          else f"  still moving at the end ({motion[-1]:.2f} m/s)")
+    print(f"  mean deceleration on the floor {decel:.2f} m/s^2 = {decel / mug:.2f} mu g; "
+          f"stored velocity off its motion by up to {gap:.2f} m/s")
+    stop = x[i, 0] + motion[i] ** 2 / (2.0 * mug)
+    print(f"  at mu g from there it would stop at x = {stop:.3f} m: L~ = {runout(stop, o):.1f} "
+          f"(it reached L~ = {runout(x[-1, 0], o):.1f})")
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("pvd")
+    ap.add_argument("--cell", type=float, default=0.1)
+    ap.add_argument("--width", type=float, default=1.0)
+    ap.add_argument("--ar", type=float, default=None)
+    ap.add_argument("--mu", type=float, default=0.3)
+    ap.add_argument("--g", type=float, default=9.81)
+    o = ap.parse_args()
+    if o.ar is None:
+        m = re.search(r"AR([0-9.]+)_", os.path.basename(o.pvd))
+        if not m:
+            sys.exit("front.py: give --ar (the name does not start with AR<a>_)")
+        o.ar = float(m.group(1))
+    series = [(t, read(p)) for t, p in snapshots(o.pvd)]
+    if len(series) < 3:
+        sys.exit(f"front.py: {o.pvd} holds {len(series)} snapshots; at least 3 are needed")
+    front_table(series, o, math.sqrt(o.ar * o.width / o.g))
+    furthest_history(series, o)
+
+
+if __name__ == "__main__":
+    main()
