@@ -63,6 +63,9 @@ moraine_deck_test(rigid_footing rigid_footing.lua)
 # what feeds a sliding body's vibration: a long wave that friction makes grow
 # under every strategy that keeps energy, and FLIP's short waves
 moraine_deck_test(friction_layer friction_layer.lua)
+# a layer of sand sliding to rest: mu g under every update that takes the holds of V (the friction bound
+# counts the normal momentum the face stops there); FLIP's and APIC's running front reported
+moraine_deck_test(sliding_layer sliding_layer.lua)
 moraine_deck_test(axial_bar_linear axial_bar.lua ARGS --set shape=linear --set cells=16)
 moraine_deck_test(axial_bar_quadratic axial_bar.lua ARGS --set shape=quadratic_bspline --set cells=32)
 # scheme volumetric = "fbar": an elastic bar keeps its period (0.18 % and 1.34 %, against 0.12 % and 1.25 %

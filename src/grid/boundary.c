@@ -104,6 +104,20 @@ void mrn_contact_slide_sums(const mrn_contact_column *c, const mrn_grid *g, doub
   }
 }
 
+/* The normal impulse that bounds a column's friction in V~: Coulomb's law
+ * bounds the tangential impulse by mu times the whole normal one of the
+ * step, and the face acts in it more than once: in V~ (N) and, before, in
+ * the holds of the first V and of XPIC's smoothed fields (held: their sum,
+ * each with its weight in V*, signed: a column held while a field moves it
+ * away is pulled). The holds reach the particles in the share hold_share of
+ * the velocity update (mrn_hold_share, solver/step.c: PIC-like updates take
+ * V~ whole, FLIP only V~ - V, which a hold does not change); only that
+ * share is an impulse on the material. Counting N alone let the material a
+ * PIC-like update brings towards the face each step, stopped in V, press
+ * without friction: a sliding layer one cell thick decelerated at
+ * 0.92 mu g. */
+double mrn_contact_bound(double N, double held, double hold_share) { return fmax(0.0, N + hold_share * held); }
+
 double mrn_contact_slide(const mrn_contact_column *c, const mrn_grid *g, double mass_floor, double *vel, double mu,
                          double N, const double MP[4], double J[3]) {
   const double M = MP[0];
@@ -156,17 +170,25 @@ double mrn_contact_slide(const mrn_contact_column *c, const mrn_grid *g, double 
  * is reduced by min(mu N, |P_t|) along -P_t, the same velocity change for
  * every node (the column's mean relative velocity never reverses); the
  * frictional work is sum m dV . (V_after - w) (000, Eq. 66, in the
- * obstacle's frame). */
+ * obstacle's frame). N is the step's whole normal impulse: that of V~ and
+ * the share of the step's holds that reaches the particles
+ * (mrn_contact_bound). `held` (may be NULL), the column's memory of the
+ * step's holds: a call without friction adds its hold with `weight`, the
+ * call with friction reads it. */
 double mrn_contact_apply(const mrn_contact_column *c, mrn_grid *g, double mass_floor, double *vel, double mu,
-                         int with_friction, int touching, unsigned char *state, unsigned char bit, double J[3]) {
+                         int with_friction, int touching, unsigned char *state, unsigned char bit, double J[3],
+                         double *held, double weight, double hold_share) {
   const double N = mrn_contact_push(c, g, mass_floor, vel);
-  if (!mrn_contact_held(N, with_friction, touching, state, bit)) return 0.0;
+  const int in_contact = mrn_contact_held(N, with_friction, touching, state, bit);
+  if (held && in_contact && !with_friction) *held += weight * N;
+  if (!in_contact) return 0.0;
   double scratch[3] = {0.0, 0.0, 0.0}, MP[4];
   if (!J) J = scratch;
   mrn_contact_hold(c, g, mass_floor, vel, J);
   if (!with_friction) return 0.0;
   mrn_contact_slide_sums(c, g, mass_floor, vel, MP);
-  return mrn_contact_slide(c, g, mass_floor, vel, mu, N, MP, J);
+  const double bound = mrn_contact_bound(N, held ? *held : 0.0, hold_share);
+  return mrn_contact_slide(c, g, mass_floor, vel, mu, bound, MP, J);
 }
 
 /* the node index range [lo, hi] of the layers on and beyond one face
@@ -230,13 +252,18 @@ static void face_nodes(const mrn_grid *g, int face, int lo[3], int hi[3]) {
   lo[face / 2] = hi[face / 2] = face % 2 == 0 ? 0 : g->ncell[face / 2];
 }
 
-/* clear the touch bits of one face's face nodes */
+/* a new step on one face: the touch bits of its face nodes and their memory
+ * of the holds cleared */
 static void touch_clear(mrn_grid *g, int face) {
   int lo[3], hi[3];
   face_nodes(g, face, lo, hi);
   for (int k = lo[2]; k <= hi[2]; k++)
     for (int j = lo[1]; j <= hi[1]; j++)
-      for (int i = lo[0]; i <= hi[0]; i++) g->touch[mrn_grid_index(g, i, j, k)] &= (unsigned char)~(1u << face);
+      for (int i = lo[0]; i <= hi[0]; i++) {
+        const size_t n = mrn_grid_index(g, i, j, k);
+        g->touch[n] &= (unsigned char)~(1u << face);
+        g->held[n] = 0.0;
+      }
 }
 
 /* gap_check's release on one face: a column whose patch material above the
@@ -278,6 +305,7 @@ int mrn_boundary_touch(const mrn_boundary *bc, mrn_grid *g, double reach, const 
   for (int f = 0; f < 2 * g->dim; f++)
     if (bc->face[f].kind == MRN_BC_FRICTION) faces[nf++] = f;
   if (!nf) return MRN_OK;
+  if (!g->held && !(g->held = calloc(g->n, sizeof *g->held))) return mrn_error("friction faces: out of memory");
   for (int k = 0; k < nf; k++) touch_clear(g, faces[k]);
   /* bit 1 << face of over[]: material on the face lies over the column, of
    * clear[]: material above the face does; for the faces with gap_check */
@@ -305,9 +333,13 @@ int mrn_boundary_touch(const mrn_boundary *bc, mrn_grid *g, double reach, const 
 
 /* one friction face, column by column: the face node and the ghost nodes
  * beyond it along the normal stand for the same point of the face and share
- * one contact, whose bit 1 << face is kept at the face node in g->contact */
+ * one contact, whose bit 1 << face is kept at the face node in g->contact.
+ * The holds of the step are added up in g->held (cleared by the touch) with
+ * their weight in what reaches the particles: 1 for the velocity V (the
+ * grid's), pass_weight for XPIC's smoothed fields; V~ reads them. */
 static double apply_friction_face(const mrn_face_bc *f, mrn_grid *g, double mass_floor, double *vel, int axis, int side,
-                                  int with_friction) {
+                                  int with_friction, const mrn_boundary *bc) {
+  const double weight = with_friction ? 0.0 : vel == g->vel ? 1.0 : bc->pass_weight;
   int lo[3], hi[3];
   face_layers(g, axis, side, lo, hi);
   /* the columns start at the face node and run outwards */
@@ -323,7 +355,8 @@ static double apply_friction_face(const mrn_face_bc *f, mrn_grid *g, double mass
         c.first = mrn_grid_index(g, i, j, k);
         /* a column lies on one row or on the first slab's: whole on the processes that hold it */
         work += mrn_contact_apply(&c, g, mass_floor, vel, f->mu, with_friction, (g->touch[c.first] & bit) != 0,
-                                  g->contact + c.first, bit, NULL);
+                                  g->contact + c.first, bit, NULL, g->held ? g->held + c.first : NULL, weight,
+                                  bc->hold_share);
       }
   return work;
 }
@@ -335,7 +368,7 @@ double mrn_boundary_apply(const mrn_boundary *bc, mrn_grid *g, double mass_floor
       const mrn_face_bc *f = &bc->face[2 * axis + side];
       if (f->kind == MRN_BC_FREE || f->kind == MRN_BC_PERIODIC) continue;
       if (f->kind == MRN_BC_FRICTION) {
-        work += apply_friction_face(f, g, mass_floor, vel, axis, side, with_friction);
+        work += apply_friction_face(f, g, mass_floor, vel, axis, side, with_friction, bc);
         continue;
       }
       int lo[3], hi[3];
@@ -349,7 +382,7 @@ double mrn_boundary_apply(const mrn_boundary *bc, mrn_grid *g, double mass_floor
           }
     }
   }
-  if (bc->walls) work += mrn_walls_apply(bc->walls, g, mass_floor, vel, with_friction);
+  if (bc->walls) work += mrn_walls_apply(bc->walls, g, mass_floor, vel, with_friction, bc->hold_share, bc->pass_weight);
   return work;
 }
 

@@ -49,6 +49,16 @@ typedef struct mrn_boundary {
   /* rigid walls of any shape (grid/wall.h), applied after the faces; NULL:
    * none. Owned by the simulation. */
   struct mrn_walls *walls;
+  /* the part of the holds in V that reaches the particles (mrn_hold_share
+   * of the scheme, solver/step.c, set by the simulation each step): that
+   * part of the normal momentum the holds remove counts in the friction
+   * bound of V~ (mrn_contact_bound) */
+  double hold_share;
+  /* the weight with which the holds on a field other than the grid's V
+   * reach the particles (XPIC's smoothed passes, set by the solver around
+   * each): booked with the holds of V, and counted with them in the
+   * friction bound; 0: neither */
+  double pass_weight;
 } mrn_boundary;
 
 /* A contact between the material and a rigid obstacle (a friction face or a
@@ -72,11 +82,15 @@ typedef struct mrn_contact_column {
  * `touching` and moving into the obstacle, or, without friction, when in
  * contact at the end of the last step (bit `bit` of *state, which the call
  * with friction updates). With friction, the tangential impulse is bounded by
- * mu times the normal one. The impulse on the material is added to J (may be
- * NULL); returns the frictional work sum m dV . (V - w), <= 0 (both of
- * the nodes on this process's rows, mrn_grid_owns). */
+ * mu times the normal one of the step (mrn_contact_bound), with `held` (may
+ * be NULL): the column's memory of the step's holds, to which a call
+ * without friction adds its hold times `weight` and which the call with
+ * friction reads. The impulse on the material is added to J (may be NULL);
+ * returns the frictional work sum m dV . (V - w), <= 0 (both of the nodes
+ * on this process's rows, mrn_grid_owns). */
 double mrn_contact_apply(const mrn_contact_column *c, mrn_grid *g, double mass_floor, double *vel, double mu,
-                         int with_friction, int touching, unsigned char *state, unsigned char bit, double J[3]);
+                         int with_friction, int touching, unsigned char *state, unsigned char bit, double J[3],
+                         double *held, double weight, double hold_share);
 
 /* The steps of mrn_contact_apply, for a caller that sums a shared column's
  * N and M, P over the processes between them (grid/wall.c): N, the normal
@@ -89,6 +103,9 @@ double mrn_contact_apply(const mrn_contact_column *c, mrn_grid *g, double mass_f
  * node counts once. */
 double mrn_contact_push(const mrn_contact_column *c, const mrn_grid *g, double mass_floor, const double *vel);
 int mrn_contact_held(double N, int with_friction, int touching, unsigned char *state, unsigned char bit);
+/* the normal impulse bounding friction: N of V~ plus hold_share times the
+ * normal momentum `held` that the step's holds removed, at least 0 */
+double mrn_contact_bound(double N, double held, double hold_share);
 void mrn_contact_hold(const mrn_contact_column *c, const mrn_grid *g, double mass_floor, double *vel, double J[3]);
 void mrn_contact_slide_sums(const mrn_contact_column *c, const mrn_grid *g, double mass_floor, const double *vel,
                             double MP[4]);

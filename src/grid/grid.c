@@ -87,8 +87,10 @@ void mrn_grid_free(mrn_grid *g) {
   free(g->work);
   free(g->contact);
   free(g->touch);
+  free(g->held);
   g->mass = g->mom = g->vel = g->vel_new = g->force = g->vel_star = g->work = NULL;
   g->contact = g->touch = NULL;
+  g->held = NULL;
   mrn_grid_active_free(g->active);
   g->active = NULL;
 }

@@ -42,6 +42,12 @@ typedef struct mrn_grid {
   /* n: at the face nodes of friction faces, bit 1 << face set when the
    * material touches the face there (mrn_boundary_touch, each step) */
   unsigned char *touch;
+  /* n, allocated with the first friction face (mrn_boundary_touch): at the
+   * face node of each column of a friction face, the normal momentum into
+   * the face that the step's holds removed (signed), each with its weight in
+   * what reaches the particles, for the friction bound of V~
+   * (grid/boundary.c, mrn_contact_bound); NULL without friction faces */
+  double *held;
 
   /* the rows of nodes, along the last axis (y in 2D, z in 3D; domain
    * numbering), whose work (damping, friction) this process books: in a

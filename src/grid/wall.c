@@ -380,7 +380,8 @@ mrn_wall *mrn_walls_find(mrn_walls *ws, const char *name) {
 #define WALL_TOUCH_SLACK 0.5
 
 /* doubles per column in mrn_wall.sums: 7 + COLUMN_BITS while the columns
- * are built, N, M, P and the impulse J while they act */
+ * are built; while they act the impulse J, N, M and P, and the normal
+ * momentum the first V held (mrn_contact_bound), from 8 ncol */
 enum { COLUMN_BITS = 4, WALL_SUMS = 7 + COLUMN_BITS };
 
 static int grow(void **p, size_t bytes) {
@@ -735,6 +736,7 @@ int mrn_walls_touch(mrn_walls *ws, const mrn_grid *g, double t_mid, double reach
     w->v_done = 0;
     w->contacts = 0;
     rc = wall_touch(w, g, reach, x, vol0, n, ws->share);
+    if (rc == MRN_OK && w->ncol) memset(w->sums + 8 * w->ncol, 0, w->ncol * sizeof *w->sums); /* nothing held yet */
   }
   return rc;
 }
@@ -765,11 +767,14 @@ static mrn_contact_column column_of(const mrn_wall *w, size_t c) {
  * over the processes between them (share): each column's N; the holds, and
  * M and P of the columns held; friction. The column's contact bit is its
  * own (the union of its nodes', kept on them for the next step's touch).
- * J: 3 per column. Returns the frictional work. */
+ * J: 3 per column. The holds of a field without friction are added to the
+ * columns' memory with `weight` (their weight in what reaches the
+ * particles), which bounds the friction of V~ (mrn_contact_bound, with
+ * hold_share). Returns the frictional work. */
 static double contact_columns(mrn_wall *w, mrn_grid *g, double mass_floor, double *vel, int with_friction, double *J,
-                              const mrn_walls_share *share) {
+                              const mrn_walls_share *share, double weight, double hold_share) {
   const size_t nc = w->ncol;
-  double *N = w->sums + 3 * nc, *MP = N + nc, work = 0.0;
+  double *N = w->sums + 3 * nc, *MP = N + nc, *held = MP + 4 * nc, work = 0.0;
   const double mu = w->spec.kind == MRN_WALL_FRICTION ? w->spec.mu : 0.0;
   for (size_t c = 0; c < nc; c++) {
     const mrn_contact_column col = column_of(w, c);
@@ -779,7 +784,9 @@ static double contact_columns(mrn_wall *w, mrn_grid *g, double mass_floor, doubl
   for (size_t c = 0; c < nc; c++) {
     const mrn_contact_column col = column_of(w, c);
     for (int k = 0; k < 4; k++) MP[4 * c + k] = 0.0; /* a column not held slides by nothing */
-    if (mrn_contact_held(N[c], with_friction, 1, &w->col_state[c], MRN_WALL_CONTACT)) {
+    const int in_contact = mrn_contact_held(N[c], with_friction, 1, &w->col_state[c], MRN_WALL_CONTACT);
+    if (in_contact && !with_friction) held[c] += weight * N[c];
+    if (in_contact) {
       mrn_contact_hold(&col, g, mass_floor, vel, J + 3 * c);
       if (with_friction) mrn_contact_slide_sums(&col, g, mass_floor, vel, MP + 4 * c);
     }
@@ -792,7 +799,8 @@ static double contact_columns(mrn_wall *w, mrn_grid *g, double mass_floor, doubl
   if (share) share->reduce(share->ctx, MP, 4 * nc, MRN_COMM_SUM);
   for (size_t c = 0; c < nc; c++) {
     const mrn_contact_column col = column_of(w, c);
-    work += mrn_contact_slide(&col, g, mass_floor, vel, mu, N[c], MP + 4 * c, J + 3 * c);
+    const double bound = mrn_contact_bound(N[c], held[c], hold_share);
+    work += mrn_contact_slide(&col, g, mass_floor, vel, mu, bound, MP + 4 * c, J + 3 * c);
   }
   return work;
 }
@@ -814,10 +822,15 @@ static void book(const mrn_wall *w, const mrn_grid *g, size_t c, const double J[
 }
 
 static double wall_apply(mrn_wall *w, mrn_grid *g, double mass_floor, double *vel, int with_friction,
-                         const mrn_walls_share *share, double pass_weight) {
+                         const mrn_walls_share *share, double pass_weight, double hold_share) {
   double work = 0.0, *J = w->sums;
   if (w->ncol) memset(J, 0, 3 * w->ncol * sizeof *J);
-  if (w->spec.kind != MRN_WALL_FIXED) work = contact_columns(w, g, mass_floor, vel, with_friction, J, share);
+  /* the weight of this field's holds in what reaches the particles: 1 for
+   * the step's first V, pass_weight for XPIC's smoothed fields, none for V~
+   * (whose impulse is booked as it acts) or a re-map's V */
+  const double hold = with_friction ? 0.0 : vel == g->vel ? (w->v_done ? 0.0 : 1.0) : pass_weight;
+  if (w->spec.kind != MRN_WALL_FIXED)
+    work = contact_columns(w, g, mass_floor, vel, with_friction, J, share, hold, hold_share);
   else
     for (size_t c = 0; c < w->ncol; c++)
       for (size_t k = w->col_start[c]; k < w->col_start[c + 1]; k++)
@@ -825,7 +838,6 @@ static double wall_apply(mrn_wall *w, mrn_grid *g, double mass_floor, double *ve
   /* the reaction: the impulses of V~, of the step's first V and of XPIC's
    * smoothed fields, each of these with its weight in V* (xpic.h), acting
    * at the column's first node */
-  const double hold = with_friction ? 0.0 : vel == g->vel ? (w->v_done ? 0.0 : 1.0) : pass_weight;
   for (size_t c = 0; c < w->ncol; c++) {
     if (with_friction) book(w, g, c, J + 3 * c, w->impulse, w->angular, &w->step_work);
     else if (hold != 0.0) {
@@ -837,10 +849,11 @@ static double wall_apply(mrn_wall *w, mrn_grid *g, double mass_floor, double *ve
   return work;
 }
 
-double mrn_walls_apply(mrn_walls *ws, mrn_grid *g, double mass_floor, double *vel, int with_friction) {
+double mrn_walls_apply(mrn_walls *ws, mrn_grid *g, double mass_floor, double *vel, int with_friction,
+                       double hold_share, double pass_weight) {
   double work = 0.0;
   for (int i = 0; ws && i < ws->count; i++)
-    work += wall_apply(&ws->wall[i], g, mass_floor, vel, with_friction, ws->share, ws->pass_weight);
+    work += wall_apply(&ws->wall[i], g, mass_floor, vel, with_friction, ws->share, pass_weight, hold_share);
   return work;
 }
 

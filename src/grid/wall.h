@@ -163,10 +163,6 @@ typedef struct mrn_walls {
   double cundall;      /* D of Cundall's damping, for the bodies (set by the solver) */
   double damping_work; /* the work of that damping on the bodies in the last step */
   const mrn_walls_share *share; /* a distributed run's, or NULL */
-  /* the weight with which the holds on a field other than the grid's V
-   * reach the particles (XPIC's smoothed passes, set by the solver around
-   * each), booked with the holds of V; 0: not booked */
-  double pass_weight;
 } mrn_walls;
 
 #define MRN_WALL_TOUCH 1u
@@ -231,9 +227,11 @@ void mrn_walls_body_energy(const mrn_walls *ws, double *kinetic, double *work);
  * reaction cleared. 0 or an error (a motion function's). */
 int mrn_walls_touch(mrn_walls *ws, const mrn_grid *g, double t_mid, double reach, const double *x, const double *vol0,
                     size_t n);
-/* Impose the walls on vel, as mrn_boundary_apply (which calls it); returns
- * the frictional work (with_friction only) */
-double mrn_walls_apply(mrn_walls *ws, mrn_grid *g, double mass_floor, double *vel, int with_friction);
+/* Impose the walls on vel, as mrn_boundary_apply (which calls it), with its
+ * hold_share and pass_weight (grid/boundary.h); returns the frictional work
+ * (with_friction only) */
+double mrn_walls_apply(mrn_walls *ws, mrn_grid *g, double mass_floor, double *vel, int with_friction,
+                       double hold_share, double pass_weight);
 /* End of a step of dt: the reactions (summed over the processes of a
  * distributed run), the bodies' velocities under gravity, and the walls
  * moved on. `hold_share` is the part of the holds in V that reaches the

@@ -127,6 +127,9 @@ static int fields_alloc(mrn_contact *c, const mrn_grid *g) {
     v->vel = c->vel + 3 * b * n;
     v->vel_new = c->vel_new + 3 * b * n;
     v->force = c->force + 3 * b * n;
+    /* the faces' memory of the step's holds is the single field's: a
+     * body's friction on a face is bounded by its V~ alone */
+    v->held = NULL;
   }
   return MRN_OK;
 }

@@ -91,10 +91,9 @@ static void grid_velocity_held(mrn_sim *sim, mrn_grid *g, double dt, double inle
 
 void mrn_sim_hold_velocity(void *ctx, double *vel, double weight) {
   mrn_sim *sim = ctx;
-  mrn_walls *ws = sim->boundary.walls;
-  if (ws) ws->pass_weight = weight;
+  sim->boundary.pass_weight = weight;
   hold_velocity(sim, &sim->grid, vel);
-  if (ws) ws->pass_weight = 0.0;
+  sim->boundary.pass_weight = 0.0;
 }
 
 void mrn_grid_velocity_on(mrn_sim *sim, mrn_grid *g) { grid_velocity_held(sim, g, 0.0, 0.0); }
@@ -554,6 +553,7 @@ static int walls_step_end(mrn_sim *sim, double dt) {
 int mrn_sim_step_dt(mrn_sim *sim, double dt) {
   if (!(dt > 0.0) || !isfinite(dt)) return mrn_error("step %ld: invalid time step %s", sim->step + 1, mrn_num(dt).s);
   sim->dt = dt;
+  sim->boundary.hold_share = mrn_hold_share(&sim->scheme); /* the friction bound's (grid/boundary.h) */
   int rc = mrn_dist_start(sim);
   if (rc == MRN_OK && sim->nsources) rc = mrn_dist_agree(sim, mrn_sources_begin_step(sim, dt));
   if (rc) return rc;
