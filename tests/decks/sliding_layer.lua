@@ -1,7 +1,8 @@
 -- A layer of sand sliding to rest on a friction floor: the collapse's
 -- numerics (000 Table 2 Mohr-Coulomb, boundary-modified cubic B-splines,
 -- 2 x 2 particles per cell, USF, a_tau = 0.2, floor mu = 0.3) on a layer
--- 1 m long and `cells` cells thick (default 1, 0.1 m), launched along the
+-- 1 m long and `cells` cells of `cell` m thick (default 1 of 0.1 m),
+-- launched along the
 -- floor at v0 = 1.5 m/s. While every part of it slides, the floor's
 -- friction is mu times its weight, so its momentum decelerates at mu g (the
 -- closed form), and a layer that stops as one block stops after
@@ -22,10 +23,11 @@
 -- the layer's decelerating frame its free end leans forward and may slump;
 -- FLIP's and APIC's fronts run on well past the centroid, the tail of the
 -- column collapse (doc/validation.md, column_collapse_lube).
---   --set strategies=...  --set cells=...
+--   --set strategies=...  --set cells=...  --set cell=... (1 m a whole number of them)
 local T = dofile(mpm.deck_dir .. "/testlib.lua")
 local sand = require("moraine.collapse").table2
-local g, mu, v0, cell = 9.81, 0.3, 1.5, 0.1
+local g, mu, v0 = 9.81, 0.3, 1.5
+local cell = mpm.param("cell", 0.1)
 local cells = mpm.param("cells", 1)
 local strategies = T.list(mpm.param("strategies", "PIC,XPIC(2),FLIP0.9,FLIP,APIC"))
 local asserted = { PIC = true, ["XPIC(2)"] = true, ["FLIP0.9"] = true }
@@ -51,13 +53,14 @@ local function layer(strategy)
   return sim
 end
 
--- particles of the layer's size (5 cm) resting on the floor alone, 1 m
--- apart (no two share a node): their mean travel over v0^2 / (2 mu g) - 1
+-- particles of the layer's size (half a cell) resting on the floor alone,
+-- 1 m apart (no two share a node): their mean travel over
+-- v0^2 / (2 mu g) - 1
 local function single(strategy)
   local sim = floor_sim(strategy)
   for k = 0, 1 do
-    local x = 0.525 + k
-    sim:add_particles(mpm.box{ min = { x - 0.01, 0.015 }, max = { x + 0.01, 0.035 } },
+    local x, y = 5.25 * cell + k, 0.25 * cell -- a candidate point of the regular 2 x 2 seeding
+    sim:add_particles(mpm.box{ min = { x - 0.1 * cell, y - 0.1 * cell }, max = { x + 0.1 * cell, y + 0.1 * cell } },
                       { material = mat, per_axis = 2, placement = "regular", velocity = { v0, 0 } })
   end
   local x0 = { sim:particle(1).x[1], sim:particle(2).x[1] }
