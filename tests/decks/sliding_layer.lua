@@ -97,8 +97,8 @@ end
 
 for _, s in ipairs(strategies) do
   local r = slide(s)
-  print(string.format("%-8s deceleration %.4f mu g   centroid %+.1f %%   front %+.1f %% of v0^2 / (2 mu g)   v_end %.2g",
-                      s, r.decel, 100 * r.centroid, 100 * r.front, r.v_end))
+  print(string.format("%-8s deceleration %.4f mu g   centroid %+.1f %%   front %+.1f %% of v0^2 / (2 mu g)   " ..
+                      "v_end %.2g", s, r.decel, 100 * r.centroid, 100 * r.front, r.v_end))
   local checked = asserted[s] or false
   T.expect{ id = "sliding_layer." .. s .. ".decel", what = s .. ": mean deceleration while sliding / (mu g)",
             value = r.decel, reference = 1, rtol = 0.01, asserted = checked }
