@@ -336,7 +336,9 @@ int mrn_boundary_touch(const mrn_boundary *bc, mrn_grid *g, double reach, const 
  * one contact, whose bit 1 << face is kept at the face node in g->contact.
  * The holds of the step are added up in g->held (cleared by the touch) with
  * their weight in what reaches the particles: 1 for the velocity V (the
- * grid's), pass_weight for XPIC's smoothed fields; V~ reads them. */
+ * grid's), pass_weight for XPIC's smoothed fields; V~ reads them. A
+ * re-map's V (MUSL, USAVG) adds after V~ has read, and the next touch
+ * clears it. */
 static double apply_friction_face(const mrn_face_bc *f, mrn_grid *g, double mass_floor, double *vel, int axis, int side,
                                   int with_friction, const mrn_boundary *bc) {
   const double weight = with_friction ? 0.0 : vel == g->vel ? 1.0 : bc->pass_weight;
