@@ -160,6 +160,7 @@ static void save_scheme(mrn_h5w *w, const mrn_scheme *s) {
   /* only when asked for: a run without it writes the file it wrote before */
   if (s->volumetric != MRN_VOLUMETRIC_STANDARD)
     mrn_h5w_string(w, g, "volumetric", mrn_volumetric_names()[s->volumetric]);
+  if (s->holds != MRN_HOLDS_GRID) mrn_h5w_string(w, g, "holds", mrn_holds_names()[s->holds]);
   H5Gclose(g);
 }
 

@@ -235,6 +235,9 @@ static void read_scheme(mrn_h5r *r, ck_data *d) {
   int vol = MRN_VOLUMETRIC_STANDARD; /* absent: standard */
   if (mrn_h5r_has_attr(r, g, "volumetric")) mrn_h5r_choice(r, g, "volumetric", mrn_volumetric_names(), &vol);
   s->volumetric = (mrn_volumetric_kind)vol;
+  int holds = MRN_HOLDS_GRID; /* absent: grid */
+  if (mrn_h5r_has_attr(r, g, "holds")) mrn_h5r_choice(r, g, "holds", mrn_holds_names(), &holds);
+  s->holds = (mrn_holds_kind)holds;
   /* the three choices must also fit together */
   if (!r->failed && mrn_scheme_validate(s) != MRN_OK) fail_with_engine_message(r, g);
 }

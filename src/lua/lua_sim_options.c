@@ -21,6 +21,8 @@ static const mrn_spec scheme_specs[] = {
     {"gradient", MRN_SPEC_STRING, 0, 0, 0, 0, 0, 0, NULL, "kernel gradient: standard or mls (002, Eq. 62)", gradient_choices},
     {"volumetric", MRN_SPEC_STRING, 0, 0, 0, 0, 0, 0, NULL,
      "volumetric part of the velocity gradient: standard or fbar (averaged over the nodes, against locking)", NULL},
+    {"holds", MRN_SPEC_STRING, 0, 0, 0, 0, 0, 0, NULL,
+     "where FLIP's increment takes the holds of V: grid (left out, default) or particles (two-stage contact)", NULL},
 };
 
 static const mrn_spec boundary_specs[] = {
@@ -207,6 +209,7 @@ void mrn_lua_read_scheme(lua_State *L, int idx, const char *where, mrn_sim *sim)
     if (custom) mrn_scheme_describe(&s);
     /* not a transfer choice: the preset's name stays */
     if ((k = read_knob(L, idx, where, "volumetric", mrn_volumetric_names())) >= 0) s.volumetric = k;
+    if ((k = read_knob(L, idx, where, "holds", mrn_holds_names())) >= 0) s.holds = k;
   } else {
     mrn_lua_error(L, where, "scheme must be a preset name or a table {transfer = ..., stress_update = ...}, got %s",
                   luaL_typename(L, idx));

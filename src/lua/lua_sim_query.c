@@ -203,6 +203,7 @@ int l_sim_info(lua_State *L) {
   lua_pushstring(L, s->scheme.name); lua_setfield(L, -2, "transfer");
   lua_pushstring(L, mrn_stress_update_names()[s->scheme.stress_update]); lua_setfield(L, -2, "stress_update");
   lua_pushstring(L, mrn_volumetric_names()[s->scheme.volumetric]); lua_setfield(L, -2, "volumetric");
+  lua_pushstring(L, mrn_holds_names()[s->scheme.holds]); lua_setfield(L, -2, "holds");
   lua_pushnumber(L, s->grid.cell); lua_setfield(L, -2, "cell");
   mrn_lua_push_vector(L, s->grid.origin, s->dim); lua_setfield(L, -2, "origin");
   mrn_lua_push_vector(L, s->grid.size, s->dim); lua_setfield(L, -2, "size");

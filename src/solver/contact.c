@@ -387,6 +387,9 @@ static int contact_check(mrn_sim *sim) {
   if (sim->scheme.volumetric != MRN_VOLUMETRIC_STANDARD)
     return mrn_error("contact: scheme volumetric = '%s' is not available with contact between bodies (it would "
                      "average the volume change across the bodies)", mrn_volumetric_names()[sim->scheme.volumetric]);
+  if (sim->scheme.holds != MRN_HOLDS_GRID)
+    return mrn_error("contact: scheme holds = '%s' is not available with contact between bodies (each body's "
+                     "velocity keeps its holds)", mrn_holds_names()[sim->scheme.holds]);
   if (mrn_particles_user_field(ps, MRN_POINT_FORCE_FIELD))
     return mrn_error("contact: point forces are not available with contact between bodies");
   /* a body's particles may all be on other processes */

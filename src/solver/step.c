@@ -51,13 +51,37 @@ static void scale_grid_mass(mrn_sim *sim, mrn_grid *g, const mrn_node_ranges *r)
 /* The part of the holds in V (walls, inlets) that reaches the particles' momentum:
  * PIC-like updates take V~ whole, FLIP only V~ - V (which the holds in V do
  * not change), a blend X of FLIP; XPIC takes V* + V~ - V, V* being V
- * smoothed, so with the holds. */
+ * smoothed, so with the holds. With `holds = particles` FLIP's V is the
+ * velocity before its holds (release_holds): the whole of them. */
 double mrn_hold_share(const mrn_scheme *s) {
+  if (s->holds == MRN_HOLDS_PARTICLES) return 1.0;
   switch (s->velocity_update) {
   case MRN_VUPDATE_FLIP: return 0.0;
   case MRN_VUPDATE_BLEND: return 1.0 - s->flip_fraction;
   default: return 1.0;
   }
+}
+
+/* `holds = particles`: V as the transfer gave it, before the holds, for
+ * FLIP's increment V~ - V (G2P reads it from grid.vel), once V~ is built.
+ * The momentum of P2G is still on the grid. A face then stops in the
+ * particles the normal velocity it stopped in V, an inelastic stop that
+ * bounds friction (mrn_hold_share), where otherwise a FLIP particle on the
+ * face keeps it in its memory (transfer/scheme.h). XPIC's V* already holds
+ * them; PIC and APIC take no V. */
+static void release_holds(mrn_sim *sim) {
+  const mrn_scheme *s = &sim->scheme;
+  if (s->holds != MRN_HOLDS_PARTICLES) return;
+  if (s->velocity_update != MRN_VUPDATE_FLIP && s->velocity_update != MRN_VUPDATE_BLEND) return;
+  mrn_grid *g = &sim->grid;
+  const double floor_mass = sim->mass_floor;
+  const mrn_node_ranges r = mrn_grid_active_ranges(g);
+#pragma omp parallel for schedule(static) if (r.nodes > MRN_OMP_MIN_NODES)
+  for (long k = 0; k < r.count; k++)
+    for (long i = r.lo[k]; i < r.hi[k]; i++) {
+      const double m = g->mass[i];
+      for (int d = 0; d < 3; d++) g->vel[3 * i + d] = m > floor_mass ? g->mom[3 * i + d] / m : 0.0;
+    }
 }
 
 /* the conditions on a velocity field of g: the faces, the constraints, and
@@ -167,7 +191,11 @@ void mrn_grid_update_on(mrn_sim *sim, mrn_grid *g, double dt) {
   mrn_phase_end(MRN_PHASE_GRID, t0);
 }
 
-static void grid_update(mrn_sim *sim, double dt) { mrn_grid_update_on(sim, &sim->grid, dt); }
+/* V~, and V without its holds where FLIP's increment takes them */
+static void grid_update(mrn_sim *sim, double dt) {
+  mrn_grid_update_on(sim, &sim->grid, dt);
+  release_holds(sim);
+}
 
 static double *scratch(mrn_sim *sim, size_t count) {
   if (count > sim->scratch_cap) {

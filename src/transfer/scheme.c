@@ -14,6 +14,7 @@ static const char *const vupdate_names[] = {"PIC", "FLIP", "blend", "XPIC", NULL
 static const char *const xupdate_names[] = {"grid", "particle", "XPIC", NULL};
 static const char *const vgrid_names[] = {"plain", "affine", "taylor", NULL};
 static const char *const volumetric_names[] = {"standard", "fbar", NULL};
+static const char *const holds_names[] = {"grid", "particles", NULL};
 
 const char *const *mrn_scheme_preset_names(void) { return preset_names; }
 const char *const *mrn_stress_update_names(void) { return stress_names; }
@@ -21,6 +22,7 @@ const char *const *mrn_velocity_update_names(void) { return vupdate_names; }
 const char *const *mrn_position_update_names(void) { return xupdate_names; }
 const char *const *mrn_grid_velocity_names(void) { return vgrid_names; }
 const char *const *mrn_volumetric_names(void) { return volumetric_names; }
+const char *const *mrn_holds_names(void) { return holds_names; }
 
 int mrn_name_index(const char *const *names, const char *name) {
   for (int i = 0; names[i]; i++)

@@ -25,6 +25,12 @@ typedef enum { MRN_STRESS_USF = 0, MRN_STRESS_USL, MRN_STRESS_MUSL, MRN_STRESS_U
 /* the volumetric part of the velocity gradient the material update takes:
  * each particle's own, or averaged over the nodes (F-bar, solver/update.c) */
 typedef enum { MRN_VOLUMETRIC_STANDARD = 0, MRN_VOLUMETRIC_FBAR } mrn_volumetric_kind;
+/* where the holds of the step's first V (faces, walls, constraints, inlets)
+ * reach FLIP's increment V~ - V: left out of it, so that a particle keeps
+ * the normal velocity a face stopped on the grid (000, CB-Geo), or taken
+ * into it, V being the velocity before its holds (the two-stage contact of
+ * Nairn, Hammerquist and Smith 2020; solver/step.c, release_holds) */
+typedef enum { MRN_HOLDS_GRID = 0, MRN_HOLDS_PARTICLES } mrn_holds_kind;
 
 #define MRN_XPIC_MAX_ORDER 16
 
@@ -37,6 +43,7 @@ typedef struct mrn_scheme {
   int mls_gradient;     /* 1: MLS kernel gradient (002, Eq. 62 everywhere) */
   mrn_stress_update_kind stress_update;
   mrn_volumetric_kind volumetric; /* kept by a preset, as the stress update */
+  mrn_holds_kind holds;           /* kept by a preset; matters where the update has a FLIP part */
   char name[32];        /* the preset name, or a description of the three choices */
 } mrn_scheme;
 
@@ -57,6 +64,7 @@ const char *const *mrn_velocity_update_names(void);
 const char *const *mrn_position_update_names(void);
 const char *const *mrn_grid_velocity_names(void);
 const char *const *mrn_volumetric_names(void);
+const char *const *mrn_holds_names(void);
 /* index of name in a NULL-terminated list, or -1 */
 int mrn_name_index(const char *const *names, const char *name);
 

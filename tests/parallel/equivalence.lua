@@ -14,7 +14,8 @@
 -- --set transfer=NAME replaces the case's strategy (XPIC(2): the smoothing's
 -- extra passes, each with its halo sum); --set volumetric=fbar averages the
 -- divergence over the nodes (its scatter with its halo sum); --set
--- rebalance=N re-cuts the slabs every N steps; --set late=N runs N steps,
+-- holds=particles hands the holds of V to FLIP's particles in collapse2d
+-- (V before its holds, from the summed momentum); --set rebalance=N re-cuts the slabs every N steps; --set late=N runs N steps,
 -- then drops a second, moving block into the cube3d case (its initial affine
 -- field found over every process's particles); --set load=FILE
 -- continues from a checkpoint of either case instead (tests/parallel/restart.py).
@@ -29,6 +30,7 @@ local load = mpm.param("load", "")
 local bar2d_case = case == "cpdi2d" or case == "cpgimp2d"
 local transfer = mpm.param("transfer", (case == "collapse2d" or bar2d_case) and "FLIP" or "APIC")
 local volumetric = mpm.param("volumetric", "standard")
+local holds = mpm.param("holds", "grid")
 local late = mpm.param("late", 0)
 local cpdi_shape = mpm.param("shape", "cpdi") -- cpdi2d's: cpdi or cpdi2
 
@@ -92,7 +94,8 @@ if load ~= "" then
 elseif case == "collapse2d" then
   local sand = mpm.material.mohr_coulomb{ density = 1748, E = 12.84e6, nu = 0.16, phi = 33.75, psi = 0, cohesion = 1 }
   sim = mpm.simulation{ dim = 2, grid = { size = { 3.0, 1.0 }, cell = 0.025 }, shape = "quadratic_bspline",
-    scheme = { transfer = transfer, stress_update = "USF", volumetric = volumetric }, gravity = { 0, -9.81 },
+    scheme = { transfer = transfer, stress_update = "USF", volumetric = volumetric, holds = holds },
+    gravity = { 0, -9.81 },
     boundary = { left = "slip", right = "slip", bottom = { "friction", mu = 0.3 }, top = "free" },
     dt = { cfl = 0.5 }, thermo = 0, diagnostics = name .. ".csv", diagnostics_every = 1,
     output = { vtk = name, every_steps = 250, fields = { "velocity", "stress", "id" }, grid = true } }

@@ -23,6 +23,10 @@ add_test(NAME mpi.equivalence_fbar
 add_test(NAME mpi.equivalence_fbar3d
          COMMAND ${Python3_EXECUTABLE} ${MORAINE_PAR_DIR}/equivalence.py $<TARGET_FILE:moraine> ${MORAINE_PAR_DECK}
                  ${MORAINE_TEST_OUT}/mpi_equivalence_fbar3d cube3d 300 3 --volumetric fbar)
+# scheme holds = "particles": FLIP's V before its holds, from the momentum of the halo sum
+add_test(NAME mpi.equivalence_holds
+         COMMAND ${Python3_EXECUTABLE} ${MORAINE_PAR_DIR}/equivalence.py $<TARGET_FILE:moraine> ${MORAINE_PAR_DECK}
+                 ${MORAINE_TEST_OUT}/mpi_equivalence_holds collapse2d 500 2 3 --set holds=particles)
 # APIC's initial affine field of a block added after 100 steps, found over every process's particles
 add_test(NAME mpi.equivalence_late_affine
          COMMAND ${Python3_EXECUTABLE} ${MORAINE_PAR_DIR}/equivalence.py $<TARGET_FILE:moraine> ${MORAINE_PAR_DECK}
@@ -105,7 +109,7 @@ endforeach()
 add_test(NAME mpi.robust COMMAND ${MORAINE_PAR_DIR}/robust.sh $<TARGET_FILE:moraine> ${MORAINE_TEST_OUT}/mpi_robust
                                  ${Python3_EXECUTABLE})
 # the cases share the two equivalence directories' one-process runs: one at a time
-set_tests_properties(mpi.equivalence_collapse2d mpi.equivalence_cube3d mpi.equivalence_xpic mpi.equivalence_fbar
+set_tests_properties(mpi.equivalence_collapse2d mpi.equivalence_cube3d mpi.equivalence_xpic mpi.equivalence_fbar mpi.equivalence_holds
                      mpi.equivalence_fbar3d mpi.equivalence_late_affine mpi.equivalence_source
                      mpi.equivalence_split mpi.equivalence_point mpi.equivalence_incline mpi.equivalence_push
                      mpi.equivalence_blocks mpi.restart_incline mpi.restart_push mpi.equivalence_periodic

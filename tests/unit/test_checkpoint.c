@@ -103,8 +103,14 @@ static mrn_sim *make_sim(const case_def *c) {
   for (int f = 0; f < 2 * c->dim; f++) sim->boundary.face[f].kind = MRN_BC_SLIP;
   sim->boundary.face[MRN_FACE_YMIN].kind = c->floor;
   sim->boundary.face[MRN_FACE_YMIN].mu = c->floor == MRN_BC_FRICTION ? 0.3 : 0.0;
-  CHECK(mrn_scheme_from_preset(c->preset, &sim->scheme) == MRN_OK);
+  /* "FLIP/particles": the preset, and where FLIP's increment takes the holds of V */
+  char preset[32];
+  snprintf(preset, sizeof preset, "%s", c->preset);
+  char *holds = strchr(preset, '/');
+  if (holds) *holds++ = '\0';
+  CHECK(mrn_scheme_from_preset(preset, &sim->scheme) == MRN_OK);
   sim->scheme.stress_update = c->stress;
+  if (holds) sim->scheme.holds = (mrn_holds_kind)mrn_name_index(mrn_holds_names(), holds);
   mrn_dt_policy_fixed(&sim->dt_policy, 4e-4);
   if (c->damping > 0) {
     sim->damping_cundall = c->damping;
@@ -164,6 +170,7 @@ static void check_same_settings(const mrn_sim *a, const mrn_sim *b) {
   CHECK(a->scheme.velocity_update == b->scheme.velocity_update);
   CHECK(a->scheme.position_update == b->scheme.position_update);
   CHECK(a->scheme.stress_update == b->scheme.stress_update);
+  CHECK(a->scheme.holds == b->scheme.holds);
   CHECK(same_bits(&a->scheme.flip_fraction, &b->scheme.flip_fraction, sizeof(double)));
   CHECK(strcmp(a->scheme.name, b->scheme.name) == 0);
   for (int f = 0; f < MRN_FACE_COUNT; f++)
@@ -1067,6 +1074,8 @@ int main(void) {
       {"xpic-usl", 2, MRN_SHAPE_GIMP, "XPIC(2)", MRN_STRESS_USL, MRN_BC_FRICTION, MC, 0},
       {"3d-musl", 3, MRN_SHAPE_LINEAR, "FLIP0.99", MRN_STRESS_MUSL, MRN_BC_SLIP, NULL, 0},
       {"3d-mc", 3, MRN_SHAPE_QUADRATIC_BSPLINE, "FLIP", MRN_STRESS_USF, MRN_BC_FRICTION, MC, 0},
+      {"mc-holds", 2, MRN_SHAPE_QUADRATIC_BSPLINE, "FLIP/particles", MRN_STRESS_USF, MRN_BC_FRICTION, MC, 0},
+      {"musl-holds", 2, MRN_SHAPE_CUBIC_BSPLINE, "FLIP0.9/particles", MRN_STRESS_MUSL, MRN_BC_FRICTION, NULL, 0},
   };
   for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) test_restart(&cases[i], 60);
   test_empty();
