@@ -25,11 +25,14 @@
 -- 18 % (what feeds the vibration: friction_layer.lua; doc/numerics.md,
 -- "Friction faces").
 --
+-- FLIP/particles: FLIP with scheme holds = "particles" (the holds of V
+-- reach its particles); NAME/particles the same for any strategy.
+--
 --   --set dim=2|3  --set strategies=PIC,FLIP,...  --set shapes=quadratic_bspline,...
 local T = dofile(mpm.deck_dir .. "/testlib.lua")
 local dim = math.tointeger(mpm.param("dim", 2))
 local list = T.list
-local strategies = list(mpm.param("strategies", "PIC,FLIP,APIC,TPIC,AFLIP,TFLIP,XPIC(2),MLS"))
+local strategies = list(mpm.param("strategies", "PIC,FLIP,APIC,TPIC,AFLIP,TFLIP,XPIC(2),MLS,FLIP/particles"))
 local shapes = list(mpm.param("shapes", "quadratic_bspline,cubic_bspline"))
 local g, rho, E = 9.81, 1000, 1e6
 local cell = dim == 2 and 0.025 or 0.05
@@ -59,7 +62,8 @@ local function run(o)
   local boundary = o.face == "side" and { all = "slip", xmin = floor, xmax = "free" }
                    or { all = "slip", bottom = floor, top = "free" }
   local sim = mpm.simulation{ dim = dim, grid = { size = size, cell = cell }, shape = o.shape,
-                              scheme = o.strategy, gravity = gravity, boundary = boundary, dt = { a_tau = 0.2 },
+                              scheme = { transfer = o.strategy:match("^[^/]+"), holds = o.strategy:match("/(.+)$") },
+                              gravity = gravity, boundary = boundary, dt = { a_tau = 0.2 },
                               diagnostics = false, thermo = 0, progress = false }
   sim:add_particles(mpm.box{ min = lo, max = hi },
                     { material = mpm.material.linear_elastic{ density = rho, E = E, nu = 0.3 },
