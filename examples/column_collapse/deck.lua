@@ -15,6 +15,7 @@
 --   a_tau         dt = a_tau l_cell sqrt(rho / E)           (0.2)
 --   stress_update USF, USL, MUSL or USAVG                   (USF)
 --   holds         grid or particles: where FLIP's increment takes the holds of V (grid)
+--   volumetric    standard or fbar: the volumetric part of the velocity gradient (standard)
 --   friction      floor friction coefficient                (0.3)
 --   width_factor  collapse grid width / column width        (6, 000 Eq. 59)
 --   t_max         collapse duration in t~ = t / sqrt(AR L / g) (8; quick: 2)
@@ -38,6 +39,7 @@ local per_axis = math.tointeger(mpm.param("per_axis", 2)) or error("per_axis mus
 local a_tau = mpm.param("a_tau", 0.2)
 local stress_update = mpm.param("stress_update", "USF")
 local holds = mpm.param("holds", "grid")
+local volumetric = mpm.param("volumetric", "standard")
 local friction = mpm.param("friction", 0.3)
 local width_factor = mpm.param("width_factor", 6)
 local t_max = mpm.param("t_max", quick and 2 or 8)
@@ -45,7 +47,7 @@ local vtk = mpm.param("vtk", true)
 local plot = mpm.param("plot", not quick)
 
 local known = { quick = 1, ratios = 1, strategies = 1, cell = 1, per_axis = 1, a_tau = 1, stress_update = 1,
-                holds = 1, friction = 1, width_factor = 1, t_max = 1, vtk = 1, plot = 1 }
+                holds = 1, volumetric = 1, friction = 1, width_factor = 1, t_max = 1, vtk = 1, plot = 1 }
 for name in pairs(mpm.args) do
   if not known[name] then error("unknown parameter --set " .. name) end
 end
@@ -57,6 +59,7 @@ for _, ar_text in ipairs(ratios) do
   for _, strategy in ipairs(strategies) do
     local r = collapse.run{
       aspect_ratio = ar, strategy = strategy, settle_strategy = "FLIP", stress_update = stress_update, holds = holds,
+      volumetric = volumetric,
       cell = cell, per_axis = per_axis, a_tau = a_tau, friction = friction, width_factor = width_factor,
       collapse_time = t_max * math.sqrt(ar * 1.0 / 9.81),
       settled = settled,

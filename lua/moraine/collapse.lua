@@ -45,6 +45,7 @@ local DEFAULTS = {
   settle_strategy = false,     -- of the settling; default: strategy
   stress_update = "USF",
   holds = "grid",              -- where FLIP's increment takes the holds of V (scheme holds), both phases
+  volumetric = "standard",     -- the volumetric part of the velocity gradient (scheme volumetric), both phases
   a_tau = 0.2,                 -- dt = a_tau l_cell sqrt(rho / E) (000, Eq. 29)
   dt = false,                  -- a fixed dt (s) instead of a_tau
   dt_policy = false,           -- any dt policy table/function of the API instead
@@ -240,7 +241,7 @@ local function phase_sim(o, phase, width, transfer, damping)
   return mpm.simulation{
     dim = 2, grid = { origin = { 0, 0 }, size = { width, Hmesh }, cell = o.cell }, gravity = { 0, -o.g },
     shape = o.shape, shape_boundary = o.shape_boundary,
-    scheme = { transfer = transfer, stress_update = o.stress_update, holds = o.holds },
+    scheme = { transfer = transfer, stress_update = o.stress_update, holds = o.holds, volumetric = o.volumetric },
     dt = dt_policy(o), damping = { cundall = damping },
     boundary = { left = "slip", right = "slip", bottom = { "friction", mu = o.friction }, top = "free" },
     thermo = o.thermo, diagnostics = o.diagnostics and (o.name .. "_" .. phase .. ".csv") or false,

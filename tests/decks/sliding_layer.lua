@@ -27,7 +27,8 @@
 -- FLIP's and APIC's fronts run on well past the centroid, the tail of the
 -- column collapse (doc/validation.md, column_collapse_lube).
 --   --set strategies=...  --set cells=...  --set cell=... (1 m a whole number of them);
---   a strategy written NAME/particles runs with scheme holds = "particles"
+--   a strategy written NAME/particles runs with scheme holds = "particles";
+--   --set step=true reports a step at rest instead (below)
 local T = dofile(mpm.deck_dir .. "/testlib.lua")
 local sand = require("moraine.collapse").table2
 local g, mu, v0 = 9.81, 0.3, 1.5
@@ -103,6 +104,25 @@ local function slide(strategy)
   sim:free()
   return { decel = (v1 - v2) / (0.5 * t_stop) / (mu * g), centroid = (c3 - c0) / stop - 1, front = (f3 - f0) / stop - 1,
            v_end = v3 }
+end
+
+-- --set step=true: the layer at rest instead, a step whose two vertical
+-- faces a cohesionless sand cannot hold; reported: how far its furthest
+-- particle runs out from the right face in 1.5 s
+if mpm.param("step", false) then
+  for _, s in ipairs(strategies) do
+    local sim = floor_sim(s)
+    sim:add_particles(mpm.box{ min = { 0.5, 0 }, max = { 1.5, cells * cell } }, { material = mat, per_axis = 2 })
+    local _, _, f0 = state(sim)
+    sim:run{ time = 1.5 }
+    local _, _, front = state(sim)
+    sim:free()
+    print(string.format("%-14s step at rest: the front runs out %.3f m", s, front - f0))
+    T.expect{ id = "sliding_layer.step." .. s, what = s .. ": a step at rest, the front's runout", value = front - f0,
+              unit = "m" }
+  end
+  T.done("sliding_layer")
+  return
 end
 
 for _, s in ipairs(strategies) do
