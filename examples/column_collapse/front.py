@@ -14,7 +14,12 @@ the deck writes velocity, displacement and id) and prints
   speed there and its mean deceleration from there to rest in units of
   mu g, both from its motion (snapshot to snapshot), and the largest gap
   between its stored velocity and its motion;
-- where it would have stopped had it decelerated at mu g from the floor on.
+- where it would have stopped had it decelerated at mu g from the floor on;
+- at the last snapshot, the share of the kinetic energy (of sum |v|^2: the
+  particles' masses are equal) in the particles within half a cell of the
+  floor, and the largest stored velocity into the floor among them: what a
+  FLIP particle keeps of the floor's stop (doc/numerics.md, "What FLIP
+  remembers of a face's stop").
 
 Options: --cell (m, 0.1), --width (L_x^init, m, 1), --ar (default: from the
 name AR<a>_...), --mu (0.3), --g (9.81).
@@ -108,6 +113,16 @@ def furthest_history(series, o):
           f"(it reached L~ = {runout(x[-1, 0], o):.1f})")
 
 
+def floor_memory(series, o):
+    last = series[-1][1]
+    v2 = np.sum(last["v"] ** 2, axis=1)
+    low = last["x"][:, 1] < 0.5 * o.cell
+    share = np.sum(v2[low]) / np.sum(v2) if np.sum(v2) > 0 else 0.0
+    into = -np.min(last["v"][low, 1]) if np.any(low) else 0.0
+    print(f"\nat t = {series[-1][0]:.2f} s: {100 * share:.0f} % of the kinetic energy in the {int(np.sum(low))} "
+          f"particles within half a cell of the floor; their largest velocity into it {max(into, 0.0):.2f} m/s")
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("pvd")
@@ -127,6 +142,7 @@ def main():
         sys.exit(f"front.py: {o.pvd} holds {len(series)} snapshots; at least 3 are needed")
     front_table(series, o, math.sqrt(o.ar * o.width / o.g))
     furthest_history(series, o)
+    floor_memory(series, o)
 
 
 if __name__ == "__main__":
