@@ -15,9 +15,10 @@
 -- extra passes, each with its halo sum); --set volumetric=fbar averages the
 -- divergence over the nodes (its scatter with its halo sum); --set
 -- holds=particles hands the holds of V to FLIP's particles in collapse2d
--- (V before its holds, from the summed momentum); --set rebalance=N re-cuts the slabs every N steps; --set late=N runs N steps,
--- then drops a second, moving block into the cube3d case (its initial affine
--- field found over every process's particles); --set load=FILE
+-- (V before its holds, from the summed momentum); --set rebalance=N
+-- re-cuts the slabs every N steps; --set late=N runs N steps, then drops
+-- a second, moving block into the cube3d case (its initial affine field
+-- found over every process's particles); --set load=FILE
 -- continues from a checkpoint of either case instead (tests/parallel/restart.py).
 local case = mpm.param("case", "collapse2d")
 local steps = mpm.param("steps", 1000)
