@@ -62,6 +62,17 @@ double mrn_hold_share(const mrn_scheme *s) {
   }
 }
 
+/* V = momentum / mass on the nodes above the mass floor, zero below: the
+ * grid velocity as the transfer gave it, before any hold */
+static void velocity_from_momentum(mrn_grid *g, double floor_mass, const mrn_node_ranges *r) {
+#pragma omp parallel for schedule(static) if (r->nodes > MRN_OMP_MIN_NODES)
+  for (long k = 0; k < r->count; k++)
+    for (long i = r->lo[k]; i < r->hi[k]; i++) {
+      const double m = g->mass[i];
+      for (int d = 0; d < 3; d++) g->vel[3 * i + d] = m > floor_mass ? g->mom[3 * i + d] / m : 0.0;
+    }
+}
+
 /* `holds = particles`: V as the transfer gave it, before the holds, for
  * FLIP's increment V~ - V (G2P reads it from grid.vel), once V~ is built.
  * The momentum of P2G is still on the grid. A face then stops in the
@@ -73,15 +84,8 @@ static void release_holds(mrn_sim *sim) {
   const mrn_scheme *s = &sim->scheme;
   if (s->holds != MRN_HOLDS_PARTICLES) return;
   if (s->velocity_update != MRN_VUPDATE_FLIP && s->velocity_update != MRN_VUPDATE_BLEND) return;
-  mrn_grid *g = &sim->grid;
-  const double floor_mass = sim->mass_floor;
-  const mrn_node_ranges r = mrn_grid_active_ranges(g);
-#pragma omp parallel for schedule(static) if (r.nodes > MRN_OMP_MIN_NODES)
-  for (long k = 0; k < r.count; k++)
-    for (long i = r.lo[k]; i < r.hi[k]; i++) {
-      const double m = g->mass[i];
-      for (int d = 0; d < 3; d++) g->vel[3 * i + d] = m > floor_mass ? g->mom[3 * i + d] / m : 0.0;
-    }
+  const mrn_node_ranges r = mrn_grid_active_ranges(&sim->grid);
+  velocity_from_momentum(&sim->grid, sim->mass_floor, &r);
 }
 
 /* the conditions on a velocity field of g: the faces, the constraints, and
@@ -99,15 +103,9 @@ static void hold_velocity(mrn_sim *sim, mrn_grid *g, double *vel) {
  * face an inlet opens in) is overridden there, not work of the inlet */
 static void grid_velocity_held(mrn_sim *sim, mrn_grid *g, double dt, double inlet_share) {
   const double t0 = mrn_phase_begin();
-  const double floor_mass = sim->mass_floor;
   const mrn_node_ranges r = mrn_grid_active_ranges(g); /* every nodal array is zero elsewhere */
   if (sim->mass_scaling != 1.0) scale_grid_mass(sim, g, &r);
-#pragma omp parallel for schedule(static) if (r.nodes > MRN_OMP_MIN_NODES)
-  for (long k = 0; k < r.count; k++)
-    for (long i = r.lo[k]; i < r.hi[k]; i++) {
-      double m = g->mass[i];
-      for (int d = 0; d < 3; d++) g->vel[3 * i + d] = m > floor_mass ? g->mom[3 * i + d] / m : 0.0;
-    }
+  velocity_from_momentum(g, sim->mass_floor, &r);
   if (sim->nsources && inlet_share > 0.0) mrn_sources_apply(sim, g->vel, dt, inlet_share);
   hold_velocity(sim, g, g->vel);
   mrn_phase_end(MRN_PHASE_GRID, t0);

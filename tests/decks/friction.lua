@@ -61,8 +61,9 @@ local function run(o)
   local floor = { "friction", mu = o.mu }
   local boundary = o.face == "side" and { all = "slip", xmin = floor, xmax = "free" }
                    or { all = "slip", bottom = floor, top = "free" }
+  local transfer, holds = T.strategy(o.strategy)
   local sim = mpm.simulation{ dim = dim, grid = { size = size, cell = cell }, shape = o.shape,
-                              scheme = { transfer = o.strategy:match("^[^/]+"), holds = o.strategy:match("/(.+)$") },
+                              scheme = { transfer = transfer, holds = holds },
                               gravity = gravity, boundary = boundary, dt = { a_tau = 0.2 },
                               diagnostics = false, thermo = 0, progress = false }
   sim:add_particles(mpm.box{ min = lo, max = hi },

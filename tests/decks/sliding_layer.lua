@@ -41,11 +41,11 @@ local stop = v0 ^ 2 / (2 * mu * g)
 local t_stop = v0 / (mu * g)
 
 local function floor_sim(strategy)
-  local holds = strategy:match("/(.+)$") or "grid"
+  local transfer, holds = T.strategy(strategy)
   local sim = mpm.simulation{
     dim = 2, grid = { origin = { 0, 0 }, size = { 3, 0.4 + cells * cell }, cell = cell }, gravity = { 0, -g },
     shape = "cubic_bspline", shape_boundary = "modified",
-    scheme = { transfer = strategy:match("^[^/]+"), holds = holds, stress_update = "USF" },
+    scheme = { transfer = transfer, holds = holds, stress_update = "USF" },
     dt = { fixed = 0.2 * cell * math.sqrt(sand.density / sand.E) },
     boundary = { left = "slip", right = "slip", bottom = { "friction", mu = mu }, top = "free" },
   }

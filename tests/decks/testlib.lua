@@ -50,6 +50,12 @@ function T.list(s)
   return t
 end
 
+--- a strategy of a deck's list as a transfer preset and the scheme's holds:
+--- "FLIP" -> "FLIP", "grid"; "FLIP/particles" -> "FLIP", "particles"
+function T.strategy(name)
+  return name:match("^[^/]+"), name:match("/(.+)$") or "grid"
+end
+
 --- the least-squares slope of ys against xs (lists of equal length, >= 2)
 function T.slope(xs, ys)
   local n, sx, sy, sxx, sxy = #xs, 0, 0, 0, 0
