@@ -146,14 +146,15 @@ def front_group(series, o, land):
         return
     s_land = series[int(np.searchsorted([ts for ts, _ in series], t[i]))][1]
     group = [int(q) for q, xq in zip(s_land["id"], s_land["x"][:, 0]) if xq > x[i, 0] - o.cell]
-    mean_v = [np.mean(s["v"][[s["row"][q] for q in group], 0]) for ts, s in series if t[i] <= ts <= t[rest]]
-    decel = (mean_v[0] - mean_v[-1]) / (t[rest] - t[i])
-    ratios = []
+    mean_v, ratios = [], []
     for ts, s in series:
         if t[i] <= ts <= t[rest]:
-            sig = s["sigma"][[s["row"][q] for q in group]]
+            rows = [s["row"][q] for q in group]
+            mean_v.append(np.mean(s["v"][rows, 0]))
+            sig = s["sigma"][rows]
             loaded = sig[:, 1] < -100.0  # compressed, not at the tension cut-off
             ratios.extend(sig[loaded, 0] / sig[loaded, 1])
+    decel = (mean_v[0] - mean_v[-1]) / (t[rest] - t[i])
     ka = (1.0 - math.sin(math.radians(o.phi))) / (1.0 + math.sin(math.radians(o.phi)))
     print(f"  the {len(group)} particles of its cell and ahead of it then: their mean stored velocity slows at "
           f"{decel / (o.mu * o.g):.2f} mu g to t = {t[rest]:.2f} s")
